@@ -1,0 +1,70 @@
+// The Scenario: everything one Monte Carlo run of one data set holds.
+//
+// An estimator sees only StepData (time stamps, controls, measurements) and the EstimatorContext
+// built from the scenario's public part. The origin of each measurement (landmark index or
+// clutter) is hidden: only the oracle and the metrics read ScenarioStep::origin.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "src/core/types.h"
+#include "src/models/car_motion_model.h"
+#include "src/models/motion_model.h"
+#include "src/models/sensor_model.h"
+
+namespace phdslam::datasets {
+
+/// Origin label of a clutter measurement.
+inline constexpr int kClutter = -1;
+
+/// What an estimator receives at one filter step.
+struct StepData {
+  /// Time stamps [t_prev, ..., t_k] (s). A single entry means no propagation at this step
+  /// (reference notes 2.3).
+  std::vector<double> times;
+  /// controls[i] is held over [times[i], times[i+1]] (zero-order hold): size times.size() - 1.
+  std::vector<Control> controls;
+  /// Range-bearing measurements of this scan, bearings wrapped.
+  std::vector<Measurement> measurements;
+};
+
+struct ScenarioStep {
+  StepData data;
+  /// Hidden: for each measurement its landmark index (0-based) or kClutter. Empty when unknown
+  /// (real data).
+  std::vector<int> origin;
+};
+
+struct GpsFix {
+  double t = 0.0;  ///< s, on the scenario's clock
+  Vec2 position = Vec2::Zero();
+};
+
+struct GroundTruth {
+  std::vector<Pose> poses;          ///< one per step (empty for real data)
+  std::vector<Landmark> landmarks;  ///< true map (empty for real data)
+  std::vector<GpsFix> gps;          ///< GPS fixes (real data)
+};
+
+enum class MotionKind { kVelocity, kCar };
+
+struct Scenario {
+  std::string name;
+  std::uint64_t seed = 0;  ///< Monte Carlo seed the measurements were generated with
+  Pose initial_pose = Pose::Zero();
+  MotionKind motion = MotionKind::kVelocity;
+  models::CarGeometry car;  ///< used when motion == kCar
+  Mat2 control_noise_cov = Mat2::Identity();  ///< Q_u
+  models::SensorModel sensor;
+  std::vector<ScenarioStep> steps;
+  GroundTruth truth;
+
+  [[nodiscard]] std::unique_ptr<models::MotionModel> MakeMotionModel() const;
+  /// The time stamp of step k (its last time stamp).
+  [[nodiscard]] double StepTime(std::size_t k) const { return steps[k].data.times.back(); }
+};
+
+}  // namespace phdslam::datasets

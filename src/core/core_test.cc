@@ -1,0 +1,83 @@
+#include <gtest/gtest.h>
+
+#include <Eigen/LU>
+#include <cmath>
+#include <vector>
+
+#include "src/core/angles.h"
+#include "src/core/gaussian.h"
+#include "src/core/log_sum_exp.h"
+#include "src/core/random.h"
+
+namespace phdslam {
+namespace {
+
+TEST(Angles, WrapMapsIntoMinusPiPi) {
+  for (double a = -20.0; a < 20.0; a += 0.37) {
+    const double w = WrapAngle(a);
+    EXPECT_GE(w, -M_PI);
+    EXPECT_LE(w, M_PI);
+    EXPECT_NEAR(std::remainder(a - w, 2.0 * M_PI), 0.0, 1e-12);
+  }
+}
+
+TEST(LogSumExp, MatchesDirectSumAndHandlesNegInf) {
+  const std::vector<double> x = {-1.0, 0.5, -3.0};
+  EXPECT_NEAR(LogSumExp(x), std::log(std::exp(-1.0) + std::exp(0.5) + std::exp(-3.0)), 1e-14);
+  EXPECT_EQ(LogSumExp(std::vector<double>{}), kNegInf);
+  EXPECT_EQ(LogSumExp(std::vector<double>{kNegInf, kNegInf}), kNegInf);
+  EXPECT_NEAR(LogSumExp(std::vector<double>{-1000.0, -1000.0}), -1000.0 + std::log(2.0), 1e-12);
+  EXPECT_NEAR(LogAddExp(kNegInf, 2.0), 2.0, 0.0);
+}
+
+TEST(Gaussian, LogPdfMatchesClosedFormAndRejectsIndefinite) {
+  Eigen::Matrix2d s;
+  s << 2.0, 0.3, 0.3, 1.0;
+  const Eigen::Vector2d x(0.4, -0.2);
+  const Eigen::Vector2d mu(0.1, 0.1);
+  const Eigen::Vector2d r = x - mu;
+  const double expect = -std::log(2 * M_PI) - 0.5 * std::log(s.determinant()) -
+                        0.5 * r.dot(s.inverse() * r);
+  EXPECT_NEAR(*LogNormalPdf<2>(x, mu, s), expect, 1e-13);
+  EXPECT_NEAR(EvalGaussian2(r, s).log_pdf, expect, 1e-13);
+  Eigen::Matrix2d bad;
+  bad << 1.0, 2.0, 2.0, 1.0;
+  EXPECT_FALSE(LogNormalPdf<2>(x, mu, bad).has_value());
+  EXPECT_FALSE(CholeskyLower<2>(Eigen::Matrix2d::Zero()).has_value());
+}
+
+TEST(RandomStream, IsReproducibleAndSeedsAreIndependent) {
+  RandomStream a(DeriveSeed(1, 2, 3));
+  RandomStream b(DeriveSeed(1, 2, 3));
+  RandomStream c(DeriveSeed(1, 3, 2));
+  bool differs = false;
+  for (int i = 0; i < 100; ++i) {
+    const double va = a.Normal();
+    EXPECT_EQ(va, b.Normal());
+    differs = differs || (va != c.Normal());
+  }
+  EXPECT_TRUE(differs);
+}
+
+TEST(RandomStream, MomentsAreRight) {
+  RandomStream r(7);
+  const int n = 200000;
+  double s = 0.0;
+  double s2 = 0.0;
+  double u = 0.0;
+  double p = 0.0;
+  for (int i = 0; i < n; ++i) {
+    const double z = r.Normal();
+    s += z;
+    s2 += z * z;
+    u += r.Uniform();
+    p += r.Poisson(4.75);
+  }
+  EXPECT_NEAR(s / n, 0.0, 0.01);
+  EXPECT_NEAR(s2 / n, 1.0, 0.01);
+  EXPECT_NEAR(u / n, 0.5, 0.005);
+  EXPECT_NEAR(p / n, 4.75, 0.02);
+}
+
+}  // namespace
+}  // namespace phdslam

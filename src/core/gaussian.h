@@ -1,0 +1,61 @@
+// Small dense Gaussian helpers for fixed-size Eigen types.
+//
+// Covariances are kept symmetric positive-definite as follows: every update that can lose
+// symmetry to rounding (Joseph-free Kalman updates, moment matching, propagation) is followed by
+// Symmetrize(); densities and sampling go through an LLT whose failure is reported to the caller,
+// which then applies the reference fallback (keep the previous iterate, or do not sample).
+#pragma once
+
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+#include <cmath>
+#include <numbers>
+#include <optional>
+
+namespace phdslam {
+
+/// Replaces P by (P + P^T) / 2 in place.
+template <typename Derived>
+void Symmetrize(Eigen::MatrixBase<Derived>& p) {
+  p = (0.5 * (p + p.transpose())).eval();
+}
+
+/// Lower Cholesky factor, or nullopt when P is not numerically positive definite
+/// (any pivot <= 0 or not finite).
+template <int N>
+std::optional<Eigen::Matrix<double, N, N>> CholeskyLower(const Eigen::Matrix<double, N, N>& p) {
+  Eigen::LLT<Eigen::Matrix<double, N, N>> llt(p);
+  if (llt.info() != Eigen::Success) return std::nullopt;
+  Eigen::Matrix<double, N, N> l = llt.matrixL();
+  for (int i = 0; i < N; ++i) {
+    if (!(l(i, i) > 0.0) || !std::isfinite(l(i, i))) return std::nullopt;
+  }
+  return l;
+}
+
+/// log N(x; mu, S) via a Cholesky factor of S; nullopt when S is not positive definite.
+template <int N>
+std::optional<double> LogNormalPdf(const Eigen::Matrix<double, N, 1>& x,
+                                   const Eigen::Matrix<double, N, 1>& mu,
+                                   const Eigen::Matrix<double, N, N>& s) {
+  const auto l = CholeskyLower<N>(s);
+  if (!l) return std::nullopt;
+  const Eigen::Matrix<double, N, 1> w = l->template triangularView<Eigen::Lower>().solve(x - mu);
+  const double log_det = 2.0 * l->diagonal().array().log().sum();
+  return -0.5 * (N * std::log(2.0 * std::numbers::pi) + log_det + w.squaredNorm());
+}
+
+/// log N(r; 0, S) for a 2-D residual with an explicit 2x2 inverse, plus the squared Mahalanobis
+/// distance. Used on the hot path of the PHD update and the cost matrix.
+struct Gaussian2Eval {
+  double log_pdf;
+  double mahalanobis2;
+};
+inline Gaussian2Eval EvalGaussian2(const Eigen::Vector2d& r, const Eigen::Matrix2d& s) {
+  const double det = s(0, 0) * s(1, 1) - s(0, 1) * s(1, 0);
+  const double d2 = (s(1, 1) * r(0) * r(0) - (s(0, 1) + s(1, 0)) * r(0) * r(1) +
+                     s(0, 0) * r(1) * r(1)) / det;
+  return {-std::log(2.0 * std::numbers::pi) - 0.5 * std::log(det) - 0.5 * d2, d2};
+}
+
+}  // namespace phdslam

@@ -1,0 +1,57 @@
+// The estimator interface shared by the system under test, the oracle and the baselines.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "datasets/scenario.h"
+#include "src/core/types.h"
+#include "src/models/motion_model.h"
+#include "src/models/sensor_model.h"
+
+namespace phdslam::filters {
+
+/// What an estimator may know about a scenario: its public part only.
+struct EstimatorContext {
+  Pose initial_pose = Pose::Zero();
+  std::shared_ptr<const models::MotionModel> motion;
+  Mat2 control_noise_cov = Mat2::Identity();
+  models::SensorModel sensor;
+
+  static EstimatorContext FromScenario(const datasets::Scenario& s);
+};
+
+/// Diagnostics of one step, kept in the run record.
+struct StepDiagnostics {
+  double ess = 1.0;          ///< effective sample size after the update (before resampling)
+  bool resampled = false;
+  int hypotheses = 0;        ///< components of the importance density (mean over particles)
+  int map_components = 0;    ///< GM-PHD components (active + passive) of the best particle
+};
+
+struct StepOutput {
+  Pose pose = Pose::Zero();
+  std::optional<Mat3> pose_cov;  ///< set by estimators that carry a pose covariance
+  StepDiagnostics diag;
+};
+
+/// A map estimate: landmark means with covariances and log-weights (0 when not meaningful).
+struct MapEstimate {
+  std::vector<Landmark> means;
+  std::vector<Mat2> covs;
+  std::vector<double> log_weights;
+  [[nodiscard]] std::size_t size() const { return means.size(); }
+};
+
+class OnlineEstimator {
+ public:
+  virtual ~OnlineEstimator() = default;
+  /// Processes one filter step and returns the pose estimate at its last time stamp.
+  virtual StepOutput Step(const datasets::StepData& step) = 0;
+  /// The current map estimate.
+  [[nodiscard]] virtual MapEstimate Map() const = 0;
+};
+
+}  // namespace phdslam::filters

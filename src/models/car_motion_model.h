@@ -1,0 +1,36 @@
+// Guivant/Nebot car model of the Victoria Park truck with the laser offset built in, reference
+// notes section 3.5. Control u = [v_e, alpha] (encoder speed m/s, steering angle rad).
+// The Jacobians are the simplified ones of the reference code (documented in the notes), not the
+// exact derivatives: Fu's v_e column omits 1/(1 - H/L tan(alpha)) and its alpha column ignores
+// the dependence of v_c on alpha.
+#pragma once
+
+#include "src/models/motion_model.h"
+
+namespace phdslam::models {
+
+struct CarGeometry {
+  double wheelbase_l = 2.83;
+  double encoder_offset_h = 0.75;
+  double laser_a = 3.78;
+  double laser_b = 0.50;
+};
+
+class CarMotionModel final : public MotionModel {
+ public:
+  CarMotionModel() = default;
+  explicit CarMotionModel(const CarGeometry& g) : g_(g) {}
+
+  [[nodiscard]] Pose Predict(const Pose& x, const Control& u, double dt) const override;
+  [[nodiscard]] MotionJacobians Jacobians(const Pose& x, const Control& u,
+                                          double dt) const override;
+  [[nodiscard]] std::unique_ptr<MotionModel> Clone() const override {
+    return std::make_unique<CarMotionModel>(*this);
+  }
+  [[nodiscard]] const CarGeometry& geometry() const { return g_; }
+
+ private:
+  CarGeometry g_;
+};
+
+}  // namespace phdslam::models
