@@ -55,3 +55,16 @@ class OnlineEstimator {
 };
 
 }  // namespace phdslam::filters
+
+namespace phdslam::filters {
+
+/// Result of a batch (whole-scenario) estimator such as the smoother.
+struct BatchResult {
+  std::vector<Pose> poses;                 ///< one per step
+  std::vector<std::optional<Mat3>> pose_covs;  ///< marginal covariances where computed
+  MapEstimate map;
+  int iterations = 0;
+  double solve_seconds = 0.0;
+};
+
+}  // namespace phdslam::filters
