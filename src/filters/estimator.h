@@ -68,3 +68,15 @@ struct BatchResult {
 };
 
 }  // namespace phdslam::filters
+
+namespace phdslam::filters {
+
+/// A batch estimator consumes the whole scenario at once. It receives the full Scenario; an
+/// implementation documents which hidden parts (origin labels) a mode reads, if any.
+class BatchEstimator {
+ public:
+  virtual ~BatchEstimator() = default;
+  virtual BatchResult Solve(const datasets::Scenario& scenario) = 0;
+};
+
+}  // namespace phdslam::filters
