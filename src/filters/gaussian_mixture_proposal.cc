@@ -1,0 +1,53 @@
+#include "src/filters/gaussian_mixture_proposal.h"
+
+#include <Eigen/LU>
+#include <cmath>
+#include <numbers>
+
+#include "src/core/gaussian.h"
+#include "src/core/log_sum_exp.h"
+
+namespace phdslam::filters {
+
+PreparedProposal PrepareProposal(GaussianMixtureProposal mixture) {
+  PreparedProposal p;
+  const double total = LogSumExp(mixture.log_weights);
+  for (double& w : mixture.log_weights) w -= total;
+  const std::size_t n = mixture.size();
+  p.chol.resize(n);
+  p.log_norm.assign(n, kNegInf);
+  p.inv_chol.assign(n, Mat3::Zero());
+  for (std::size_t t = 0; t < n; ++t) {
+    p.chol[t] = CholeskyLower<3>(mixture.covs[t]);
+    if (p.chol[t]) {
+      const Mat3& l = *p.chol[t];
+      p.inv_chol[t] = l.triangularView<Eigen::Lower>().solve(Mat3::Identity());
+      p.log_norm[t] =
+          -1.5 * std::log(2.0 * std::numbers::pi) - l.diagonal().array().log().sum();
+    }
+  }
+  p.mixture = std::move(mixture);
+  return p;
+}
+
+int PickComponent(const PreparedProposal& proposal, double u) {
+  double cumulative = 0.0;
+  const auto& w = proposal.mixture.log_weights;
+  for (std::size_t t = 0; t < w.size(); ++t) {
+    cumulative += std::exp(w[t]);
+    if (cumulative >= u) return static_cast<int>(t);
+  }
+  return 0;
+}
+
+double LogMixtureDensity(const PreparedProposal& proposal, const Pose& x) {
+  double acc = kNegInf;
+  for (std::size_t t = 0; t < proposal.mixture.size(); ++t) {
+    if (!proposal.chol[t]) continue;
+    const Vec3 w = proposal.inv_chol[t] * (x - proposal.mixture.means[t]);
+    acc = LogAddExp(acc, proposal.mixture.log_weights[t] + proposal.log_norm[t] - 0.5 * w.squaredNorm());
+  }
+  return acc;
+}
+
+}  // namespace phdslam::filters

@@ -1,0 +1,153 @@
+#include "src/filters/gm_ipl_density.h"
+
+#include <Eigen/LU>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "src/assignment/murty.h"
+#include "src/core/angles.h"
+#include "src/core/gaussian.h"
+#include "src/filters/ipl.h"
+#include "src/models/range_bearing_model.h"
+
+namespace phdslam::filters {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+ProposalOutput PriorOnly(const ProposalInput& input) {
+  ProposalOutput out;
+  out.mixture.Add(0.0, input.predicted_mean, input.predicted_cov);
+  return out;
+}
+
+}  // namespace
+
+ProposalOutput TransitionDensity::Build(const ProposalInput& input) const {
+  return PriorOnly(input);
+}
+
+AssociationCosts BuildAssociationCosts(const ProposalInput& input, const PhdSlamParams& params) {
+  const auto& active = input.map->active();
+  const int m = static_cast<int>(active.size());
+  const int nz = static_cast<int>(input.measurements.size());
+  const double log_clutter = std::log(input.sensor->ClutterIntensity());
+  const double log_two_pi = std::log(2.0 * std::numbers::pi);
+  AssociationCosts c;
+  c.pd.resize(m);
+  c.miss.resize(m);
+  Eigen::MatrixXd gain = Eigen::MatrixXd::Constant(m, nz, -kInf);
+  std::vector<bool> col_used(nz, false);
+  for (int i = 0; i < m; ++i) {
+    const phd::GaussianComponent& comp = active[i];
+    const double pd = input.sensor->DetectionProbability(input.predicted_mean, comp.mean);
+    c.pd[i] = pd;
+    c.miss[i] = std::log1p(-pd) + comp.log_weight;
+    if (pd <= 0.0) continue;
+    const auto j = models::MeasurementJacobians(input.predicted_mean, comp.mean);
+    const Measurement z_hat = models::PredictMeasurement(input.predicted_mean, comp.mean);
+    Mat2 s = j.hx * input.predicted_cov * j.hx.transpose() +
+             j.hm * comp.cov * j.hm.transpose() + input.sensor->noise_cov;
+    Symmetrize(s);
+    const double base =
+        std::log(pd) + comp.log_weight - log_clutter - log_two_pi - 0.5 * std::log(s.determinant());
+    const Mat2 s_inv = s.inverse();
+    bool any = false;
+    for (int jz = 0; jz < nz; ++jz) {
+      Vec2 nu = input.measurements[jz] - z_hat;
+      nu(1) = WrapAngle(nu(1));
+      const double d2 = nu.dot(s_inv * nu);
+      if (d2 < params.map.gate_threshold) {
+        gain(i, jz) = base - 0.5 * d2;
+        col_used[jz] = true;
+        any = true;
+      }
+    }
+    if (any) c.rows.push_back(i);
+  }
+  for (int jz = 0; jz < nz; ++jz) {
+    if (col_used[jz]) c.cols.push_back(jz);
+  }
+  const int r = static_cast<int>(c.rows.size());
+  const int k = static_cast<int>(c.cols.size());
+  c.cost = Eigen::MatrixXd::Constant(r, k + r, kInf);
+  for (int a = 0; a < r; ++a) {
+    for (int b = 0; b < k; ++b) {
+      const double g = gain(c.rows[a], c.cols[b]);
+      if (g > -kInf) c.cost(a, b) = -g;
+    }
+    c.cost(a, k + a) = -c.miss[c.rows[a]];
+  }
+  return c;
+}
+
+ProposalOutput GmIplDensity::Build(const ProposalInput& input) const {
+  const auto& active = input.map->active();
+  if (params_.max_hypotheses <= 0 || active.empty() || input.measurements.empty()) {
+    return PriorOnly(input);
+  }
+  const AssociationCosts costs = BuildAssociationCosts(input, params_);
+  const int r = static_cast<int>(costs.rows.size());
+  const int k = static_cast<int>(costs.cols.size());
+  const double log_clutter = std::log(input.sensor->ClutterIntensity());
+
+  double all_miss = 0.0;
+  for (double v : costs.miss) all_miss += v;
+
+  std::vector<assignment::Assignment> hypotheses;
+  if (r == 0) {
+    hypotheses.push_back({{}, 0.0});
+  } else {
+    hypotheses = assignment::MurtyKBest(costs.cost, params_.max_hypotheses,
+                                        params_.murty_max_cost_gap);
+  }
+
+  ProposalOutput out;
+  out.best_association.assign(input.measurements.size(), -1);
+  std::vector<IplPair> pairs;
+  std::vector<int> detected_rows;
+  const IplOptions ipl_options{params_.ipl_iterations, params_.ipl_kl_tolerance};
+  for (std::size_t h = 0; h < hypotheses.size(); ++h) {
+    const auto& row_to_col = hypotheses[h].row_to_col;
+    pairs.clear();
+    detected_rows.clear();
+    // Rows are in ascending active-list order, so the IPL processes detections in that order.
+    for (int a = 0; a < r; ++a) {
+      const int col = row_to_col[a];
+      if (col < k) {
+        const phd::GaussianComponent& comp = active[costs.rows[a]];
+        pairs.push_back({comp.mean, comp.cov, input.measurements[costs.cols[col]]});
+        detected_rows.push_back(a);
+      }
+    }
+    const IplResult ipl = PartitionedIpl(input.predicted_mean, input.predicted_cov, pairs,
+                                         input.sensor->noise_cov, ipl_options);
+    // Component log-weight (44): detections evaluated at the IPL posterior, misses as priors.
+    double log_kappa = all_miss;
+    for (std::size_t p = 0; p < pairs.size(); ++p) {
+      const int i = costs.rows[detected_rows[p]];
+      const phd::GaussianComponent& comp = active[i];
+      const auto j = models::MeasurementJacobians(ipl.mean, comp.mean);
+      Mat2 s = j.hx * ipl.cov * j.hx.transpose() + j.hm * comp.cov * j.hm.transpose() +
+               input.sensor->noise_cov;
+      Symmetrize(s);
+      Vec2 nu = pairs[p].z - models::PredictMeasurement(ipl.mean, comp.mean);
+      nu(1) = WrapAngle(nu(1));
+      log_kappa += -costs.miss[i] + std::log(costs.pd[i]) + comp.log_weight - log_clutter +
+                   EvalGaussian2(nu, s).log_pdf;
+    }
+    out.mixture.Add(log_kappa, ipl.mean, ipl.cov);
+    if (h == 0) {
+      for (std::size_t p = 0; p < pairs.size(); ++p) {
+        out.best_association[costs.cols[row_to_col[detected_rows[p]]]] = costs.rows[detected_rows[p]];
+      }
+    }
+  }
+  if (params_.all_clutter_component) {
+    out.mixture.Add(all_miss, input.predicted_mean, input.predicted_cov);
+  }
+  return out;
+}
+
+}  // namespace phdslam::filters

@@ -1,0 +1,220 @@
+#include "src/phd/gm_phd_map.h"
+
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "src/core/angles.h"
+#include "src/core/gaussian.h"
+#include "src/core/log_sum_exp.h"
+#include "src/models/range_bearing_model.h"
+
+namespace phdslam::phd {
+
+void GmPhdMap::AddBirths(const Pose& pose, std::span<const Measurement> measurements,
+                         const Mat2& noise_cov, const MapParams& params) {
+  active_.reserve(active_.size() + measurements.size());
+  for (const Measurement& z : measurements) {
+    active_.push_back({models::InverseMeasurement(pose, z),
+                       models::BirthCovariance(pose, z, noise_cov), params.birth_log_weight});
+  }
+}
+
+PhdUpdateResult GmPhdMap::Update(const Pose& pose, std::span<const Measurement> measurements,
+                                 const models::SensorModel& sensor, const MapParams& params) {
+  PhdUpdateResult result;
+  const int num_z = static_cast<int>(measurements.size());
+  if (num_z == 0) return result;
+
+  const double log_clutter = std::log(sensor.ClutterIntensity());
+  const double log_two_pi = std::log(2.0 * std::numbers::pi);
+
+  // Per-component predicted measurement, innovation covariance and updated covariance.
+  struct Predicted {
+    int index;
+    double pd;
+    Measurement z_hat;
+    Mat2 s_inv;
+    Eigen::Matrix2d gain;
+    Mat2 cov_post;
+    double log_norm;  // log pD + eta - log 2 pi - 1/2 log det S
+  };
+  std::vector<Predicted> predicted;
+  predicted.reserve(active_.size());
+  double missed_mass = 0.0;
+  for (int i = 0; i < static_cast<int>(active_.size()); ++i) {
+    const GaussianComponent& c = active_[i];
+    const double pd = sensor.DetectionProbability(pose, c.mean);
+    if (pd <= 0.0) continue;
+    missed_mass += pd * std::exp(c.log_weight);
+    const auto j = models::MeasurementJacobians(pose, c.mean);
+    const Mat2 ph = c.cov * j.hm.transpose();
+    Mat2 s = j.hm * ph + sensor.noise_cov;
+    Symmetrize(s);
+    const Mat2 s_inv = s.inverse();
+    const Mat2 gain = ph * s_inv;
+    Mat2 cov_post = c.cov - gain * s * gain.transpose();
+    Symmetrize(cov_post);
+    predicted.push_back({i, pd, models::PredictMeasurement(pose, c.mean), s_inv, gain, cov_post,
+                         std::log(pd) + c.log_weight - log_two_pi - 0.5 * std::log(s.determinant())});
+  }
+
+  // Gated detection terms l_ij, stored per measurement.
+  struct Detection {
+    int component;  // index into `predicted`
+    double log_gain;
+    Vec2 innovation;
+  };
+  std::vector<std::vector<Detection>> detections(num_z);
+  for (int j = 0; j < num_z; ++j) {
+    for (int p = 0; p < static_cast<int>(predicted.size()); ++p) {
+      const Predicted& pc = predicted[p];
+      Vec2 nu = measurements[j] - pc.z_hat;
+      nu(1) = WrapAngle(nu(1));
+      const double d2 = nu.dot(pc.s_inv * nu);
+      if (d2 < params.gate_threshold) {
+        detections[j].push_back({p, pc.log_norm - 0.5 * d2, nu});
+      }
+    }
+  }
+
+  // Misdetected copies of the existing components (pD = 0 components unchanged).
+  std::vector<GaussianComponent> updated = active_;
+  for (const Predicted& pc : predicted) {
+    updated[pc.index].log_weight += std::log1p(-pc.pd);
+  }
+  // Detected components, ordered by measurement and then by component.
+  for (int j = 0; j < num_z; ++j) {
+    if (detections[j].empty()) {
+      result.log_likelihood += log_clutter;
+      result.ungated.push_back(j);
+      continue;
+    }
+    double c_j = log_clutter;
+    for (const Detection& d : detections[j]) c_j = LogAddExp(c_j, d.log_gain);
+    result.log_likelihood += c_j;
+    for (const Detection& d : detections[j]) {
+      const Predicted& pc = predicted[d.component];
+      const GaussianComponent& prior = active_[pc.index];
+      updated.push_back({prior.mean + pc.gain * d.innovation, pc.cov_post, d.log_gain - c_j});
+    }
+  }
+  if (!params.reference_omit_missed_detection_mass) result.log_likelihood -= missed_mass;
+  if (!params.reference_births_from_ungated_only) {
+    result.ungated.resize(num_z);
+    for (int j = 0; j < num_z; ++j) result.ungated[j] = j;
+  }
+  active_ = std::move(updated);
+  return result;
+}
+
+std::vector<GaussianComponent> PruneAndMerge(std::vector<GaussianComponent> components,
+                                             const MapParams& params) {
+  if (components.empty()) return components;
+  // 1. Stable sort by log-weight, descending.
+  std::stable_sort(components.begin(), components.end(),
+                   [](const GaussianComponent& a, const GaussianComponent& b) {
+                     return a.log_weight > b.log_weight;
+                   });
+  // 2. Prune: keep the leading components above the threshold, and always the first.
+  std::size_t kept = 1;
+  while (kept < components.size() && components[kept].log_weight >= params.prune_log_weight) {
+    ++kept;
+  }
+  components.resize(kept);
+
+  // 3. Greedy merge in descending order.
+  std::vector<GaussianComponent> merged;
+  merged.reserve(kept);
+  std::vector<bool> used(kept, false);
+  std::vector<int> members;
+  std::vector<double> member_log_w;
+  for (std::size_t i = 0; i < kept; ++i) {
+    if (used[i]) continue;
+    const GaussianComponent& lead = components[i];
+    members.clear();
+    member_log_w.clear();
+    members.push_back(static_cast<int>(i));
+    member_log_w.push_back(lead.log_weight);
+    used[i] = true;
+    const Mat2 lead_inv = lead.cov.inverse();
+    for (std::size_t j = i + 1; j < kept; ++j) {
+      if (!params.reference_merge_double_membership && used[j]) continue;
+      const Vec2 d = lead.mean - components[j].mean;
+      const double dist = params.reference_merge_leading_covariance
+                              ? d.dot(lead_inv * d)
+                              : d.dot(components[j].cov.inverse() * d);
+      if (dist < params.merge_threshold) {
+        members.push_back(static_cast<int>(j));
+        member_log_w.push_back(components[j].log_weight);
+        used[j] = true;
+      }
+    }
+    GaussianComponent out;
+    if (members.size() == 1) {
+      out = lead;
+    } else {
+      out.log_weight = LogSumExp(member_log_w);
+      Vec2 mean = Vec2::Zero();
+      for (std::size_t m = 0; m < members.size(); ++m) {
+        mean += std::exp(member_log_w[m] - out.log_weight) * components[members[m]].mean;
+      }
+      Mat2 cov = Mat2::Zero();
+      for (std::size_t m = 0; m < members.size(); ++m) {
+        const GaussianComponent& c = components[members[m]];
+        const Vec2 dm = mean - c.mean;
+        cov += std::exp(member_log_w[m] - out.log_weight) * (c.cov + dm * dm.transpose());
+      }
+      Symmetrize(cov);
+      out.mean = mean;
+      out.cov = cov;
+    }
+    // 4. Spread kill, singletons included.
+    if (params.reference_spread_kill && out.cov.trace() > params.merge_threshold) {
+      out.log_weight = params.spread_kill_log_weight;
+    }
+    merged.push_back(out);
+  }
+  return merged;
+}
+
+void GmPhdMap::Reduce(const Pose& pose, const models::SensorModel& sensor,
+                      const MapParams& params) {
+  std::vector<GaussianComponent> merged = PruneAndMerge(std::move(active_), params);
+  // 5. Active/passive split at the sampled pose with the enlarged FOV; 6. resulting order.
+  std::vector<GaussianComponent> next_active;
+  std::vector<GaussianComponent> leaving;
+  next_active.reserve(merged.size());
+  for (GaussianComponent& c : merged) {
+    if (sensor.InEnlargedFov(pose, c.mean)) {
+      next_active.push_back(std::move(c));
+    } else if (c.log_weight > params.prune_log_weight) {
+      leaving.push_back(std::move(c));
+    }
+  }
+  std::vector<GaussianComponent> next_passive;
+  next_passive.reserve(passive_.size() + leaving.size());
+  for (GaussianComponent& c : passive_) {
+    if (sensor.InEnlargedFov(pose, c.mean)) {
+      next_active.push_back(std::move(c));
+    } else {
+      next_passive.push_back(std::move(c));
+    }
+  }
+  for (GaussianComponent& c : leaving) next_passive.push_back(std::move(c));
+  active_ = std::move(next_active);
+  passive_ = std::move(next_passive);
+}
+
+std::vector<GaussianComponent> GmPhdMap::Estimate(double log_weight_threshold) const {
+  std::vector<GaussianComponent> out;
+  for (const auto* list : {&active_, &passive_}) {
+    for (const GaussianComponent& c : *list) {
+      if (c.log_weight > log_weight_threshold) out.push_back(c);
+    }
+  }
+  return out;
+}
+
+}  // namespace phdslam::phd

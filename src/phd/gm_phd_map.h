@@ -1,0 +1,64 @@
+// Per-particle Gaussian-mixture PHD map with the active/passive split of the PHD-SLAM 3.0
+// reference code (reference notes sections 6, 8, 11, 12, 13).
+//
+// Active components are those inside the FOV enlarged by the buffers at the particle's last
+// sampled pose; only they are predicted into the measurement space, updated, pruned and merged.
+// Passive components are kept unchanged until they re-enter the enlarged FOV.
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "src/core/types.h"
+#include "src/models/sensor_model.h"
+#include "src/phd/gaussian_component.h"
+#include "src/phd/map_params.h"
+
+namespace phdslam::phd {
+
+/// Result of one PHD measurement update.
+struct PhdUpdateResult {
+  /// Measurement part of the particle log-weight: sum_j log(lambda_c + sum_i exp(l_ij))
+  /// (and -sum pD eta when the reference omission is switched off).
+  double log_likelihood = 0.0;
+  /// Indices of the measurements that gated with no component with pD > 0 (the next births).
+  std::vector<int> ungated;
+};
+
+class GmPhdMap {
+ public:
+  [[nodiscard]] const std::vector<GaussianComponent>& active() const { return active_; }
+  [[nodiscard]] const std::vector<GaussianComponent>& passive() const { return passive_; }
+  [[nodiscard]] std::size_t size() const { return active_.size() + passive_.size(); }
+
+  /// Appends one birth per measurement, by the inverse model at `pose` (the pose the measurements
+  /// were taken from), with covariance G R G^T and log-weight params.birth_log_weight.
+  void AddBirths(const Pose& pose, std::span<const Measurement> measurements, const Mat2& noise_cov,
+                 const MapParams& params);
+
+  /// GM-PHD update (notes 11) at the sampled pose. Returns immediately with a zero increment when
+  /// there are no measurements.
+  PhdUpdateResult Update(const Pose& pose, std::span<const Measurement> measurements,
+                         const models::SensorModel& sensor, const MapParams& params);
+
+  /// Sort, prune, greedy merge, spread kill and active/passive split (notes 12) at `pose`.
+  void Reduce(const Pose& pose, const models::SensorModel& sensor, const MapParams& params);
+
+  /// Components (active and passive) with log-weight strictly above `log_weight_threshold`.
+  [[nodiscard]] std::vector<GaussianComponent> Estimate(double log_weight_threshold) const;
+
+  /// Replaces the active list (tests and filters that manage components themselves).
+  void SetActive(std::vector<GaussianComponent> components) { active_ = std::move(components); }
+  void SetPassive(std::vector<GaussianComponent> components) { passive_ = std::move(components); }
+
+ private:
+  std::vector<GaussianComponent> active_;
+  std::vector<GaussianComponent> passive_;
+};
+
+/// Sort, prune and greedily merge a component list as the reference code does (notes 12.1-12.4).
+/// Exposed for unit tests and for filters that reduce other mixtures.
+std::vector<GaussianComponent> PruneAndMerge(std::vector<GaussianComponent> components,
+                                             const MapParams& params);
+
+}  // namespace phdslam::phd
