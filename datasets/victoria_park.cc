@@ -1,6 +1,7 @@
 #include "datasets/victoria_park.h"
 
 #include <Eigen/Cholesky>
+#include <algorithm>
 #include <array>
 #include <charconv>
 #include <cmath>
@@ -232,8 +233,9 @@ VictoriaParkData LoadVictoriaParkData(const std::filesystem::path& data_dir) {
   RequireFile(measurements);
   data.scans = ReadScans(measurements);
 
-  // aa3_dr.mat holds the odometry at full precision; inputs.dat (the same samples rounded to 3
-  // decimals, already on the common clock) is the fallback when the MAT-file is absent.
+  // aa3_dr.mat holds the odometry at full precision; inputs.dat (the same samples with speed
+  // rounded to 3 decimals and steering to 4, already on the common clock) is the fallback when the
+  // MAT-file is absent.
   std::error_code ec;
   if (std::filesystem::is_regular_file(dr_mat, ec)) {
     ReadControlsFromMat(dr_mat, data);

@@ -47,9 +47,9 @@ struct VictoriaParkData {
 
 /// Reads <data_dir>/victoria-park/: measurements.dat (tree detections), the controls and
 /// aa3_gpsx.mat (GPS). Controls come from aa3_dr.mat when it exists (full precision); otherwise
-/// from inputs.dat (the same samples rounded to 3 decimals). Throws std::runtime_error naming the
-/// file and the line or variable on missing files, malformed lines, non-finite values, times that
-/// go backwards, or variables of mismatched length.
+/// from inputs.dat (the same samples, speed rounded to 3 decimals and steering to 4). Throws
+/// std::runtime_error naming the file and the line or variable on missing files, malformed lines,
+/// non-finite values, times that go backwards, or variables of mismatched length.
 VictoriaParkData LoadVictoriaParkData(const std::filesystem::path& data_dir);
 
 struct VictoriaParkOptions {
