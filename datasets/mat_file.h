@@ -1,0 +1,46 @@
+// Read access to MATLAB MAT-files (v4, v5 and, when libmatio was built with HDF5, v7.3) via
+// libmatio.
+#pragma once
+
+#include <Eigen/Core>
+#include <filesystem>
+#include <memory>
+#include <string>
+
+// libmatio's file handle; the header <matio.h> is included by mat_file.cc only.
+struct _mat_t;
+
+namespace phdslam::datasets {
+
+/// An open MAT-file, closed on destruction. Movable, not copyable.
+class MatFile {
+ public:
+  /// Opens `path` read-only. Throws std::runtime_error naming the file when it does not exist or
+  /// is not a MAT-file libmatio can read.
+  explicit MatFile(const std::filesystem::path& path);
+  ~MatFile();
+  MatFile(MatFile&&) noexcept;
+  MatFile& operator=(MatFile&&) noexcept;
+  MatFile(const MatFile&) = delete;
+  MatFile& operator=(const MatFile&) = delete;
+
+  /// True when the file holds a variable of that name.
+  [[nodiscard]] bool Has(const std::string& variable) const;
+
+  /// Reads a real numeric 2-D variable (class double, single or any integer class, logical
+  /// included) and converts it to double. Throws std::runtime_error naming the file and the
+  /// variable when it is missing, not numeric (char, cell, struct, sparse, ...), complex, or not
+  /// 2-D.
+  [[nodiscard]] Eigen::MatrixXd ReadMatrix(const std::string& variable) const;
+
+  [[nodiscard]] const std::filesystem::path& path() const { return path_; }
+
+ private:
+  struct Closer {
+    void operator()(_mat_t* mat) const;
+  };
+  std::filesystem::path path_;
+  std::unique_ptr<_mat_t, Closer> mat_;
+};
+
+}  // namespace phdslam::datasets
