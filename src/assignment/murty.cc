@@ -58,7 +58,9 @@ class MurtyRanker {
     double value;
   };
 
-  int* NodeAssignment(int node) { return &node_col_for_row_[static_cast<std::size_t>(node) * rows_]; }
+  int* NodeAssignment(int node) {
+    return &node_col_for_row_[static_cast<std::size_t>(node) * rows_];
+  }
   char* NodeForced(int node) { return &node_row_forced_[static_cast<std::size_t>(node) * rows_]; }
   double* NodeRowDual(int node) { return &node_row_dual_[static_cast<std::size_t>(node) * rows_]; }
   double* NodeColDual(int node) { return &node_col_dual_[static_cast<std::size_t>(node) * cols_]; }
@@ -257,8 +259,8 @@ std::vector<Assignment> MurtyRanker::Run(int k, double max_cost_gap) {
       continue;
     }
     const int* assignment = NodeAssignment(top.node);
-    results.push_back(Assignment{std::vector<int>(assignment, assignment + rows_),
-                                 nodes_[top.node].cost});
+    results.push_back(
+        Assignment{std::vector<int>(assignment, assignment + rows_), nodes_[top.node].cost});
     if (static_cast<int>(results.size()) < k) Expand(top.node);
   }
   return results;
@@ -272,7 +274,8 @@ std::vector<Assignment> MurtyKBest(const Eigen::MatrixXd& cost, int k) {
 
 std::vector<Assignment> MurtyKBest(const Eigen::MatrixXd& cost, int k, double max_cost_gap) {
   ValidateCostMatrix(cost, "MurtyKBest");
-  if (k < 0) throw std::invalid_argument("MurtyKBest: k is " + std::to_string(k) + "; expected k >= 0");
+  if (k < 0)
+    throw std::invalid_argument("MurtyKBest: k is " + std::to_string(k) + "; expected k >= 0");
   if (std::isnan(max_cost_gap)) {
     throw std::invalid_argument("MurtyKBest: max_cost_gap is NaN; expected a number or +inf");
   }

@@ -46,9 +46,7 @@ bool ShortestAugmentingPath::Augment(int start_row, int target_col) {
   scanned_rows_.clear();
   scanned_cols_.clear();
 
-  const auto is_sink = [&](int j) {
-    return target_col < 0 ? row_for_col[j] < 0 : j == target_col;
-  };
+  const auto is_sink = [&](int j) { return target_col < 0 ? row_for_col[j] < 0 : j == target_col; };
 
   int row = start_row;
   double path_length = 0.0;

@@ -3,8 +3,8 @@
 // The rectangular problem (rows <= cols) is treated as the square problem obtained by adding
 // cols - rows identical "slack" rows of zero cost. In an optimal dual solution of that square
 // problem every slack row has the same dual, so every unassigned column carries the same column
-// dual (free_column_dual) and every assigned column has a dual no larger than it. The slack rows are
-// never stored: they behave as one shared node reached through the cheapest unassigned column.
+// dual (free_column_dual) and every assigned column has a dual no larger than it. The slack rows
+// are never stored: they behave as one shared node reached through the cheapest unassigned column.
 //
 // Invariants kept between calls, for the active rows and columns:
 //   * reduced costs cost(i, j) - row_dual[i] - col_dual[j] are >= 0,
@@ -45,12 +45,12 @@ class ShortestAugmentingPath {
   }
 
   // State, read and written directly by the callers that save and restore it.
-  std::vector<int> col_for_row;   // -1 when unassigned
-  std::vector<int> row_for_col;   // -1 when unassigned
+  std::vector<int> col_for_row;  // -1 when unassigned
+  std::vector<int> row_for_col;  // -1 when unassigned
   std::vector<double> row_dual;
   std::vector<double> col_dual;
   double free_column_dual = 0.0;
-  std::vector<char> col_active;   // inactive columns are ignored by the path search
+  std::vector<char> col_active;  // inactive columns are ignored by the path search
 
  private:
   bool Augment(int start_row, int target_col);
