@@ -10,6 +10,10 @@ namespace phdslam {
 inline double WrapAngle(double a) {
   constexpr double kPi = std::numbers::pi;
   constexpr double kTwoPi = 2.0 * std::numbers::pi;
+  // Fast paths for the common cases (already wrapped, or off by one turn).
+  if (a >= -kPi && a <= kPi) return a;
+  if (a > kPi && a <= 3.0 * kPi) return a - kTwoPi;
+  if (a < -kPi && a >= -3.0 * kPi) return a + kTwoPi;
   double w = std::fmod(a + kPi, kTwoPi);
   if (w < 0.0) w += kTwoPi;
   return w - kPi;

@@ -39,9 +39,10 @@ AssociationCosts BuildAssociationCosts(const ProposalInput& input, const PhdSlam
   c.miss.resize(m);
   Eigen::MatrixXd gain = Eigen::MatrixXd::Constant(m, nz, -kInf);
   std::vector<bool> col_used(nz, false);
+  const models::FovView fov(*input.sensor, input.predicted_mean);
   for (int i = 0; i < m; ++i) {
     const phd::GaussianComponent& comp = active[i];
-    const double pd = input.sensor->DetectionProbability(input.predicted_mean, comp.mean);
+    const double pd = fov.DetectionProbability(comp.mean);
     c.pd[i] = pd;
     c.miss[i] = std::log1p(-pd) + comp.log_weight;
     if (pd <= 0.0) continue;

@@ -2,6 +2,7 @@
 // (reference notes sections 9 and 17).
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -34,24 +35,66 @@ struct SensorModel {
   }
 
   /// pD evaluated at the landmark point m from pose x (a point evaluation, notes section 9).
-  [[nodiscard]] double DetectionProbability(const Pose& x, const Landmark& m) const {
-    const double dx = m(0) - x(0);
-    const double dy = m(1) - x(1);
+  [[nodiscard]] double DetectionProbability(const Pose& x, const Landmark& m) const;
+  /// True when m lies inside the FOV enlarged by the buffers (the active-set test, notes 12.5).
+  [[nodiscard]] bool InEnlargedFov(const Pose& x, const Landmark& m) const;
+};
+
+/// The FOV tests of a SensorModel at one pose, with the pose's trigonometry precomputed. The
+/// bearing test |wrap(atan2(dy, dx) - theta)| <= half-angle is evaluated as
+/// d . heading >= |d| cos(half-angle), which is equivalent for half-angles in [0, pi] and needs
+/// no atan2. Both tests are inclusive.
+class FovView {
+ public:
+  FovView(const SensorModel& sensor, const Pose& x)
+      : sensor_(&sensor),
+        x_(x(0)),
+        y_(x(1)),
+        cos_(std::cos(x(2))),
+        sin_(std::sin(x(2))),
+        range2_(sensor.fov_range * sensor.fov_range),
+        cos_half_(std::cos(sensor.fov_half_angle)),
+        enlarged_range2_((sensor.fov_range + sensor.range_buffer) *
+                         (sensor.fov_range + sensor.range_buffer)),
+        cos_enlarged_half_(std::cos(std::min(sensor.fov_half_angle + sensor.angle_buffer,
+                                             std::numbers::pi))) {}
+
+  [[nodiscard]] double DetectionProbability(const Landmark& m) const {
+    const double dx = m(0) - x_;
+    const double dy = m(1) - y_;
     const double r2 = dx * dx + dy * dy;
-    if (r2 > fov_range * fov_range) return 0.0;
-    if (std::abs(WrapAngle(std::atan2(dy, dx) - x(2))) > fov_half_angle) return 0.0;
-    if (profile == DetectionProfile::kConstant) return pd_max;
-    return pd_max * (1.0 - std::sqrt(r2) / fov_range);
+    if (r2 > range2_) return 0.0;
+    const double r = std::sqrt(r2);
+    if (dx * cos_ + dy * sin_ < r * cos_half_) return 0.0;
+    if (sensor_->profile == DetectionProfile::kConstant) return sensor_->pd_max;
+    return sensor_->pd_max * (1.0 - r / sensor_->fov_range);
   }
 
-  /// True when m lies inside the FOV enlarged by the buffers (the active-set test, notes 12.5).
-  [[nodiscard]] bool InEnlargedFov(const Pose& x, const Landmark& m) const {
-    const double dx = m(0) - x(0);
-    const double dy = m(1) - x(1);
-    const double rr = fov_range + range_buffer;
-    if (dx * dx + dy * dy > rr * rr) return false;
-    return std::abs(WrapAngle(std::atan2(dy, dx) - x(2))) <= fov_half_angle + angle_buffer;
+  [[nodiscard]] bool InEnlargedFov(const Landmark& m) const {
+    const double dx = m(0) - x_;
+    const double dy = m(1) - y_;
+    const double r2 = dx * dx + dy * dy;
+    if (r2 > enlarged_range2_) return false;
+    return dx * cos_ + dy * sin_ >= std::sqrt(r2) * cos_enlarged_half_;
   }
+
+ private:
+  const SensorModel* sensor_;
+  double x_;
+  double y_;
+  double cos_;
+  double sin_;
+  double range2_;
+  double cos_half_;
+  double enlarged_range2_;
+  double cos_enlarged_half_;
 };
+
+inline double SensorModel::DetectionProbability(const Pose& x, const Landmark& m) const {
+  return FovView(*this, x).DetectionProbability(m);
+}
+inline bool SensorModel::InEnlargedFov(const Pose& x, const Landmark& m) const {
+  return FovView(*this, x).InEnlargedFov(m);
+}
 
 }  // namespace phdslam::models

@@ -43,9 +43,10 @@ PhdUpdateResult GmPhdMap::Update(const Pose& pose, std::span<const Measurement> 
   std::vector<Predicted> predicted;
   predicted.reserve(active_.size());
   double missed_mass = 0.0;
+  const models::FovView fov(sensor, pose);
   for (int i = 0; i < static_cast<int>(active_.size()); ++i) {
     const GaussianComponent& c = active_[i];
-    const double pd = sensor.DetectionProbability(pose, c.mean);
+    const double pd = fov.DetectionProbability(c.mean);
     if (pd <= 0.0) continue;
     missed_mass += pd * std::exp(c.log_weight);
     const auto j = models::MeasurementJacobians(pose, c.mean);
@@ -183,11 +184,12 @@ void GmPhdMap::Reduce(const Pose& pose, const models::SensorModel& sensor,
                       const MapParams& params) {
   std::vector<GaussianComponent> merged = PruneAndMerge(std::move(active_), params);
   // 5. Active/passive split at the sampled pose with the enlarged FOV; 6. resulting order.
+  const models::FovView fov(sensor, pose);
   std::vector<GaussianComponent> next_active;
   std::vector<GaussianComponent> leaving;
   next_active.reserve(merged.size());
   for (GaussianComponent& c : merged) {
-    if (sensor.InEnlargedFov(pose, c.mean)) {
+    if (fov.InEnlargedFov(c.mean)) {
       next_active.push_back(std::move(c));
     } else if (c.log_weight > params.prune_log_weight) {
       leaving.push_back(std::move(c));
@@ -196,7 +198,7 @@ void GmPhdMap::Reduce(const Pose& pose, const models::SensorModel& sensor,
   std::vector<GaussianComponent> next_passive;
   next_passive.reserve(passive_.size() + leaving.size());
   for (GaussianComponent& c : passive_) {
-    if (sensor.InEnlargedFov(pose, c.mean)) {
+    if (fov.InEnlargedFov(c.mean)) {
       next_active.push_back(std::move(c));
     } else {
       next_passive.push_back(std::move(c));
