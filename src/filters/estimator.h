@@ -35,6 +35,10 @@ struct StepOutput {
   Pose pose = Pose::Zero();
   std::optional<Mat3> pose_cov;  ///< set by estimators that carry a pose covariance
   StepDiagnostics diag;
+  /// Data association of the estimate, for association-accuracy metrics: for each measurement
+  /// of the step, the mean of the map landmark it was associated with, or NaN for
+  /// "clutter / new landmark". Empty when the estimator does not associate.
+  std::vector<Landmark> association;
 };
 
 /// A map estimate: landmark means with covariances and log-weights (0 when not meaningful).

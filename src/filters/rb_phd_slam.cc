@@ -53,6 +53,9 @@ void RbPhdSlam::Predict(PhdParticle& particle, const datasets::StepData& step) c
 
 StepOutput RbPhdSlam::Step(const datasets::StepData& step) {
   const int n = static_cast<int>(particles_.size());
+  // Association output: the best particle's top-ranked hypothesis, resolved to component means
+  // of its map before the update.
+  std::vector<std::vector<Landmark>> associated_means;
   // 1. The step's random numbers: one uniform and three standard normals per particle.
   std::vector<double> uniforms(n);
   std::vector<Vec3> normals(n);
@@ -78,6 +81,15 @@ StepOutput RbPhdSlam::Step(const datasets::StepData& step) {
       ProposalInput input{mu0, sigma0, &p.map, step.measurements, &context_.sensor};
       ProposalOutput built = density_->Build(input);
       proposal = PrepareProposal(std::move(built.mixture));
+      std::vector<Landmark> means;
+      if (!built.best_association.empty()) {
+        means.assign(built.best_association.size(), Landmark::Constant(std::nan("")));
+        for (std::size_t j = 0; j < means.size(); ++j) {
+          const int c = built.best_association[j];
+          if (c >= 0) means[j] = p.map.active()[c].mean;
+        }
+      }
+      associated_means.push_back(std::move(means));
       associations.push_back(std::move(built.best_association));
       proposal_parent = p.parent;
     }
@@ -117,6 +129,9 @@ StepOutput RbPhdSlam::Step(const datasets::StepData& step) {
   last_map_ = particles_[best_].map.Estimate(EstimateThreshold());
   StepOutput out;
   out.pose = particles_[best_].pose;
+  if (!associated_means.empty()) {
+    out.association = std::move(associated_means[particle_association_owner[best_]]);
+  }
   out.diag.map_components = static_cast<int>(particles_[best_].map.size());
   out.diag.hypotheses = static_cast<int>(std::lround(static_cast<double>(hypotheses_total) / n));
 

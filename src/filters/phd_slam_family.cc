@@ -1,0 +1,31 @@
+#include "src/filters/phd_slam_family.h"
+
+#include <stdexcept>
+
+#include "src/filters/gm_ipl_density.h"
+
+namespace phdslam::filters {
+
+const std::vector<PhdSlamVariant>& PhdSlamVariants() {
+  static const std::vector<PhdSlamVariant> variants = {
+      {"phd1", "PHD-SLAM 1.0: RB-PHD-SLAM with the transition density as importance density"},
+      {"phd3", "PHD-SLAM 3.0 (system under test): GM importance density over Murty-ranked "
+               "associations with partitioned IPL"},
+  };
+  return variants;
+}
+
+std::unique_ptr<ImportanceDensity> MakeImportanceDensity(const std::string& variant,
+                                                         const PhdSlamParams& params) {
+  if (variant == "phd1") return std::make_unique<TransitionDensity>();
+  if (variant == "phd3") return std::make_unique<GmIplDensity>(params);
+  throw std::invalid_argument("unknown PHD-SLAM variant '" + variant + "'");
+}
+
+std::unique_ptr<RbPhdSlam> MakePhdSlam(const std::string& variant, EstimatorContext context,
+                                       const PhdSlamParams& params, std::uint64_t stream_seed) {
+  return std::make_unique<RbPhdSlam>(std::move(context), params,
+                                     MakeImportanceDensity(variant, params), stream_seed);
+}
+
+}  // namespace phdslam::filters

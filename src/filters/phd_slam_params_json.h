@@ -1,0 +1,18 @@
+// PhdSlamParams <-> JSON, for the resolved configuration stored with results and for parameter
+// overrides from experiment files and the command line (`--set name=value`).
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include "src/filters/phd_slam_params.h"
+
+namespace phdslam::filters {
+
+/// Every parameter by name (flat object; matrices as arrays of their diagonal).
+nlohmann::json ToJson(const PhdSlamParams& params);
+
+/// Applies the keys of `overrides` to `params`. Throws std::invalid_argument naming the key when a
+/// key is unknown or a value has the wrong type or is out of range.
+void ApplyJson(const nlohmann::json& overrides, PhdSlamParams& params);
+
+}  // namespace phdslam::filters
