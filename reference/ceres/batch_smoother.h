@@ -1,0 +1,118 @@
+// Ceres batch smoother: full-trajectory graph optimisation (no GTSAM) over every pose of a
+// scenario and the landmarks, the reference the filters are compared with. See README.md for the
+// factors, the gauge, the solver choice and the association modes.
+//
+//   pose_k --OdometryFactor-- pose_{k+1}        (one per step with propagation)
+//   pose_k --RangeBearingFactor-- landmark_i    (one per associated measurement)
+//   pose_0 fixed (or an odometry factor from the fixed initial pose when step 0 propagates)
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "datasets/scenario.h"
+#include "reference/ceres/landmark_association.h"
+#include "reference/ceres/odometry_increment.h"
+#include "src/filters/estimator.h"
+
+namespace phdslam::reference {
+
+enum class AssociationMode {
+  kKnown,    ///< the generator's labels scenario.steps[k].origin (hidden data: oracle-like)
+  kFilter,   ///< a filter's association, SmootherOptions::filter_association
+  kUnknown,  ///< the smoother's own association (README.md, "Unknown association")
+};
+
+enum class SparseLinearSolver {
+  kSparseNormalCholesky,  ///< default: CHOLMOD on J^T J with a fill-reducing ordering
+  kSparseSchur,           ///< landmarks eliminated first, then a sparse Cholesky on the poses
+};
+
+struct SmootherOptions {
+  AssociationMode association = AssociationMode::kKnown;
+  int max_iterations = 100;          ///< Levenberg-Marquardt iterations per solve
+  double function_tolerance = 1e-9;  ///< relative cost decrease that ends a solve
+  bool compute_covariances = true;   ///< marginal pose and landmark covariances (ceres::Covariance)
+  SparseLinearSolver linear_solver = SparseLinearSolver::kSparseNormalCholesky;
+  int num_threads = 1;
+  OdometryNoiseFloor odometry_floor;  ///< see odometry_increment.h
+
+  // Unknown mode (README.md): solve with a robust loss, re-associate, repeat; then a final solve
+  // with the squared loss on the last (gated) association.
+  int reassociation_rounds = 5;  ///< maximum solve/re-associate rounds
+  /// Gate for associating a measurement and for merging landmarks: chi2 with 2 dof at 0.999.
+  double gate_chi2 = 13.8;
+  /// Landmarks (created from unassociated measurements) seen fewer times are dropped. 3 keeps
+  /// every real landmark of the synthetic scenario (hundreds of detections each) and removes
+  /// almost all clutter, which lands twice in the same gate with probability ~1e-3 per point.
+  int min_observations = 3;
+  /// Merging adds this std to both landmarks' covariances (relative drift between two visits).
+  double merge_position_std = 1.0;
+  /// Landmarks detected in fewer than this fraction of the scans the sensor model expects them
+  /// in (sum of pD along the trajectory) are dropped: real landmarks score about 1, clutter that
+  /// fell into one gate a few times scores ~0.01-0.1.
+  double min_detection_ratio = 0.3;
+  /// "cauchy", "huber" or "none"; the scale is in whitened units (standard deviations).
+  std::string robust_loss = "cauchy";
+  double robust_scale = 1.0;
+
+  // Filter mode: per step, per measurement, the landmark id of a filter's association (any
+  // non-negative label; -1 = clutter). Solved once with the robust loss above.
+  std::vector<std::vector<int>> filter_association;
+};
+
+/// What a Solve did, for logs and reports.
+struct SmootherReport {
+  int iterations = 0;  ///< Levenberg-Marquardt iterations summed over all solves
+  int solves = 0;
+  int reassociation_rounds = 0;  ///< rounds run (unknown mode)
+  bool association_converged = false;  ///< the last round left the association unchanged
+  double association_seconds = 0.0;
+  double optimisation_seconds = 0.0;
+  double covariance_seconds = 0.0;
+  bool covariance_ok = false;
+  std::size_t landmarks = 0;
+  std::size_t associated_measurements = 0;
+  double initial_cost = 0.0;  ///< of the last solve
+  double final_cost = 0.0;    ///< of the last solve
+  std::vector<std::string> brief_reports;  ///< ceres::Solver::Summary::BriefReport per solve
+};
+
+class BatchSmoother final : public filters::BatchEstimator {
+ public:
+  /// Throws std::invalid_argument naming the field when an option is out of range.
+  explicit BatchSmoother(SmootherOptions options);
+
+  /// Known mode reads scenario.steps[k].origin (throws std::invalid_argument when a step's labels
+  /// do not match its measurements); filter mode reads options.filter_association (same check);
+  /// unknown mode reads only the public part. BatchResult.solve_seconds is the wall time of the
+  /// whole call, covariances included. map.log_weights are 0. When compute_covariances is off,
+  /// pose_covs are empty optionals and map.covs hold the pose-known approximation
+  /// (sum Hm^T R^-1 Hm)^-1.
+  filters::BatchResult Solve(const datasets::Scenario& scenario) override;
+
+  /// After Solve: per step, per measurement, the index into BatchResult.map (kUnassociated for
+  /// clutter or unused measurements).
+  [[nodiscard]] const Association& association() const { return association_; }
+  /// After Solve: for each map entry its source label (truth landmark index in known mode, the
+  /// filter's id in filter mode, creation order in unknown mode).
+  [[nodiscard]] const std::vector<int>& landmark_labels() const { return labels_; }
+  [[nodiscard]] const SmootherReport& report() const { return report_; }
+  [[nodiscard]] const SmootherOptions& options() const { return options_; }
+
+ private:
+  SmootherOptions options_;
+  Association association_;
+  std::vector<int> labels_;
+  SmootherReport report_;
+};
+
+/// The odometry increments of every step of `scenario` (shared by the smoother and the g2o export).
+std::vector<OdometryIncrement> ScenarioOdometry(const datasets::Scenario& scenario,
+                                                const OdometryNoiseFloor& floor);
+
+/// Dead reckoning with the increments: pose k = pose_{k-1} (+) delta_k from the initial pose.
+std::vector<Pose> DeadReckoning(const datasets::Scenario& scenario,
+                                const std::vector<OdometryIncrement>& increments);
+
+}  // namespace phdslam::reference

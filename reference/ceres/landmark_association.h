@@ -1,0 +1,77 @@
+// Data association for the smoother's unknown-association mode (README.md, "Unknown
+// association"). Two stages share one gating rule and one per-step assignment:
+//
+// * Gating: measurement z at pose x against landmark (m, P): innovation
+//   nu = [z_r - h_r; wrap(z_phi - h_phi)], S = Hx Px Hx^T + Hm P Hm^T + R, accepted when
+//   nu^T S^-1 nu < gate_chi2 (strict).
+// * Assignment within a step: candidate pairs in increasing Mahalanobis distance, each
+//   measurement and each landmark used at most once (greedy global nearest neighbour).
+//
+// SequentialAssociation is the initial pass: it walks the steps in order like a single-particle
+// filter, tracking the pose with an iterated EKF on the landmarks confirmed so far, refining the
+// landmarks with pose-known EKF updates and creating a landmark for every unassociated
+// measurement. Reassociate re-does the association at a solved trajectory and map.
+//
+// Both stages end by dropping landmarks with too little support: fewer than min_observations
+// detections, or fewer than min_detection_ratio times the detections the sensor model expects
+// at the landmark from the trajectory. Clutter falls into a common gate a few times by chance
+// (often on later passes over the same place) but is detected in only a small fraction of the
+// scans whose FOV covers it; a real landmark in about pD of them.
+#pragma once
+
+#include <vector>
+
+#include "datasets/scenario.h"
+#include "reference/ceres/odometry_increment.h"
+#include "src/core/types.h"
+#include "src/models/sensor_model.h"
+
+namespace phdslam::reference {
+
+/// Per step, per measurement: the landmark index, or kUnassociated.
+using Association = std::vector<std::vector<int>>;
+inline constexpr int kUnassociated = -1;
+
+struct AssociationOptions {
+  double gate_chi2 = 13.8;    ///< squared Mahalanobis gate (2 dof)
+  int min_observations = 3;   ///< landmarks seen fewer times are dropped (and, in the initial
+                              ///< pass, do not correct the pose)
+  /// Merging adds merge_position_std^2 I to the two landmarks' covariances: the relative drift of
+  /// the trajectory between two visits, which the pose-known landmark covariances leave out.
+  double merge_position_std = 1.0;  ///< m
+  /// Landmarks detected fewer than min_detection_ratio times the number of detections the sensor
+  /// model predicts for them (sum over steps of pD(x_k, m), FOV included) are dropped too.
+  double min_detection_ratio = 0.3;
+  models::SensorModel sensor;  ///< FOV and pD for the expected detections
+  Mat2 measurement_cov = Mat2::Identity();  ///< R (normally sensor.noise_cov)
+};
+
+/// A map with its association: landmarks[i] is referenced by association entries equal to i.
+struct AssociatedMap {
+  Association association;
+  std::vector<Landmark> landmarks;
+  std::vector<Pose> poses;  ///< the poses the association was made at
+  int merged = 0;           ///< landmarks merged into another one
+  int dropped = 0;          ///< landmarks dropped for too few observations
+  int born = 0;             ///< landmarks created from unassociated measurements
+};
+
+/// Initial association (stage 1). `increments[k]` is the odometry of step k and `initial_pose`
+/// the exactly known start.
+AssociatedMap SequentialAssociation(const datasets::Scenario& scenario,
+                                    const std::vector<OdometryIncrement>& increments,
+                                    const AssociationOptions& options);
+
+/// Re-association (stage 3) at the solved `poses` and `landmarks` whose previous association is
+/// `previous`: every measurement is gated against every landmark (landmark covariance: the
+/// pose-known information of its previous observations); unassociated measurements create new
+/// landmarks; landmarks without support are dropped (see above); landmarks within the gate of
+/// each other that were (almost) never seen at the same step are merged.
+AssociatedMap Reassociate(const datasets::Scenario& scenario, const std::vector<Pose>& poses,
+                          const std::vector<Landmark>& landmarks, const Association& previous,
+                          const AssociationOptions& options);
+
+/// Number of measurements associated with each of `landmark_count` landmarks.
+std::vector<int> CountObservations(const Association& association, std::size_t landmark_count);
+
+}  // namespace phdslam::reference
