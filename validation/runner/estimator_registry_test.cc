@@ -1,0 +1,99 @@
+#include "validation/runner/estimator_registry.h"
+
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+#include <string>
+
+#include "src/core/random.h"
+
+namespace phdslam::validation {
+namespace {
+
+datasets::Scenario TwoStepScenario() {
+  datasets::Scenario s;
+  s.name = "tiny";
+  s.initial_pose = Pose(1.0, 2.0, 0.0);
+  s.control_noise_cov = Vec2(0.01, 0.0001).asDiagonal();
+  datasets::ScenarioStep first;
+  first.data.times = {0.0};
+  datasets::ScenarioStep second;
+  second.data.times = {0.0, 1.0};
+  second.data.controls = {Control(2.0, 1e-12)};
+  second.data.measurements = {Measurement(5.0, 0.0)};
+  s.steps = {first, second};
+  return s;
+}
+
+TEST(EstimatorTable, HasOdometryAndUniqueNames) {
+  const auto& table = EstimatorTable();
+  ASSERT_FALSE(table.empty());
+  std::set<std::string> names;
+  for (const EstimatorEntry& e : table) {
+    EXPECT_TRUE(names.insert(e.name).second) << e.name << " twice";
+    EXPECT_FALSE(e.description.empty()) << e.name;
+    EXPECT_TRUE(e.resolved_parameters) << e.name;
+    EXPECT_TRUE(e.batch ? static_cast<bool>(e.make_batch) : static_cast<bool>(e.make_online))
+        << e.name;
+  }
+  EXPECT_EQ(FindEstimator("odometry").name, "odometry");
+}
+
+TEST(FindEstimator, UnknownNameListsTheKnownOnes) {
+  try {
+    FindEstimator("phd9");
+    FAIL() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("'phd9'"), std::string::npos) << what;
+    EXPECT_NE(what.find("odometry"), std::string::npos) << what;
+  }
+}
+
+TEST(OdometryEntry, DeadReckonsTheScenario) {
+  const datasets::Scenario scenario = TwoStepScenario();
+  EstimatorRequest request;
+  request.name = "odometry";
+  request.scenario = &scenario;
+  const EstimatorEntry& entry = FindEstimator("odometry");
+  EXPECT_EQ(entry.resolved_parameters(request), nlohmann::json::object());
+  auto estimator = entry.make_online(request);
+  const filters::StepOutput first = estimator->Step(scenario.steps[0].data);
+  EXPECT_TRUE(first.pose.isApprox(scenario.initial_pose));
+  const filters::StepOutput second = estimator->Step(scenario.steps[1].data);
+  // Straight ahead at 2 m/s for 1 s from heading 0.
+  EXPECT_NEAR(second.pose(0), 3.0, 1e-9);
+  EXPECT_NEAR(second.pose(1), 2.0, 1e-9);
+  ASSERT_EQ(estimator->Map().size(), 1u);
+  EXPECT_NEAR(estimator->Map().means[0](0), 8.0, 1e-9);
+}
+
+TEST(OdometryEntry, RejectsParticlesAndParameters) {
+  const datasets::Scenario scenario = TwoStepScenario();
+  EstimatorRequest request;
+  request.name = "odometry";
+  request.scenario = &scenario;
+  request.particles = 10;
+  const EstimatorEntry& entry = FindEstimator("odometry");
+  EXPECT_THROW(entry.resolved_parameters(request), std::invalid_argument);
+  request.particles = 1;
+  request.overrides = {{"hypotheses", 3}};
+  EXPECT_THROW(entry.resolved_parameters(request), std::invalid_argument);
+  request.overrides = nlohmann::json::object();
+  request.scenario = nullptr;
+  EXPECT_THROW(entry.make_online(request), std::invalid_argument);
+}
+
+TEST(RunStreamSeed, FollowsTheDocumentedDerivation) {
+  EXPECT_EQ(RunStreamSeed("exp", 7, "phd3", 10),
+            DeriveSeed(HashName("exp"), 7, DeriveSeed(HashName("phd3"), 10)));
+  // Every part matters.
+  const std::uint64_t base = RunStreamSeed("exp", 7, "phd3", 10);
+  EXPECT_NE(base, RunStreamSeed("exp2", 7, "phd3", 10));
+  EXPECT_NE(base, RunStreamSeed("exp", 8, "phd3", 10));
+  EXPECT_NE(base, RunStreamSeed("exp", 7, "phd1", 10));
+  EXPECT_NE(base, RunStreamSeed("exp", 7, "phd3", 100));
+}
+
+}  // namespace
+}  // namespace phdslam::validation

@@ -1,0 +1,62 @@
+#include "validation/runner/results_io.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "datasets/test_temp_dir.h"
+
+namespace phdslam::validation {
+namespace {
+
+TEST(FormatNumber, TenSignificantDigitsAndEmptyForUnknown) {
+  EXPECT_EQ(FormatNumber(1.0), "1");
+  EXPECT_EQ(FormatNumber(0.1), "0.1");
+  EXPECT_EQ(FormatNumber(3.14159265358979), "3.141592654");
+  EXPECT_EQ(FormatNumber(-2.5e-12), "-2.5e-12");
+  EXPECT_EQ(FormatNumber(254.2134567891), "254.2134568");
+  EXPECT_EQ(FormatNumber(std::numeric_limits<double>::quiet_NaN()), "");
+  EXPECT_EQ(FormatNumber(std::numeric_limits<double>::infinity()), "");
+  EXPECT_EQ(FormatNumber(std::optional<double>()), "");
+  EXPECT_EQ(FormatNumber(std::optional<double>(2.0)), "2");
+}
+
+TEST(CsvRow, JoinsCellsAndRejectsSpecialCharacters) {
+  EXPECT_EQ(CsvRow({"a", "", "1.5"}), "a,,1.5\n");
+  EXPECT_THROW(CsvRow({"a,b"}), std::invalid_argument);
+  EXPECT_THROW(CsvRow({"a\n"}), std::invalid_argument);
+}
+
+TEST(WriteFileAtomically, ReplacesTheFileAndLeavesNoTemporary) {
+  const auto dir = datasets::testing::FreshTestDir();
+  WriteFileAtomically(dir / "f.txt", "first");
+  WriteFileAtomically(dir / "f.txt", "second");
+  EXPECT_EQ(ReadTextFile(dir / "f.txt"), "second");
+  int files = 0;
+  for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir)) ++files;
+  EXPECT_EQ(files, 1);
+}
+
+TEST(WriteFileAtomically, AFailingWriterLeavesTheOldFile) {
+  const auto dir = datasets::testing::FreshTestDir();
+  WriteFileAtomically(dir / "f.txt", "old");
+  EXPECT_THROW(WriteFileAtomically(dir / "f.txt",
+                                   [](const std::filesystem::path& temp) {
+                                     WriteFileAtomically(temp, "partial");
+                                     throw std::runtime_error("writer failed");
+                                   }),
+               std::runtime_error);
+  EXPECT_EQ(ReadTextFile(dir / "f.txt"), "old");
+  EXPECT_FALSE(std::filesystem::exists(dir / "f.txt.tmp-0"));
+}
+
+TEST(WriteFileAtomically, ReportsAMissingFolder) {
+  const auto dir = datasets::testing::FreshTestDir();
+  EXPECT_THROW(WriteFileAtomically(dir / "missing" / "f.txt", "x"), std::runtime_error);
+  EXPECT_THROW(ReadTextFile(dir / "missing.txt"), std::runtime_error);
+}
+
+}  // namespace
+}  // namespace phdslam::validation

@@ -1,0 +1,95 @@
+#include "validation/runner/run_estimator.h"
+
+#include <chrono>
+#include <stdexcept>
+
+namespace phdslam::validation {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double MillisecondsSince(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+void RunOnline(const EstimatorEntry& entry, const EstimatorRequest& request,
+               const datasets::Scenario& scenario,
+               const std::function<void(std::size_t)>& on_steps_done, RunRecord& record) {
+  if (!entry.make_online) {
+    throw std::logic_error("estimator '" + entry.name + "' has no online factory");
+  }
+  std::unique_ptr<filters::OnlineEstimator> estimator = entry.make_online(request);
+  const std::size_t n = scenario.steps.size();
+  record.poses.reserve(n);
+  record.pose_covs.reserve(n);
+  record.diagnostics.reserve(n);
+  record.step_ms.reserve(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const Clock::time_point start = Clock::now();
+    filters::StepOutput out = estimator->Step(scenario.steps[k].data);
+    const double ms = MillisecondsSince(start);
+    record.poses.push_back(out.pose);
+    record.pose_covs.push_back(out.pose_cov);
+    record.diagnostics.push_back(out.diag);
+    record.step_ms.push_back(ms);
+    record.total_ms += ms;
+    if (on_steps_done) on_steps_done(1);
+  }
+  record.final_map = estimator->Map();
+}
+
+void RunBatch(const EstimatorEntry& entry, const EstimatorRequest& request,
+              const datasets::Scenario& scenario,
+              const std::function<void(std::size_t)>& on_steps_done, RunRecord& record) {
+  if (!entry.make_batch) {
+    throw std::logic_error("estimator '" + entry.name + "' has no batch factory");
+  }
+  std::unique_ptr<filters::BatchEstimator> estimator = entry.make_batch(request);
+  const Clock::time_point start = Clock::now();
+  filters::BatchResult result = estimator->Solve(scenario);
+  record.total_ms = MillisecondsSince(start);
+  if (result.poses.size() != scenario.steps.size()) {
+    throw std::runtime_error("estimator '" + entry.name + "' returned " +
+                             std::to_string(result.poses.size()) + " poses for " +
+                             std::to_string(scenario.steps.size()) + " steps");
+  }
+  record.poses = std::move(result.poses);
+  if (!result.pose_covs.empty()) {
+    if (result.pose_covs.size() != record.poses.size()) {
+      throw std::runtime_error("estimator '" + entry.name + "' returned " +
+                               std::to_string(result.pose_covs.size()) + " pose covariances for " +
+                               std::to_string(record.poses.size()) + " poses");
+    }
+    record.pose_covs = std::move(result.pose_covs);
+  }
+  record.final_map = std::move(result.map);
+  if (on_steps_done) on_steps_done(record.poses.size());
+}
+
+}  // namespace
+
+RunRecord RunEstimator(const EstimatorEntry& entry, const EstimatorRequest& request,
+                       const datasets::Scenario& scenario,
+                       const std::function<void(std::size_t)>& on_steps_done) {
+  RunRecord record;
+  record.estimator = entry.name;
+  record.particles = request.particles;
+  record.seed = scenario.seed;
+  record.stream_seed = request.stream_seed;
+  record.step_times.reserve(scenario.steps.size());
+  for (std::size_t k = 0; k < scenario.steps.size(); ++k) {
+    if (scenario.steps[k].data.times.empty()) {
+      throw std::runtime_error("scenario '" + scenario.name + "' step " + std::to_string(k) +
+                               " has no time stamp");
+    }
+    record.step_times.push_back(scenario.StepTime(k));
+  }
+  if (entry.batch) {
+    RunBatch(entry, request, scenario, on_steps_done, record);
+  } else {
+    RunOnline(entry, request, scenario, on_steps_done, record);
+  }
+  return record;
+}
+
+}  // namespace phdslam::validation

@@ -1,0 +1,132 @@
+#include "validation/runner/run_files.h"
+
+#include <cmath>
+#include <stdexcept>
+#include <system_error>
+#include <vector>
+
+#include "datasets/map_io.h"
+#include "datasets/trajectory_io.h"
+#include "validation/runner/results_io.h"
+#include "validation/runner/results_layout.h"
+
+namespace phdslam::validation {
+namespace {
+
+std::vector<datasets::StampedPose> Stamped(const std::vector<double>& times,
+                                           const std::vector<Pose>& poses) {
+  std::vector<datasets::StampedPose> out;
+  out.reserve(poses.size());
+  for (std::size_t k = 0; k < poses.size(); ++k) out.push_back({times[k], poses[k]});
+  return out;
+}
+
+std::vector<datasets::MapPoint> MapPoints(const filters::MapEstimate& map) {
+  std::vector<datasets::MapPoint> points;
+  points.reserve(map.size());
+  for (std::size_t i = 0; i < map.size(); ++i) {
+    datasets::MapPoint p;
+    p.position = map.means[i];
+    p.weight = i < map.log_weights.size() ? std::exp(map.log_weights[i]) : 0.0;
+    if (i < map.covs.size()) p.cov = map.covs[i];
+    points.push_back(p);
+  }
+  return points;
+}
+
+}  // namespace
+
+std::string StepsCsv(const RunRecord& record, const datasets::Scenario& scenario,
+                     const RunEvaluation& evaluation) {
+  std::string text =
+      CsvRow({"step", "t", "x", "y", "theta", "x_true", "y_true", "theta_true", "pos_err_m",
+              "heading_err_deg", "ess", "resampled", "hypotheses", "map_components", "ms"});
+  const bool has_truth = scenario.truth.poses.size() == record.poses.size();
+  const bool has_diag = record.diagnostics.size() == record.poses.size();
+  const bool has_ms = record.step_ms.size() == record.poses.size();
+  std::vector<std::string> cells(15);
+  for (std::size_t k = 0; k < record.poses.size(); ++k) {
+    const Pose& p = record.poses[k];
+    cells[0] = FormatInteger(static_cast<std::int64_t>(k));
+    cells[1] = FormatNumber(record.step_times[k]);
+    cells[2] = FormatNumber(p(0));
+    cells[3] = FormatNumber(p(1));
+    cells[4] = FormatNumber(p(2));
+    for (int i = 0; i < 3; ++i) {
+      cells[5 + static_cast<std::size_t>(i)] =
+          has_truth ? FormatNumber(scenario.truth.poses[k](i)) : std::string();
+    }
+    cells[8] = k < evaluation.position_error_m.size() ? FormatNumber(evaluation.position_error_m[k])
+                                                      : std::string();
+    cells[9] = k < evaluation.heading_error_deg.size()
+                   ? FormatNumber(evaluation.heading_error_deg[k])
+                   : std::string();
+    if (has_diag) {
+      const filters::StepDiagnostics& d = record.diagnostics[k];
+      cells[10] = FormatNumber(d.ess);
+      cells[11] = FormatInteger(d.resampled ? 1 : 0);
+      cells[12] = FormatInteger(d.hypotheses);
+      cells[13] = FormatInteger(d.map_components);
+    } else {
+      for (std::size_t c = 10; c < 14; ++c) cells[c].clear();
+    }
+    cells[14] = has_ms ? FormatNumber(record.step_ms[k]) : std::string();
+    text += CsvRow(cells);
+  }
+  return text;
+}
+
+void WriteRunFiles(const std::filesystem::path& folder, const RunRecord& record,
+                   const datasets::Scenario& scenario, const RunEvaluation& evaluation,
+                   const nlohmann::json& identity) {
+  std::filesystem::create_directories(folder);
+  WriteFileAtomically(folder / kStepsFile, StepsCsv(record, scenario, evaluation));
+  WriteFileAtomically(folder / kTrajectoryFile, [&](const std::filesystem::path& temp) {
+    datasets::WriteTumTrajectory(temp, Stamped(record.step_times, record.poses));
+  });
+  WriteFileAtomically(folder / kMapFile, [&](const std::filesystem::path& temp) {
+    datasets::WriteMapCsv(temp, MapPoints(record.final_map));
+  });
+  std::error_code ignored;
+  std::filesystem::remove(folder / kErrorFile, ignored);
+  nlohmann::json metrics = identity;
+  metrics.update(ToJson(evaluation.metrics));
+  WriteFileAtomically(folder / kMetricsFile, metrics.dump(2) + "\n");
+}
+
+void WriteRunError(const std::filesystem::path& folder, const nlohmann::json& identity,
+                   const std::string& message) {
+  std::filesystem::create_directories(folder);
+  nlohmann::json j = identity;
+  j["error"] = message;
+  WriteFileAtomically(folder / kErrorFile,
+                      j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
+}
+
+void WriteTruthFiles(const std::filesystem::path& out, const datasets::Scenario& scenario,
+                     std::string_view tag) {
+  if (!scenario.truth.landmarks.empty() && !std::filesystem::exists(out / kTruthMapFile)) {
+    std::vector<datasets::MapPoint> points;
+    points.reserve(scenario.truth.landmarks.size());
+    for (const Landmark& m : scenario.truth.landmarks) points.push_back({m, 1.0, std::nullopt});
+    WriteFileAtomically(
+        out / kTruthMapFile,
+        [&](const std::filesystem::path& temp) { datasets::WriteMapCsv(temp, points); }, tag);
+  }
+  if (!scenario.truth.poses.empty() && scenario.truth.poses.size() == scenario.steps.size()) {
+    const std::filesystem::path folder = TruthFolder(out, scenario.seed);
+    if (std::filesystem::exists(folder / kTruthTrajectoryFile)) return;
+    std::filesystem::create_directories(folder);
+    std::vector<double> times;
+    times.reserve(scenario.steps.size());
+    for (std::size_t k = 0; k < scenario.steps.size(); ++k) times.push_back(scenario.StepTime(k));
+    WriteFileAtomically(
+        folder / kTruthTrajectoryFile,
+        [&](const std::filesystem::path& temp) {
+          datasets::WriteTumTrajectory(temp, Stamped(times, scenario.truth.poses));
+        },
+        tag);
+  }
+}
+
+}  // namespace phdslam::validation

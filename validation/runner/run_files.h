@@ -1,0 +1,40 @@
+// Writes one run's files (steps.csv, trajectory.tum, map.csv, metrics.json) and the scenario's
+// truth files into a results folder. Every file is written atomically; metrics.json comes last,
+// so its presence marks a finished run.
+#pragma once
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <string_view>
+
+#include "datasets/scenario.h"
+#include "validation/runner/run_metrics.h"
+#include "validation/runner/run_record.h"
+
+namespace phdslam::validation {
+
+/// The steps.csv text: header
+/// step,t,x,y,theta,x_true,y_true,theta_true,pos_err_m,heading_err_deg,ess,resampled,hypotheses,
+/// map_components,ms and one row per step (cells empty where a value is unknown).
+std::string StepsCsv(const RunRecord& record, const datasets::Scenario& scenario,
+                     const RunEvaluation& evaluation);
+
+/// Writes steps.csv, trajectory.tum, map.csv and, last, metrics.json = `identity` (estimator,
+/// particles, seed, ...) merged with ToJson(evaluation.metrics) into `folder` (created if
+/// needed), and removes a stale error.json. Throws std::runtime_error naming the file on failure.
+void WriteRunFiles(const std::filesystem::path& folder, const RunRecord& record,
+                   const datasets::Scenario& scenario, const RunEvaluation& evaluation,
+                   const nlohmann::json& identity);
+
+/// Writes `identity` plus {"error": message} to `folder`/error.json.
+void WriteRunError(const std::filesystem::path& folder, const nlohmann::json& identity,
+                   const std::string& message);
+
+/// Writes <out>/truth_map.csv (true landmarks, weight 1) and <out>/truth/seed-<seed>/truth.tum
+/// (true poses at the step times) when the scenario has them and the files do not exist yet.
+/// `tag` distinguishes concurrent writers (temporary file names).
+void WriteTruthFiles(const std::filesystem::path& out, const datasets::Scenario& scenario,
+                     std::string_view tag);
+
+}  // namespace phdslam::validation

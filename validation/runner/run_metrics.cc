@@ -1,0 +1,123 @@
+#include "validation/runner/run_metrics.h"
+
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+
+#include "src/core/gaussian.h"
+#include "validation/metrics/gospa.h"
+#include "validation/metrics/gps_position_error.h"
+#include "validation/metrics/nees.h"
+#include "validation/metrics/trajectory_error.h"
+
+namespace phdslam::validation {
+namespace {
+
+constexpr double kRadToDeg = 180.0 / std::numbers::pi;
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+void EvaluateTrajectory(const RunRecord& record, const datasets::Scenario& scenario,
+                        const MetricSettings& settings, RunEvaluation& ev) {
+  const std::size_t n = record.poses.size();
+  const datasets::GroundTruth& truth = scenario.truth;
+  if (truth.poses.size() == n && n > 0) {
+    const PoseErrors errors = ComputePoseErrors(truth.poses, record.poses);
+    for (std::size_t k = 0; k < n; ++k) {
+      ev.position_error_m[k] = errors.position_m[k];
+      ev.heading_error_deg[k] = errors.heading_rad[k] * kRadToDeg;
+      ev.metrics.position_m.Add(ev.position_error_m[k]);
+      ev.metrics.heading_deg.Add(ev.heading_error_deg[k]);
+    }
+    for (std::size_t k = 0; k < n && k < record.pose_covs.size(); ++k) {
+      if (!record.pose_covs[k] || !CholeskyLower<3>(*record.pose_covs[k])) continue;
+      try {
+        ev.metrics.pose_nees.Add(PoseNees(truth.poses[k], record.poses[k], *record.pose_covs[k]));
+      } catch (const std::invalid_argument&) {
+        // Not symmetric positive definite by PoseNees' test: this step has no NEES.
+      }
+    }
+  } else if (!truth.gps.empty()) {
+    const GpsErrors errors =
+        ComputeGpsErrors(record.step_times, record.poses, truth.gps, settings.gps_window_s);
+    ev.position_error_m = errors.error_m;
+    for (double e : errors.error_m) ev.metrics.position_m.Add(e);
+    ev.metrics.gps_matched_steps = errors.matched;
+  }
+}
+
+void EvaluateMap(const RunRecord& record, const datasets::Scenario& scenario,
+                 const MetricSettings& settings, RunMetrics& m) {
+  m.map_size = record.final_map.size();
+  m.gospa_c = settings.gospa_c;
+  m.gospa_p = settings.gospa_p;
+  if (scenario.truth.landmarks.empty()) return;
+  m.truth_map_size = scenario.truth.landmarks.size();
+  const GospaResult r =
+      Gospa(scenario.truth.landmarks, record.final_map.means, settings.gospa_c, settings.gospa_p);
+  FinalMapGospa g;
+  g.gospa = r.gospa;
+  g.localisation = r.localisation;
+  g.missed = r.missed;
+  g.false_ = r.false_;
+  g.n_missed = r.n_missed;
+  g.n_false = r.n_false;
+  m.gospa = g;
+  const filters::MapEstimate& map = record.final_map;
+  if (map.covs.size() == map.size()) {
+    try {
+      for (double nees : MatchedLandmarkNees(scenario.truth.landmarks, map.means, map.covs, r)) {
+        m.landmark_nees.Add(nees);
+      }
+    } catch (const std::invalid_argument&) {
+      // A matched component's covariance is not positive definite: no landmark NEES this run.
+      m.landmark_nees = ErrorMoments{};
+    }
+  }
+}
+
+void EvaluateDiagnostics(const RunRecord& record, RunMetrics& m) {
+  const std::size_t n = record.diagnostics.size();
+  if (n == 0) return;
+  double ess = 0.0;
+  double resampled = 0.0;
+  double hypotheses = 0.0;
+  double components = 0.0;
+  for (const filters::StepDiagnostics& d : record.diagnostics) {
+    ess += d.ess / static_cast<double>(record.particles);
+    resampled += d.resampled ? 1.0 : 0.0;
+    hypotheses += d.hypotheses;
+    components += d.map_components;
+  }
+  const double steps = static_cast<double>(n);
+  m.ess_pct = 100.0 * ess / steps;
+  m.resampling_pct = 100.0 * resampled / steps;
+  m.hypotheses_mean = hypotheses / steps;
+  m.map_components_mean = components / steps;
+}
+
+}  // namespace
+
+RunEvaluation EvaluateRun(const RunRecord& record, const datasets::Scenario& scenario,
+                          const MetricSettings& settings) {
+  const std::size_t n = record.poses.size();
+  if (n != scenario.steps.size() || record.step_times.size() != n) {
+    throw std::invalid_argument(
+        "run of '" + record.estimator + "' seed " + std::to_string(record.seed) + ": " +
+        std::to_string(n) + " poses and " + std::to_string(record.step_times.size()) +
+        " step times for " + std::to_string(scenario.steps.size()) + " scenario steps");
+  }
+  RunEvaluation ev;
+  ev.metrics.steps = n;
+  ev.position_error_m.assign(n, kNaN);
+  ev.heading_error_deg.assign(n, kNaN);
+  EvaluateTrajectory(record, scenario, settings, ev);
+  EvaluateMap(record, scenario, settings, ev.metrics);
+  EvaluateDiagnostics(record, ev.metrics);
+  for (double ms : record.step_ms) ev.metrics.step_ms.Add(ms);
+  ev.metrics.total_ms = record.total_ms;
+  return ev;
+}
+
+}  // namespace phdslam::validation

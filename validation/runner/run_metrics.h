@@ -1,0 +1,77 @@
+// Per-run metrics computed from a RunRecord and its Scenario (reference notes section 15), and
+// their metrics.json form.
+#pragma once
+
+#include <cstddef>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <vector>
+
+#include "datasets/scenario.h"
+#include "validation/runner/error_moments.h"
+#include "validation/runner/run_record.h"
+
+namespace phdslam::validation {
+
+struct MetricSettings {
+  double gospa_c = 20.0;        ///< m, GOSPA cut-off
+  double gospa_p = 2.0;         ///< GOSPA order (alpha = 2)
+  double gps_window_s = 0.025;  ///< GPS match window for real data
+};
+
+/// GOSPA of the final map against the true landmarks, with its decomposition. The three parts
+/// are in p-th power units (m^p) and add up: gospa^p = localisation + missed + false_.
+struct FinalMapGospa {
+  double gospa = 0.0;         ///< m
+  double localisation = 0.0;  ///< m^p, sum over assigned pairs of d^p
+  double missed = 0.0;        ///< m^p, (c^p / 2) n_missed
+  double false_ = 0.0;        ///< m^p, (c^p / 2) n_false
+  int n_missed = 0;
+  int n_false = 0;
+};
+
+struct RunMetrics {
+  std::size_t steps = 0;
+  /// Per-step position errors (m): against the true poses, or, for data with GPS only, against
+  /// the GPS fix matched in time (unmatched steps left out).
+  ErrorMoments position_m;
+  /// Per-step heading errors (deg), the unwrapped difference; empty without true poses.
+  ErrorMoments heading_deg;
+  std::optional<FinalMapGospa> gospa;  ///< nullopt without a true map
+  double gospa_c = 20.0;
+  double gospa_p = 2.0;
+  std::size_t map_size = 0;                   ///< components of the final map estimate
+  std::optional<std::size_t> truth_map_size;  ///< true landmarks, when known
+  /// Online estimators only (nullopt for batch estimators):
+  std::optional<double> ess_pct;              ///< 100 * mean over steps of ESS / N
+  std::optional<double> resampling_pct;       ///< 100 * fraction of steps that resampled
+  std::optional<double> hypotheses_mean;      ///< mean over steps of StepDiagnostics::hypotheses
+  std::optional<double> map_components_mean;  ///< mean over steps of map_components
+  /// Pose NEES over the steps whose covariance is positive definite and whose truth is known.
+  ErrorMoments pose_nees;
+  /// Landmark NEES of the final map over the GOSPA-matched pairs (maps with covariances).
+  ErrorMoments landmark_nees;
+  std::optional<std::size_t> gps_matched_steps;  ///< data with GPS only
+  ErrorMoments step_ms;                          ///< wall time per step (online estimators)
+  double total_ms = 0.0;
+};
+
+/// A run's metrics plus the per-step errors written to steps.csv.
+struct RunEvaluation {
+  RunMetrics metrics;
+  std::vector<double> position_error_m;   ///< per step; NaN where unknown
+  std::vector<double> heading_error_deg;  ///< per step; NaN where unknown
+};
+
+/// Evaluates a run against its scenario's truth. Throws std::invalid_argument when the record
+/// does not have one pose per scenario step.
+RunEvaluation EvaluateRun(const RunRecord& record, const datasets::Scenario& scenario,
+                          const MetricSettings& settings = {});
+
+/// metrics.json fields of RunMetrics (flat; "not available" is null). Derived values (RMSE,
+/// std, means) are written for readers; FromJson reads back the sufficient statistics.
+nlohmann::json ToJson(const RunMetrics& m);
+/// Throws std::runtime_error naming `source` and the field when a field is missing or mistyped.
+RunMetrics RunMetricsFromJson(const nlohmann::json& j, const std::string& source);
+
+}  // namespace phdslam::validation

@@ -1,0 +1,158 @@
+// metrics.json form of RunMetrics.
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "validation/runner/run_metrics.h"
+
+namespace phdslam::validation {
+namespace {
+
+nlohmann::json OrNull(const std::optional<double>& v) {
+  return v && std::isfinite(*v) ? nlohmann::json(*v) : nlohmann::json(nullptr);
+}
+
+template <typename T>
+nlohmann::json OrNull(const std::optional<T>& v) {
+  return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
+}
+
+// Writes the sufficient statistics of `m` under `<prefix>_count`, `<prefix>_sum<unit>` and
+// `<prefix>_sq_sum<unit>2`.
+void PutMoments(nlohmann::json& j, const std::string& prefix, const std::string& unit,
+                const ErrorMoments& m) {
+  j[prefix + "_count"] = m.count;
+  j[prefix + "_sum" + unit] = m.sum;
+  j[prefix + "_sq_sum" + unit + (unit.empty() ? "" : "2")] = m.sum_sq;
+}
+
+class JsonReader {
+ public:
+  JsonReader(const nlohmann::json& j, const std::string& source) : j_(j), source_(source) {
+    if (!j_.is_object()) throw std::runtime_error(source_ + ": expected a JSON object");
+  }
+
+  const nlohmann::json& Field(const std::string& key) const {
+    if (!j_.contains(key)) throw std::runtime_error(source_ + ": missing field '" + key + "'");
+    return j_.at(key);
+  }
+  double Number(const std::string& key) const {
+    const nlohmann::json& v = Field(key);
+    if (!v.is_number()) Fail(key, "a number");
+    return v.get<double>();
+  }
+  std::optional<double> OptionalNumber(const std::string& key) const {
+    const nlohmann::json& v = Field(key);
+    if (v.is_null()) return std::nullopt;
+    if (!v.is_number()) Fail(key, "a number or null");
+    return v.get<double>();
+  }
+  std::size_t Count(const std::string& key) const {
+    const nlohmann::json& v = Field(key);
+    if (!v.is_number_unsigned() && !(v.is_number_integer() && v.get<std::int64_t>() >= 0)) {
+      Fail(key, "a non-negative integer");
+    }
+    return v.get<std::size_t>();
+  }
+  std::optional<std::size_t> OptionalCount(const std::string& key) const {
+    if (Field(key).is_null()) return std::nullopt;
+    return Count(key);
+  }
+  ErrorMoments Moments(const std::string& prefix, const std::string& unit) const {
+    ErrorMoments m;
+    m.count = Count(prefix + "_count");
+    m.sum = Number(prefix + "_sum" + unit);
+    m.sum_sq = Number(prefix + "_sq_sum" + unit + (unit.empty() ? "" : "2"));
+    return m;
+  }
+
+ private:
+  [[noreturn]] void Fail(const std::string& key, const std::string& expected) const {
+    throw std::runtime_error(source_ + ": field '" + key + "' must be " + expected + ", got " +
+                             j_.at(key).dump());
+  }
+  const nlohmann::json& j_;
+  const std::string& source_;
+};
+
+}  // namespace
+
+nlohmann::json ToJson(const RunMetrics& m) {
+  nlohmann::json j = nlohmann::json::object();
+  j["steps"] = m.steps;
+  j["pos_rmse_m"] = OrNull(m.position_m.Rms());
+  j["pos_err_std_m"] = OrNull(m.position_m.Std());
+  PutMoments(j, "pos_err", "_m", m.position_m);
+  j["heading_rmse_deg"] = OrNull(m.heading_deg.Rms());
+  j["heading_err_std_deg"] = OrNull(m.heading_deg.Std());
+  PutMoments(j, "heading_err", "_deg", m.heading_deg);
+  const auto gospa_part = [&](auto member) {
+    return m.gospa ? nlohmann::json((*m.gospa).*member) : nlohmann::json(nullptr);
+  };
+  j["gospa_m"] = gospa_part(&FinalMapGospa::gospa);
+  j["gospa_localisation_mp"] = gospa_part(&FinalMapGospa::localisation);
+  j["gospa_missed_mp"] = gospa_part(&FinalMapGospa::missed);
+  j["gospa_false_mp"] = gospa_part(&FinalMapGospa::false_);
+  j["n_missed"] = gospa_part(&FinalMapGospa::n_missed);
+  j["n_false"] = gospa_part(&FinalMapGospa::n_false);
+  j["gospa_c"] = m.gospa_c;
+  j["gospa_p"] = m.gospa_p;
+  j["map_size"] = m.map_size;
+  j["truth_map_size"] = OrNull(m.truth_map_size);
+  j["ess_pct"] = OrNull(m.ess_pct);
+  j["resampling_pct"] = OrNull(m.resampling_pct);
+  j["hypotheses_mean"] = OrNull(m.hypotheses_mean);
+  j["map_components_mean"] = OrNull(m.map_components_mean);
+  j["pose_nees_mean"] = OrNull(m.pose_nees.Mean());
+  j["pose_nees_count"] = m.pose_nees.count;
+  j["pose_nees_sum"] = m.pose_nees.sum;
+  j["landmark_nees_mean"] = OrNull(m.landmark_nees.Mean());
+  j["landmark_nees_count"] = m.landmark_nees.count;
+  j["landmark_nees_sum"] = m.landmark_nees.sum;
+  j["gps_matched_steps"] = OrNull(m.gps_matched_steps);
+  j["ms_per_step_mean"] = OrNull(m.step_ms.Mean());
+  j["ms_per_step_std"] = OrNull(m.step_ms.Std());
+  j["ms_count"] = m.step_ms.count;
+  j["ms_sum"] = m.step_ms.sum;
+  j["ms_sq_sum"] = m.step_ms.sum_sq;
+  j["ms_total"] = m.total_ms;
+  return j;
+}
+
+RunMetrics RunMetricsFromJson(const nlohmann::json& j, const std::string& source) {
+  const JsonReader r(j, source);
+  RunMetrics m;
+  m.steps = r.Count("steps");
+  m.position_m = r.Moments("pos_err", "_m");
+  m.heading_deg = r.Moments("heading_err", "_deg");
+  if (const std::optional<double> g = r.OptionalNumber("gospa_m")) {
+    FinalMapGospa gospa;
+    gospa.gospa = *g;
+    gospa.localisation = r.Number("gospa_localisation_mp");
+    gospa.missed = r.Number("gospa_missed_mp");
+    gospa.false_ = r.Number("gospa_false_mp");
+    gospa.n_missed = static_cast<int>(r.Count("n_missed"));
+    gospa.n_false = static_cast<int>(r.Count("n_false"));
+    m.gospa = gospa;
+  }
+  m.gospa_c = r.Number("gospa_c");
+  m.gospa_p = r.Number("gospa_p");
+  m.map_size = r.Count("map_size");
+  m.truth_map_size = r.OptionalCount("truth_map_size");
+  m.ess_pct = r.OptionalNumber("ess_pct");
+  m.resampling_pct = r.OptionalNumber("resampling_pct");
+  m.hypotheses_mean = r.OptionalNumber("hypotheses_mean");
+  m.map_components_mean = r.OptionalNumber("map_components_mean");
+  m.pose_nees.count = r.Count("pose_nees_count");
+  m.pose_nees.sum = r.Number("pose_nees_sum");
+  m.landmark_nees.count = r.Count("landmark_nees_count");
+  m.landmark_nees.sum = r.Number("landmark_nees_sum");
+  m.gps_matched_steps = r.OptionalCount("gps_matched_steps");
+  m.step_ms.count = r.Count("ms_count");
+  m.step_ms.sum = r.Number("ms_sum");
+  m.step_ms.sum_sq = r.Number("ms_sq_sum");
+  m.total_ms = r.Number("ms_total");
+  return m;
+}
+
+}  // namespace phdslam::validation

@@ -1,0 +1,210 @@
+#include "validation/runner/run_metrics.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <stdexcept>
+
+#include "validation/runner/run_estimator.h"
+
+namespace phdslam::validation {
+namespace {
+
+constexpr double kDeg = 180.0 / std::numbers::pi;
+
+// Three steps at t = 0, 1, 2 with true poses along the x axis and two true landmarks.
+datasets::Scenario TruthScenario() {
+  datasets::Scenario s;
+  s.name = "hand";
+  s.seed = 4;
+  for (int k = 0; k < 3; ++k) {
+    datasets::ScenarioStep step;
+    step.data.times =
+        k == 0 ? std::vector<double>{0.0} : std::vector<double>{k - 1.0, static_cast<double>(k)};
+    if (k > 0) step.data.controls = {Control(1.0, 0.0)};
+    s.steps.push_back(step);
+    s.truth.poses.push_back(Pose(k, 0.0, 0.0));
+  }
+  s.truth.landmarks = {Landmark(0.0, 0.0), Landmark(10.0, 0.0)};
+  return s;
+}
+
+// Estimates off by (0, 0), (3, 4) m and 0.1 rad, (0, 1) m; ESS 4, 2, 1 of N = 4.
+RunRecord HandRecord() {
+  RunRecord r;
+  r.estimator = "hand";
+  r.particles = 4;
+  r.seed = 4;
+  r.step_times = {0.0, 1.0, 2.0};
+  r.poses = {Pose(0.0, 0.0, 0.0), Pose(4.0, 4.0, 0.1), Pose(2.0, 1.0, 0.0)};
+  r.pose_covs = {std::nullopt, Mat3::Identity(), Mat3::Zero()};
+  filters::StepDiagnostics d;
+  d.ess = 4.0;
+  d.hypotheses = 1;
+  d.map_components = 2;
+  r.diagnostics.push_back(d);
+  d.ess = 2.0;
+  d.resampled = true;
+  d.hypotheses = 2;
+  d.map_components = 4;
+  r.diagnostics.push_back(d);
+  d.ess = 1.0;
+  d.resampled = false;
+  d.hypotheses = 3;
+  d.map_components = 6;
+  r.diagnostics.push_back(d);
+  r.step_ms = {1.0, 2.0, 3.0};
+  r.total_ms = 6.0;
+  r.final_map.means = {Landmark(0.0, 3.0)};
+  r.final_map.covs = {Mat2::Identity()};
+  r.final_map.log_weights = {0.0};
+  return r;
+}
+
+TEST(EvaluateRun, ComputesEveryMetricAsByHand) {
+  const RunEvaluation ev = EvaluateRun(HandRecord(), TruthScenario());
+  const RunMetrics& m = ev.metrics;
+  EXPECT_EQ(m.steps, 3u);
+  ASSERT_EQ(ev.position_error_m.size(), 3u);
+  EXPECT_DOUBLE_EQ(ev.position_error_m[1], 5.0);
+  EXPECT_DOUBLE_EQ(ev.position_error_m[2], 1.0);
+  EXPECT_DOUBLE_EQ(*m.position_m.Rms(), std::sqrt((0.0 + 25.0 + 1.0) / 3.0));
+  EXPECT_NEAR(ev.heading_error_deg[1], 0.1 * kDeg, 1e-12);
+  EXPECT_NEAR(*m.heading_deg.Rms(), std::sqrt(0.01 / 3.0) * kDeg, 1e-12);
+  // GOSPA (c = 20, p = 2): (0,3) is assigned to (0,0) at 3 m, (10,0) is missed: 9 + 200.
+  ASSERT_TRUE(m.gospa);
+  EXPECT_DOUBLE_EQ(m.gospa->gospa, std::sqrt(209.0));
+  EXPECT_DOUBLE_EQ(m.gospa->localisation, 9.0);
+  EXPECT_DOUBLE_EQ(m.gospa->missed, 200.0);
+  EXPECT_DOUBLE_EQ(m.gospa->false_, 0.0);
+  EXPECT_EQ(m.gospa->n_missed, 1);
+  EXPECT_EQ(m.gospa->n_false, 0);
+  EXPECT_EQ(m.map_size, 1u);
+  EXPECT_EQ(*m.truth_map_size, 2u);
+  // Landmark NEES of the one pair with identity covariance: 3^2.
+  EXPECT_EQ(m.landmark_nees.count, 1u);
+  EXPECT_DOUBLE_EQ(*m.landmark_nees.Mean(), 9.0);
+  // ESS/N = 1, 0.5, 0.25; resampled at one step of three.
+  EXPECT_DOUBLE_EQ(*m.ess_pct, 100.0 * 1.75 / 3.0);
+  EXPECT_DOUBLE_EQ(*m.resampling_pct, 100.0 / 3.0);
+  EXPECT_DOUBLE_EQ(*m.hypotheses_mean, 2.0);
+  EXPECT_DOUBLE_EQ(*m.map_components_mean, 4.0);
+  // Pose NEES only where the covariance is positive definite (step 1): 9 + 16 + 0.01.
+  EXPECT_EQ(m.pose_nees.count, 1u);
+  EXPECT_NEAR(*m.pose_nees.Mean(), 25.01, 1e-12);
+  EXPECT_DOUBLE_EQ(*m.step_ms.Mean(), 2.0);
+  EXPECT_DOUBLE_EQ(m.total_ms, 6.0);
+  EXPECT_FALSE(m.gps_matched_steps);
+}
+
+TEST(EvaluateRun, GpsOnlyScenarioScoresAgainstGps) {
+  datasets::Scenario s = TruthScenario();
+  s.truth.poses.clear();
+  s.truth.landmarks.clear();
+  // Fixes near t = 0 (10 ms off) and t = 2 (40 ms off: outside the 25 ms window).
+  s.truth.gps = {{0.01, Vec2(0.0, 2.0)}, {2.04, Vec2(2.0, 1.0)}};
+  RunRecord r = HandRecord();
+  r.diagnostics.clear();
+  const RunEvaluation ev = EvaluateRun(r, s);
+  EXPECT_EQ(*ev.metrics.gps_matched_steps, 1u);
+  EXPECT_DOUBLE_EQ(ev.position_error_m[0], 2.0);
+  EXPECT_TRUE(std::isnan(ev.position_error_m[1]));
+  EXPECT_TRUE(std::isnan(ev.position_error_m[2]));
+  EXPECT_DOUBLE_EQ(*ev.metrics.position_m.Rms(), 2.0);
+  EXPECT_EQ(ev.metrics.heading_deg.count, 0u);
+  EXPECT_FALSE(ev.metrics.gospa);
+  EXPECT_FALSE(ev.metrics.truth_map_size);
+  EXPECT_FALSE(ev.metrics.ess_pct);
+  EXPECT_EQ(ev.metrics.pose_nees.count, 0u);
+}
+
+TEST(EvaluateRun, RejectsARecordOfTheWrongLength) {
+  RunRecord r = HandRecord();
+  r.poses.pop_back();
+  EXPECT_THROW(EvaluateRun(r, TruthScenario()), std::invalid_argument);
+}
+
+TEST(RunMetricsJson, RoundTripsTheSufficientStatistics) {
+  const RunMetrics m = EvaluateRun(HandRecord(), TruthScenario()).metrics;
+  const nlohmann::json j = ToJson(m);
+  EXPECT_TRUE(j.at("gps_matched_steps").is_null());
+  EXPECT_DOUBLE_EQ(j.at("pos_rmse_m").get<double>(), *m.position_m.Rms());
+  const RunMetrics back = RunMetricsFromJson(nlohmann::json::parse(j.dump()), "test");
+  EXPECT_EQ(back.position_m.count, m.position_m.count);
+  EXPECT_EQ(back.position_m.sum, m.position_m.sum);
+  EXPECT_EQ(back.position_m.sum_sq, m.position_m.sum_sq);
+  EXPECT_EQ(back.heading_deg.sum_sq, m.heading_deg.sum_sq);
+  EXPECT_EQ(back.gospa->gospa, m.gospa->gospa);
+  EXPECT_EQ(back.gospa->n_missed, 1);
+  EXPECT_EQ(*back.ess_pct, *m.ess_pct);
+  EXPECT_EQ(back.pose_nees.sum, m.pose_nees.sum);
+  EXPECT_EQ(back.step_ms.sum_sq, m.step_ms.sum_sq);
+  EXPECT_EQ(ToJson(back), j);
+
+  nlohmann::json missing = j;
+  missing.erase("pos_err_count");
+  EXPECT_THROW(RunMetricsFromJson(missing, "test"), std::runtime_error);
+  nlohmann::json mistyped = j;
+  mistyped["ms_sum"] = "fast";
+  EXPECT_THROW(RunMetricsFromJson(mistyped, "test"), std::runtime_error);
+}
+
+// A batch estimator returning fixed poses, for RunEstimator.
+class FixedBatch final : public filters::BatchEstimator {
+ public:
+  explicit FixedBatch(std::size_t poses) : poses_(poses) {}
+  filters::BatchResult Solve(const datasets::Scenario&) override {
+    filters::BatchResult r;
+    r.poses.assign(poses_, Pose(1.0, 2.0, 3.0));
+    r.map.means = {Landmark(5.0, 5.0)};
+    return r;
+  }
+
+ private:
+  std::size_t poses_;
+};
+
+TEST(RunEstimator, RecordsBatchResultsAndChecksTheirLength) {
+  const datasets::Scenario s = TruthScenario();
+  EstimatorEntry entry;
+  entry.name = "fixed";
+  entry.batch = true;
+  std::size_t poses = 3;
+  entry.make_batch = [&](const EstimatorRequest&) { return std::make_unique<FixedBatch>(poses); };
+  EstimatorRequest request;
+  request.scenario = &s;
+  std::size_t reported = 0;
+  const RunRecord r = RunEstimator(entry, request, s, [&](std::size_t n) { reported += n; });
+  EXPECT_EQ(reported, 3u);
+  EXPECT_EQ(r.poses.size(), 3u);
+  EXPECT_TRUE(r.diagnostics.empty());
+  EXPECT_TRUE(r.step_ms.empty());
+  EXPECT_EQ(r.step_times, (std::vector<double>{0.0, 1.0, 2.0}));
+  EXPECT_EQ(r.final_map.size(), 1u);
+  const RunEvaluation ev = EvaluateRun(r, s);
+  EXPECT_FALSE(ev.metrics.ess_pct);
+  EXPECT_EQ(ev.metrics.step_ms.count, 0u);
+  poses = 2;
+  EXPECT_THROW(RunEstimator(entry, request, s), std::runtime_error);
+}
+
+TEST(RunEstimator, StepsAnOnlineEstimatorAndTimesEachStep) {
+  const datasets::Scenario s = TruthScenario();
+  const RunRecord r =
+      RunEstimator(FindEstimator("odometry"), EstimatorRequest{"odometry", 1, 0, &s, {}}, s);
+  ASSERT_EQ(r.poses.size(), 3u);
+  EXPECT_NEAR(r.poses[2](0), 2.0, 1e-12);  // 1 m/s straight for two steps
+  EXPECT_EQ(r.diagnostics.size(), 3u);
+  ASSERT_EQ(r.step_ms.size(), 3u);
+  double sum = 0.0;
+  for (double ms : r.step_ms) {
+    EXPECT_GE(ms, 0.0);
+    sum += ms;
+  }
+  EXPECT_DOUBLE_EQ(r.total_ms, sum);
+}
+
+}  // namespace
+}  // namespace phdslam::validation

@@ -1,0 +1,35 @@
+// What one Monte Carlo run of one estimator produces, before any metric is computed.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "src/core/types.h"
+#include "src/filters/estimator.h"
+
+namespace phdslam::validation {
+
+struct RunRecord {
+  std::string estimator;
+  int particles = 1;
+  std::uint64_t seed = 0;         ///< Monte Carlo (scenario) seed
+  std::uint64_t stream_seed = 0;  ///< seed of the estimator's random stream
+
+  /// One entry per filter step k: the step's time stamp (its last one) and the estimate there.
+  std::vector<double> step_times;
+  std::vector<Pose> poses;
+  /// Per step, where the estimator carries one (may be empty: no covariances at all).
+  std::vector<std::optional<Mat3>> pose_covs;
+  /// Per step for online estimators; empty for batch estimators.
+  std::vector<filters::StepDiagnostics> diagnostics;
+  /// Wall time of each Step call (ms, steady_clock); empty for batch estimators.
+  std::vector<double> step_ms;
+  /// Wall time of the whole estimation (ms): the sum of step_ms, or the batch solve.
+  double total_ms = 0.0;
+  /// The map estimate after the last step.
+  filters::MapEstimate final_map;
+};
+
+}  // namespace phdslam::validation

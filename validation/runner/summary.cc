@@ -1,0 +1,291 @@
+#include "validation/runner/summary.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+#include <tuple>
+#include <utility>
+
+#include "validation/runner/results_io.h"
+#include "validation/runner/results_layout.h"
+
+namespace phdslam::validation {
+namespace {
+
+nlohmann::json ReadJsonFile(const std::filesystem::path& path) {
+  const std::string text = ReadTextFile(path);
+  nlohmann::json j = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
+  if (j.is_discarded() || !j.is_object()) {
+    throw std::runtime_error(path.string() + ": not a JSON object");
+  }
+  return j;
+}
+
+// Reads the identification fields every run file starts with.
+template <typename T>
+void ReadIdentity(const nlohmann::json& j, const std::filesystem::path& path, T& run) {
+  try {
+    run.estimator = j.at("estimator").get<std::string>();
+    run.particles = j.at("particles").get<int>();
+    run.seed = j.at("seed").get<std::uint64_t>();
+  } catch (const nlohmann::json::exception& e) {
+    throw std::runtime_error(path.string() +
+                             ": fields 'estimator' (string), 'particles' and 'seed' (integers) "
+                             "are required: " +
+                             e.what());
+  }
+}
+
+std::optional<double> StepWeightedMean(const std::vector<const RunResult*>& runs,
+                                       std::optional<double> RunMetrics::*field) {
+  double weighted = 0.0;
+  double steps = 0.0;
+  for (const RunResult* r : runs) {
+    const std::optional<double>& v = r->metrics.*field;
+    if (!v) continue;
+    weighted += *v * static_cast<double>(r->metrics.steps);
+    steps += static_cast<double>(r->metrics.steps);
+  }
+  if (steps == 0.0) return std::nullopt;
+  return weighted / steps;
+}
+
+std::optional<double> Sem(const ErrorMoments& m) {
+  const std::optional<double> s = m.Std();
+  if (!s) return std::nullopt;
+  return *s / std::sqrt(static_cast<double>(m.count));
+}
+
+// A column of a CSV file: its header name and how to format one row's value.
+template <typename Row>
+struct Column {
+  std::string name;
+  std::function<std::string(const Row&)> value;
+};
+
+template <typename Row>
+std::string RenderCsv(const std::vector<Column<Row>>& columns, const std::vector<Row>& rows) {
+  std::vector<std::string> cells;
+  for (const auto& c : columns) cells.push_back(c.name);
+  std::string text = CsvRow(cells);
+  for (const Row& row : rows) {
+    cells.clear();
+    for (const auto& c : columns) cells.push_back(c.value(row));
+    text += CsvRow(cells);
+  }
+  return text;
+}
+
+std::string Num(const std::optional<double>& v) { return FormatNumber(v); }
+std::string Count(std::size_t v) { return FormatInteger(static_cast<std::int64_t>(v)); }
+
+const std::vector<Column<GroupSummary>>& SummaryColumns() {
+  using G = GroupSummary;
+  static const std::vector<Column<G>> columns = {
+      {"estimator", [](const G& g) { return g.estimator; }},
+      {"particles", [](const G& g) { return FormatInteger(g.particles); }},
+      {"runs", [](const G& g) { return Count(g.runs); }},
+      {"steps", [](const G& g) { return Num(g.steps); }},
+      {"pos_rmse_m", [](const G& g) { return Num(g.position_m.Rms()); }},
+      {"heading_rmse_deg", [](const G& g) { return Num(g.heading_deg.Rms()); }},
+      {"gospa_mean_m", [](const G& g) { return Num(g.gospa_m.Mean()); }},
+      {"gospa_std_m", [](const G& g) { return Num(g.gospa_m.Std()); }},
+      {"ess_pct", [](const G& g) { return Num(g.ess_pct); }},
+      {"resampling_pct", [](const G& g) { return Num(g.resampling_pct); }},
+      {"ms_per_step_mean", [](const G& g) { return Num(g.step_ms.Mean()); }},
+      {"pos_rmse_std_m", [](const G& g) { return Num(g.position_m.Std()); }},
+      {"heading_rmse_std_deg", [](const G& g) { return Num(g.heading_deg.Std()); }},
+      {"gospa_sem_m", [](const G& g) { return Num(Sem(g.gospa_m)); }},
+      {"gospa_localisation_mean_mp",
+       [](const G& g) { return Num(g.gospa_localisation_mp.Mean()); }},
+      {"gospa_missed_mean_mp", [](const G& g) { return Num(g.gospa_missed_mp.Mean()); }},
+      {"gospa_false_mean_mp", [](const G& g) { return Num(g.gospa_false_mp.Mean()); }},
+      {"n_missed_mean", [](const G& g) { return Num(g.n_missed.Mean()); }},
+      {"n_false_mean", [](const G& g) { return Num(g.n_false.Mean()); }},
+      {"map_size_mean", [](const G& g) { return Num(g.map_size.Mean()); }},
+      {"hypotheses_mean", [](const G& g) { return Num(g.hypotheses_mean); }},
+      {"map_components_mean", [](const G& g) { return Num(g.map_components_mean); }},
+      {"pose_nees_mean", [](const G& g) { return Num(g.pose_nees.Mean()); }},
+      {"landmark_nees_mean", [](const G& g) { return Num(g.landmark_nees.Mean()); }},
+      {"pos_err_count", [](const G& g) { return Count(g.position_m.count); }},
+      {"failed_runs", [](const G& g) { return Count(g.failed_runs); }},
+      {"ms_per_step_std", [](const G& g) { return Num(g.step_ms.Std()); }},
+      {"ms_run_mean", [](const G& g) { return Num(g.run_ms.Mean()); }},
+  };
+  return columns;
+}
+
+const std::vector<Column<RunResult>>& RunColumns() {
+  using R = RunResult;
+  const auto gospa = [](double FinalMapGospa::*member) {
+    return [member](const R& r) {
+      return r.metrics.gospa ? FormatNumber((*r.metrics.gospa).*member) : std::string();
+    };
+  };
+  const auto gospa_count = [](int FinalMapGospa::*member) {
+    return [member](const R& r) {
+      return r.metrics.gospa ? FormatInteger((*r.metrics.gospa).*member) : std::string();
+    };
+  };
+  static const std::vector<Column<R>> columns = {
+      {"estimator", [](const R& r) { return r.estimator; }},
+      {"particles", [](const R& r) { return FormatInteger(r.particles); }},
+      {"seed", [](const R& r) { return std::to_string(r.seed); }},
+      {"steps", [](const R& r) { return Count(r.metrics.steps); }},
+      {"pos_rmse_m", [](const R& r) { return Num(r.metrics.position_m.Rms()); }},
+      {"heading_rmse_deg", [](const R& r) { return Num(r.metrics.heading_deg.Rms()); }},
+      {"gospa_m", gospa(&FinalMapGospa::gospa)},
+      {"ess_pct", [](const R& r) { return Num(r.metrics.ess_pct); }},
+      {"resampling_pct", [](const R& r) { return Num(r.metrics.resampling_pct); }},
+      {"ms_per_step_mean", [](const R& r) { return Num(r.metrics.step_ms.Mean()); }},
+      {"pos_rmse_std_m", [](const R& r) { return Num(r.metrics.position_m.Std()); }},
+      {"heading_rmse_std_deg", [](const R& r) { return Num(r.metrics.heading_deg.Std()); }},
+      {"gospa_localisation_mp", gospa(&FinalMapGospa::localisation)},
+      {"gospa_missed_mp", gospa(&FinalMapGospa::missed)},
+      {"gospa_false_mp", gospa(&FinalMapGospa::false_)},
+      {"n_missed", gospa_count(&FinalMapGospa::n_missed)},
+      {"n_false", gospa_count(&FinalMapGospa::n_false)},
+      {"map_size", [](const R& r) { return Count(r.metrics.map_size); }},
+      {"truth_map_size",
+       [](const R& r) {
+         return r.metrics.truth_map_size ? Count(*r.metrics.truth_map_size) : std::string();
+       }},
+      {"hypotheses_mean", [](const R& r) { return Num(r.metrics.hypotheses_mean); }},
+      {"map_components_mean", [](const R& r) { return Num(r.metrics.map_components_mean); }},
+      {"pose_nees_mean", [](const R& r) { return Num(r.metrics.pose_nees.Mean()); }},
+      {"landmark_nees_mean", [](const R& r) { return Num(r.metrics.landmark_nees.Mean()); }},
+      {"pos_err_count", [](const R& r) { return Count(r.metrics.position_m.count); }},
+      {"ms_per_step_std", [](const R& r) { return Num(r.metrics.step_ms.Std()); }},
+      {"ms_run", [](const R& r) { return Num(r.metrics.total_ms); }},
+  };
+  return columns;
+}
+
+}  // namespace
+
+ResultsInventory ReadResults(const std::filesystem::path& out) {
+  ResultsInventory inventory;
+  const std::filesystem::path runs_dir = out / kRunsFolder;
+  if (!std::filesystem::is_directory(runs_dir)) return inventory;
+  for (const auto& group : std::filesystem::directory_iterator(runs_dir)) {
+    if (!group.is_directory()) continue;
+    for (const auto& run : std::filesystem::directory_iterator(group.path())) {
+      if (!run.is_directory()) continue;
+      const std::filesystem::path metrics_path = run.path() / kMetricsFile;
+      const std::filesystem::path error_path = run.path() / kErrorFile;
+      if (std::filesystem::exists(metrics_path)) {
+        const nlohmann::json j = ReadJsonFile(metrics_path);
+        RunResult r;
+        ReadIdentity(j, metrics_path, r);
+        r.metrics = RunMetricsFromJson(j, metrics_path.string());
+        inventory.runs.push_back(std::move(r));
+      } else if (std::filesystem::exists(error_path)) {
+        const nlohmann::json j = ReadJsonFile(error_path);
+        FailedRun f;
+        ReadIdentity(j, error_path, f);
+        f.error = j.value("error", std::string());
+        inventory.failed.push_back(std::move(f));
+      }
+    }
+  }
+  const auto key = [](const auto& r) { return std::tie(r.estimator, r.particles, r.seed); };
+  std::sort(inventory.runs.begin(), inventory.runs.end(),
+            [&](const RunResult& a, const RunResult& b) { return key(a) < key(b); });
+  std::sort(inventory.failed.begin(), inventory.failed.end(),
+            [&](const FailedRun& a, const FailedRun& b) { return key(a) < key(b); });
+  return inventory;
+}
+
+std::vector<GroupSummary> SummariseGroups(const ResultsInventory& inventory) {
+  std::map<std::pair<std::string, int>, std::vector<const RunResult*>> runs_by_group;
+  std::map<std::pair<std::string, int>, std::size_t> failures_by_group;
+  for (const RunResult& r : inventory.runs) runs_by_group[{r.estimator, r.particles}].push_back(&r);
+  for (const FailedRun& f : inventory.failed) {
+    runs_by_group[{f.estimator, f.particles}];
+    ++failures_by_group[{f.estimator, f.particles}];
+  }
+  std::vector<GroupSummary> groups;
+  for (const auto& [key, runs] : runs_by_group) {
+    GroupSummary g;
+    g.estimator = key.first;
+    g.particles = key.second;
+    g.runs = runs.size();
+    g.failed_runs = failures_by_group[key];
+    ErrorMoments steps;
+    for (const RunResult* r : runs) {
+      const RunMetrics& m = r->metrics;
+      steps.Add(static_cast<double>(m.steps));
+      g.position_m.Merge(m.position_m);
+      g.heading_deg.Merge(m.heading_deg);
+      if (m.gospa) {
+        g.gospa_m.Add(m.gospa->gospa);
+        g.gospa_localisation_mp.Add(m.gospa->localisation);
+        g.gospa_missed_mp.Add(m.gospa->missed);
+        g.gospa_false_mp.Add(m.gospa->false_);
+        g.n_missed.Add(m.gospa->n_missed);
+        g.n_false.Add(m.gospa->n_false);
+      }
+      g.map_size.Add(static_cast<double>(m.map_size));
+      g.pose_nees.Merge(m.pose_nees);
+      g.landmark_nees.Merge(m.landmark_nees);
+      g.step_ms.Merge(m.step_ms);
+      g.run_ms.Add(m.total_ms);
+    }
+    g.steps = steps.Mean();
+    g.ess_pct = StepWeightedMean(runs, &RunMetrics::ess_pct);
+    g.resampling_pct = StepWeightedMean(runs, &RunMetrics::resampling_pct);
+    g.hypotheses_mean = StepWeightedMean(runs, &RunMetrics::hypotheses_mean);
+    g.map_components_mean = StepWeightedMean(runs, &RunMetrics::map_components_mean);
+    groups.push_back(std::move(g));
+  }
+  return groups;
+}
+
+std::string SummaryCsv(const std::vector<GroupSummary>& groups) {
+  return RenderCsv(SummaryColumns(), groups);
+}
+
+std::string RunsCsv(const std::vector<RunResult>& runs) { return RenderCsv(RunColumns(), runs); }
+
+std::string FormatSummaryTable(const std::vector<GroupSummary>& groups) {
+  const auto fixed = [](const std::optional<double>& v, int decimals) {
+    if (!v || !std::isfinite(*v)) return std::string("-");
+    char buffer[64];
+    std::snprintf(buffer, sizeof(buffer), "%.*f", decimals, *v);
+    return std::string(buffer);
+  };
+  std::size_t name_width = 9;
+  for (const GroupSummary& g : groups) name_width = std::max(name_width, g.estimator.size());
+  std::string text;
+  char line[512];
+  std::snprintf(line, sizeof(line), "%-*s %6s %5s %6s %10s %9s %17s %7s %7s %10s\n",
+                static_cast<int>(name_width), "estimator", "N", "runs", "failed", "pos RMSE m",
+                "head deg", "GOSPA m (std)", "ESS %", "resamp%", "ms/step");
+  text += line;
+  for (const GroupSummary& g : groups) {
+    const std::string gospa =
+        g.gospa_m.count == 0 ? "-"
+                             : fixed(g.gospa_m.Mean(), 2) + " (" + fixed(g.gospa_m.Std(), 2) + ")";
+    std::snprintf(line, sizeof(line), "%-*s %6d %5zu %6zu %10s %9s %17s %7s %7s %10s\n",
+                  static_cast<int>(name_width), g.estimator.c_str(), g.particles, g.runs,
+                  g.failed_runs, fixed(g.position_m.Rms(), 3).c_str(),
+                  fixed(g.heading_deg.Rms(), 3).c_str(), gospa.c_str(), fixed(g.ess_pct, 2).c_str(),
+                  fixed(g.resampling_pct, 2).c_str(), fixed(g.step_ms.Mean(), 3).c_str());
+    text += line;
+  }
+  return text;
+}
+
+std::vector<GroupSummary> WriteSummaryFiles(const std::filesystem::path& out) {
+  const ResultsInventory inventory = ReadResults(out);
+  std::vector<GroupSummary> groups = SummariseGroups(inventory);
+  WriteFileAtomically(out / kSummaryFile, SummaryCsv(groups));
+  WriteFileAtomically(out / kRunsTableFile, RunsCsv(inventory.runs));
+  return groups;
+}
+
+}  // namespace phdslam::validation
