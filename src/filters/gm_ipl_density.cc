@@ -5,7 +5,7 @@
 #include <limits>
 #include <numbers>
 
-#include "src/assignment/murty.h"
+#include "src/assignment/block_murty.h"
 #include "src/core/angles.h"
 #include "src/core/gaussian.h"
 #include "src/filters/ipl.h"
@@ -100,7 +100,7 @@ ProposalOutput GmIplDensity::Build(const ProposalInput& input) const {
   if (r == 0) {
     hypotheses.push_back({{}, 0.0});
   } else {
-    hypotheses = assignment::MurtyKBest(costs.cost, params_.max_hypotheses,
+    hypotheses = assignment::BlockMurtyKBest(costs.cost, params_.max_hypotheses,
                                         params_.murty_max_cost_gap);
   }
 
