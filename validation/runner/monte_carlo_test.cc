@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "datasets/test_temp_dir.h"
+#include "src/core/random.h"
 #include "validation/runner/parameter_overrides.h"
 #include "validation/runner/results_io.h"
 #include "validation/runner/results_layout.h"
@@ -125,6 +126,45 @@ EstimatorEntry StillEntry(const std::uint64_t* failing_seed) {
   return e;
 }
 
+// An online estimator whose poses are random draws from its stream: any dependence of the stream
+// on threads or job order would show in the results.
+class RandomWalkEstimator final : public filters::OnlineEstimator {
+ public:
+  RandomWalkEstimator(const datasets::Scenario& s, std::uint64_t stream_seed, int particles)
+      : pose_(s.initial_pose), stream_(stream_seed), particles_(particles) {}
+  filters::StepOutput Step(const datasets::StepData&) override {
+    pose_ += Pose(stream_.Normal(), stream_.Normal(), 0.01 * stream_.Normal());
+    filters::StepOutput out;
+    out.pose = pose_;
+    out.diag.ess = particles_ * stream_.Uniform();
+    out.diag.resampled = stream_.Uniform() < 0.5;
+    return out;
+  }
+  [[nodiscard]] filters::MapEstimate Map() const override {
+    filters::MapEstimate m;
+    m.means = {pose_.head<2>()};
+    m.covs = {Mat2::Identity()};
+    m.log_weights = {-1.0};
+    return m;
+  }
+
+ private:
+  Pose pose_;
+  RandomStream stream_;
+  int particles_;
+};
+
+EstimatorEntry RandomWalkEntry() {
+  EstimatorEntry e;
+  e.name = "walk";
+  e.description = "random walk from the estimator's stream";
+  e.make_online = [](const EstimatorRequest& r) {
+    return std::make_unique<RandomWalkEstimator>(*r.scenario, r.stream_seed, r.particles);
+  };
+  e.resolved_parameters = [](const EstimatorRequest&) { return nlohmann::json::object(); };
+  return e;
+}
+
 TEST(MonteCarlo, OdometryRunWritesEveryFileWithItsHeader) {
   const fs::path out = datasets::testing::FreshTestDir();
   const MonteCarloReport report =
@@ -206,6 +246,31 @@ TEST(MonteCarlo, ResultsDoNotDependOnTheNumberOfJobs) {
     EXPECT_EQ(WithoutTiming(nlohmann::json::parse(ReadTextFile(a / kMetricsFile))),
               WithoutTiming(nlohmann::json::parse(ReadTextFile(b / kMetricsFile))));
   }
+}
+
+TEST(MonteCarlo, RandomEstimatorsGiveTheSameFilesForAnyNumberOfJobs) {
+  const fs::path base = datasets::testing::FreshTestDir();
+  MonteCarloPlan plan = OdometryPlan("generated", 50, {1, 2, 3, 4, 5});
+  plan.estimators = {{RandomWalkEntry(), nlohmann::json::object()}};
+  plan.particles = {1, 10};
+  RunMonteCarlo(plan, Quiet(base / "one", 1));
+  RunMonteCarlo(plan, Quiet(base / "two", 2));
+  const std::string runs = ReadTextFile(base / "one" / kRunsTableFile);
+  EXPECT_EQ(Lines(runs).size(), 11u);
+  EXPECT_EQ(WithoutTiming(runs), WithoutTiming(ReadTextFile(base / "two" / kRunsTableFile)));
+  EXPECT_EQ(WithoutTiming(ReadTextFile(base / "one" / kSummaryFile)),
+            WithoutTiming(ReadTextFile(base / "two" / kSummaryFile)));
+  for (int n : {1, 10}) {
+    for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+      EXPECT_EQ(ReadTextFile(RunFolder(base / "one", "walk", n, seed) / kTrajectoryFile),
+                ReadTextFile(RunFolder(base / "two", "walk", n, seed) / kTrajectoryFile));
+    }
+  }
+  // Different seeds and particle counts do draw different streams.
+  EXPECT_NE(ReadTextFile(RunFolder(base / "one", "walk", 1, 1) / kTrajectoryFile),
+            ReadTextFile(RunFolder(base / "one", "walk", 10, 1) / kTrajectoryFile));
+  EXPECT_NE(ReadTextFile(RunFolder(base / "one", "walk", 1, 1) / kTrajectoryFile),
+            ReadTextFile(RunFolder(base / "one", "walk", 1, 2) / kTrajectoryFile));
 }
 
 TEST(MonteCarlo, RerunSkipsFinishedRunsAndRecomputesDeletedOnes) {
