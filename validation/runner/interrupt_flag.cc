@@ -4,15 +4,12 @@
 #include <unistd.h>
 
 #include <cstring>
-#include <stdexcept>
 
 namespace phdslam::validation {
 namespace {
 
 // The one piece of process-wide state: a signal handler can reach nothing else.
 std::atomic<bool> interrupted{false};
-std::atomic<bool> installed{false};
-struct sigaction previous_action;
 
 static_assert(std::atomic<bool>::is_always_lock_free, "the SIGINT flag must be lock-free");
 
@@ -27,7 +24,6 @@ extern "C" void OnSigint(int) {
 }  // namespace
 
 InterruptFlag::InterruptFlag() {
-  if (installed.exchange(true)) throw std::logic_error("InterruptFlag: already installed");
   interrupted.store(false);
   struct sigaction action;
   std::memset(&action, 0, sizeof(action));
@@ -35,13 +31,10 @@ InterruptFlag::InterruptFlag() {
   sigemptyset(&action.sa_mask);
   // SA_RESETHAND: after the first SIGINT the default action is back, so a second one terminates.
   action.sa_flags = SA_RESETHAND;
-  sigaction(SIGINT, &action, &previous_action);
+  sigaction(SIGINT, &action, &previous_action_);
 }
 
-InterruptFlag::~InterruptFlag() {
-  sigaction(SIGINT, &previous_action, nullptr);
-  installed.store(false);
-}
+InterruptFlag::~InterruptFlag() { sigaction(SIGINT, &previous_action_, nullptr); }
 
 const std::atomic<bool>& InterruptFlag::flag() const { return interrupted; }
 

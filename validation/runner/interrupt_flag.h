@@ -3,12 +3,14 @@
 // process as usual.
 #pragma once
 
+#include <signal.h>
+
 #include <atomic>
 
 namespace phdslam::validation {
 
 /// Installs the SIGINT handler for its lifetime and restores the previous one on destruction.
-/// Only one may exist at a time (throws std::logic_error otherwise).
+/// Create one at a time (the program's main does).
 class InterruptFlag {
  public:
   InterruptFlag();
@@ -18,6 +20,9 @@ class InterruptFlag {
 
   /// The flag the signal handler sets; stays set until destruction.
   [[nodiscard]] const std::atomic<bool>& flag() const;
+
+ private:
+  struct sigaction previous_action_ {};
 };
 
 }  // namespace phdslam::validation
