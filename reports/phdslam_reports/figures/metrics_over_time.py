@@ -1,0 +1,88 @@
+"""Fig. 2 analogue: per-step metrics pooled over seeds (mean and 5-95 % band)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Callable
+
+import numpy as np
+from matplotlib.figure import Figure
+
+from ..results import Group, ResultsFolder
+from ..stats import Band, band_over_runs, stack_ragged
+from ..style import estimator_colour, new_figure, particle_line_style
+
+PANELS = (
+    ("pos_err_m", "Position error (m)"),
+    ("heading_err_deg", "Heading error (deg)"),
+    ("ess_ratio", "ESS / N"),
+    ("map_components", "Map size (GM-PHD components)"),
+)
+
+
+@dataclass
+class GroupSeries:
+    """Per-step bands of one group for each panel metric."""
+
+    group: Group
+    runs: int
+    bands: dict[str, Band]
+
+
+def collect_series(results: ResultsFolder, group: Group) -> GroupSeries | None:
+    """Reads every run of ``group`` and pools its per-step metrics over seeds."""
+    seeds = results.seeds(group)
+    if not seeds:
+        return None
+    columns: dict[str, list[np.ndarray]] = {name: [] for name, _ in PANELS}
+    for seed in seeds:
+        steps = results.steps(group, seed)
+        columns["pos_err_m"].append(steps.num("pos_err_m"))
+        columns["heading_err_deg"].append(steps.num("heading_err_deg"))
+        columns["ess_ratio"].append(steps.num("ess") / float(group.particles))
+        columns["map_components"].append(steps.num("map_components"))
+    results.forget_steps()
+    bands = {name: band_over_runs(stack_ragged(series)) for name, series in columns.items()}
+    return GroupSeries(group=group, runs=len(seeds), bands=bands)
+
+
+def plot_metrics_over_time(
+    series: list[GroupSeries], display_name: Callable[[str], str] = str,
+) -> Figure | None:
+    """Four panels (position error, heading error, ESS/N, map size) over the step index."""
+    series = [s for s in series if s is not None]
+    if not series:
+        return None
+    estimators = [s.group.estimator for s in series]
+    particles = [s.group.particles for s in series]
+    fig, axes = new_figure(13.0, 8.0, 2, 2)
+    for (name, label), ax in zip(PANELS, axes.flat):
+        drawn = False
+        for s in series:
+            band = s.bands[name]
+            if not np.any(np.isfinite(band.mean)):
+                continue
+            k = np.arange(band.mean.size)
+            colour = estimator_colour(s.group.estimator, estimators)
+            style = particle_line_style(s.group.particles, particles)
+            ax.plot(k, band.mean, color=colour, ls=style,
+                    label=f"{display_name(s.group.estimator)}, N = {s.group.particles} "
+                          f"({s.runs} runs)")
+            if s.runs > 1:
+                ax.fill_between(k, band.low, band.high, color=colour, alpha=0.15, linewidth=0)
+            drawn = True
+        ax.set_xlabel("step k")
+        ax.set_ylabel(label)
+        if name in ("pos_err_m", "heading_err_deg") and drawn:
+            positive = [s.bands[name].mean for s in series]
+            if any(np.nanmax(np.abs(v)) > 100 * max(np.nanmedian(np.abs(v)), 1e-9)
+                   for v in positive if np.any(np.isfinite(v))):
+                ax.set_yscale("symlog", linthresh=1.0)
+        if not drawn:
+            ax.text(0.5, 0.5, "not available for these runs", transform=ax.transAxes,
+                    ha="center", va="center", color="#777")
+        elif name == "pos_err_m":
+            ax.legend(loc="upper left", framealpha=0.85)
+    fig.suptitle("Mean over runs (line) and 5\u201395 % band over runs (shaded)")
+    fig.tight_layout()
+    return fig

@@ -1,0 +1,74 @@
+"""Pose NEES averaged over runs, with two-sided 95 % chi-square bounds."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Callable
+
+import numpy as np
+from matplotlib.figure import Figure
+
+from ..stats import fraction_inside, nees_bounds
+from ..style import estimator_colour, new_figure
+
+POSE_DOF = 3
+
+
+@dataclass
+class NeesSeries:
+    """Run-averaged NEES of one group at each step, with its bounds."""
+
+    estimator: str
+    particles: int
+    runs: int
+    mean: np.ndarray
+    low: float
+    high: float
+
+    @property
+    def inside(self) -> float:
+        """Fraction of steps whose run-averaged NEES is within the bounds."""
+        return fraction_inside(self.mean, self.low, self.high)
+
+
+def nees_series(estimator: str, particles: int, matrix: np.ndarray) -> NeesSeries | None:
+    """Averages a runs x steps NEES matrix over runs (steps where every run has a value)."""
+    matrix = np.asarray(matrix, dtype=float)
+    if matrix.size == 0 or not np.any(np.isfinite(matrix)):
+        return None
+    runs = matrix.shape[0]
+    complete = np.all(np.isfinite(matrix), axis=0)
+    mean = np.full(matrix.shape[1], np.nan)
+    mean[complete] = np.mean(matrix[:, complete], axis=0)
+    low, high = nees_bounds(runs, POSE_DOF)
+    return NeesSeries(estimator, particles, runs, mean, low, high)
+
+
+def plot_nees(series: list[NeesSeries], display_name: Callable[[str], str] = str) -> Figure | None:
+    """One panel per group: averaged NEES over steps on a log axis, bounds as dashed lines."""
+    if not series:
+        return None
+    cols = min(2, len(series))
+    rows = (len(series) + cols - 1) // cols
+    fig, axes = new_figure(6.5 * cols, 3.8 * rows, rows, cols)
+    estimators = [s.estimator for s in series]
+    for index, s in enumerate(series):
+        ax = axes[index // cols][index % cols]
+        k = np.arange(s.mean.size)
+        ax.plot(k, s.mean, color=estimator_colour(s.estimator, estimators), lw=1.0,
+                label=f"mean NEES over {s.runs} runs")
+        ax.axhline(s.low, color="#333", ls="--", lw=1.0, label="95 % chi-square bounds")
+        ax.axhline(s.high, color="#333", ls="--", lw=1.0)
+        ax.axhline(POSE_DOF, color="#888", ls=":", lw=1.0, label=f"expected ({POSE_DOF})")
+        positive = s.mean[np.isfinite(s.mean) & (s.mean > 0)]
+        if positive.size and positive.max() / max(positive.min(), 1e-12) > 50:
+            ax.set_yscale("log")
+        ax.set_title(f"{display_name(s.estimator)}, N = {s.particles}: "
+                     f"{100 * s.inside:.1f} % of steps inside")
+        ax.set_xlabel("step k")
+        ax.set_ylabel("pose NEES (3 dof)")
+        ax.legend(loc="best", framealpha=0.85)
+    for index in range(len(series), rows * cols):
+        axes[index // cols][index % cols].set_visible(False)
+    fig.tight_layout()
+    return fig

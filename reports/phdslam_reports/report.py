@@ -1,0 +1,407 @@
+"""Builds the HTML report of one or more results folders: sections, figures, tables."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Sequence
+
+import numpy as np
+
+from .comparison import Comparison, compare, format_relative, format_value, secondary_references
+from .csv_table import ResultsFormatError
+from .figures.metrics_over_time import collect_series, plot_metrics_over_time
+from .figures.nees import nees_series, plot_nees
+from .figures.particle_paths import MAX_PANELS, ParticlePanel, plot_particle_paths
+from .figures.scaling import plot_scaling, scaling_fits
+from .figures.sensitivity import (
+    CLUTTER_COLUMNS,
+    PD_COLUMNS,
+    SweepPoint,
+    first_column,
+    plot_sensitivity,
+    points_from_table,
+)
+from .figures.trajectory_map import TrajectoryPanel, plot_trajectory_maps
+from .html_page import Section, escape, figure_html, note_html, render_page, table_html
+from .paper import PaperValues
+from .results import SCALING_COLUMNS, SCALING_FILE, SWEEP_FILE, Group, ResultsFolder
+from .stats import relative_difference, standard_error_of_values
+from .style import save_figure
+from .tables_shared import matched_paper_tables, ours_with_se, paper_table_rows
+
+FOLDER_SECTIONS = ("summary", "paper-tables", "fig1", "fig2", "fig3", "nees", "scaling")
+"""Section ids of each results folder (prefixed by ``d<index>-`` when there are several)."""
+
+
+@dataclass
+class ReportOptions:
+    """Settings of one report."""
+
+    title: str = "PHD-SLAM validation report"
+    paper_table: str | None = None  # a table id, "none", or None for automatic matching
+
+
+@dataclass
+class Report:
+    """The built report: the page, its sections and the PNG files written beside it."""
+
+    html: str
+    sections: list[Section]
+    figure_files: list[Path] = field(default_factory=list)
+
+    def section(self, section_id: str) -> Section:
+        """The section with ``section_id`` (KeyError when absent)."""
+        for s in self.sections:
+            if s.id == section_id:
+                return s
+        raise KeyError(section_id)
+
+
+class ReportBuilder:
+    """Turns results folders into sections; figures go to ``out_dir``."""
+
+    def __init__(self, folders: Sequence[ResultsFolder], out_dir: Path, paper: PaperValues,
+                 options: ReportOptions) -> None:
+        self.folders = list(folders)
+        self.out_dir = Path(out_dir)
+        self.paper = paper
+        self.options = options
+        self.figure_files: list[Path] = []
+
+    # --- helpers ------------------------------------------------------------------------------
+
+    def _prefix(self, index: int) -> str:
+        return f"d{index}-" if len(self.folders) > 1 else ""
+
+    def _figure(self, fig, file_name: str, caption: str) -> str:
+        path = self.out_dir / file_name
+        png = save_figure(fig, path)
+        self.figure_files.append(path)
+        return figure_html(png, file_name, caption, alt=caption)
+
+    def _name(self, estimator: str) -> str:
+        return self.paper.display_name(estimator)
+
+    # --- sections of one folder ---------------------------------------------------------------
+
+    def summary_section(self, sid: str, folder: ResultsFolder, comparison: Comparison) -> Section:
+        """Summary table with the paper's values, standard errors and the 15 % flags."""
+        title = "Summary and comparison with the paper"
+        if folder.summary is None:
+            return Section(sid, title, skipped_note=f"no summary.csv in {folder.path}")
+        headers = ["Estimator", "N", "runs", "steps"] + [
+            self.paper.metric_label(m) for m in comparison.metrics]
+        rows = []
+        flagged = 0
+        for row in comparison.rows:
+            cells = [(self._name(row.group.estimator), "name"), (str(row.group.particles), ""),
+                     (str(row.runs), ""), (format_value(row.steps), "")]
+            for cell in row.cells:
+                css = "flag" if cell.flagged else ("ok" if cell.paper is not None
+                                                   and math.isfinite(cell.ours) else "")
+                flagged += int(cell.flagged)
+                second = ""
+                if cell.paper is not None:
+                    second = f"paper {format_value(cell.paper)}, \u0394 {format_relative(cell.relative)}"
+                cells.append((ours_with_se(cell.ours, cell.se), css, second))
+            rows.append(cells)
+        parts = [
+            "<p>Our values: Monte Carlo means (position and heading RMSE pooled over every step "
+            "of every run, as in the paper) \u00b1 their Monte Carlo standard error (GOSPA: "
+            "std / \u221aruns; the other metrics: spread of the per-run values in runs.csv / "
+            "\u221aruns). Second line: the paper's value and \u0394 = (ours \u2212 paper) / paper. "
+            "Red cells differ from the paper by more than 15 %; green cells are within 15 %.</p>",
+            table_html(headers, rows),
+            f"<p class=\"meta\">{flagged} cell(s) flagged.</p>",
+        ]
+        parts += [note_html(n) for n in comparison.notes]
+        tables = {r.table.id: r.table for r in comparison.rows if r.table is not None}
+        for table in tables.values():
+            parts.append(f"<p class=\"meta\">Paper values: {escape(table.title)}; source: "
+                         f"{escape(table.source)}. {escape(table.notes)}</p>")
+        if not tables:
+            parts.append(note_html(
+                f"No published table matches scenario '{folder.scenario_name}': paper columns "
+                "are empty."))
+        secondary = secondary_references(folder, self.paper, comparison)
+        if secondary:
+            sec_rows = []
+            absent_listed: set[tuple[str, str, str]] = set()
+            for table, row, metric, value in secondary:
+                cell = row.cell(metric)
+                if cell is None:
+                    key = (table.id, row.group.estimator, metric)
+                    if key in absent_listed:
+                        continue
+                    absent_listed.add(key)
+                ours = ours_with_se(cell.ours, cell.se) if cell else "not in these results"
+                rel = format_relative(relative_difference(cell.ours, value)) if cell else ""
+                sec_rows.append([(table.title, "name"), (self._name(row.group.estimator), "name"),
+                                 (str(row.group.particles), ""),
+                                 (self.paper.metric_label(metric), "name"), (ours, ""),
+                                 (format_value(value), ""), (rel, "")])
+            parts.append("<h3>Other published numbers</h3>")
+            parts.append(table_html(["Reference", "Estimator", "N", "Metric", "ours \u00b1 SE",
+                                     "published", "\u0394"], sec_rows))
+            sources = {t.id: t for t, *_ in secondary}
+            parts += [f"<p class=\"meta\">{escape(t.title)}: {escape(t.source)}. "
+                      f"{escape(t.notes)}</p>" for t in sources.values()]
+        return Section(sid, title, body="\n".join(parts))
+
+    def paper_tables_section(self, sid: str, folder: ResultsFolder,
+                             comparison: Comparison) -> Section:
+        """Tables I/II/III in the paper's layout, when the results hold their configuration."""
+        title = "Tables I / II / III in the paper's layout"
+        tables = matched_paper_tables(folder, self.paper, comparison)
+        if not tables:
+            return Section(sid, title, skipped_note=(
+                "these results do not hold the configuration of Table I, II or III "
+                "(same scenario, 4000 steps, pD and clutter rate of the paper, and the paper's "
+                "filters and particle counts)"))
+        parts = ["<p>Each cell: ours \u00b1 SE (paper); \u26a0 marks a difference beyond "
+                 "15 %.</p>"]
+        for table in tables:
+            headers, rows = paper_table_rows(table, comparison, self.paper)
+            parts.append(f"<h3>{escape(table.title)}</h3>")
+            parts.append(table_html(headers, [[(c, "name" if i < 1 else "") for i, c in
+                                               enumerate(r)] for r in rows]))
+            if table.notes:
+                parts.append(f"<p class=\"meta\">{escape(table.notes)}</p>")
+        return Section(sid, title, body="\n".join(parts))
+
+    def trajectory_section(self, sid: str, prefix: str, folder: ResultsFolder) -> Section:
+        """Fig. 1 analogue: one run per estimator (its largest N, its first seed)."""
+        title = "Fig. 1 analogue: trajectory and map"
+        chosen: dict[str, tuple[Group, int]] = {}
+        for group in folder.groups():
+            seeds = folder.seeds(group)
+            if seeds and (group.estimator not in chosen
+                          or group.particles > chosen[group.estimator][0].particles):
+                chosen[group.estimator] = (group, seeds[0])
+        if not chosen:
+            return Section(sid, title, skipped_note="no run folder with steps.csv")
+        panels = [
+            TrajectoryPanel(title=f"{self._name(g.estimator)}, N = {g.particles}, seed {seed}",
+                            estimator=g.estimator, steps=folder.steps(g, seed),
+                            estimated_map=folder.run_map(g, seed), truth_map=folder.truth_map)
+            for g, seed in chosen.values()
+        ]
+        fig = plot_trajectory_maps(panels, list(chosen), self._name)
+        folder.forget_steps()
+        body = self._figure(fig, f"{prefix}fig1-trajectory-map.png",
+                            "True trajectory (black), estimate (dashed), true landmarks (+) and "
+                            "the final estimated map (circles, 3\u03c3 ellipses) of one run per "
+                            "estimator.")
+        if folder.truth_map is None:
+            body += note_html("No truth_map.csv: true landmarks are not shown.")
+        return Section(sid, title, body=body)
+
+    def metrics_over_time_section(self, sid: str, prefix: str, folder: ResultsFolder) -> Section:
+        """Fig. 2 analogue: per-step metrics pooled over seeds."""
+        title = "Fig. 2 analogue: metrics over time"
+        series = [collect_series(folder, g) for g in folder.groups()]
+        fig = plot_metrics_over_time([s for s in series if s is not None], self._name)
+        if fig is None:
+            return Section(sid, title, skipped_note="no run folder with steps.csv")
+        return Section(sid, title, body=self._figure(
+            fig, f"{prefix}fig2-metrics-over-time.png",
+            "Position error, heading error, ESS/N and map size per step: mean over runs and the "
+            "5\u201395 % band over runs, per estimator and particle count."))
+
+    def particles_section(self, sid: str, prefix: str, folder: ResultsFolder) -> Section:
+        """Fig. 3 analogue: particle trajectories from particles.csv files."""
+        title = "Fig. 3 analogue: particle trajectories"
+        files = folder.particle_files()
+        if not files:
+            return Section(sid, title, skipped_note=(
+                "no run folder holds particles.csv (step,particle,x,y,weight); the runner does "
+                "not write particle paths yet"))
+        panels = []
+        for group, seed, path in files[:MAX_PANELS]:
+            steps_path = folder.run_folder(group, seed) / "steps.csv"
+            panels.append(ParticlePanel(
+                title=f"{self._name(group.estimator)}, N = {group.particles}, seed {seed}",
+                particles=folder.particles(path),
+                steps=folder.steps(group, seed) if steps_path.is_file() else None))
+        fig = plot_particle_paths(panels)
+        folder.forget_steps()
+        body = self._figure(fig, f"{prefix}fig3-particle-paths.png",
+                            "Paths of every particle (shade: final weight) and the true "
+                            "trajectory.")
+        if len(files) > MAX_PANELS:
+            body += note_html(f"{len(files)} runs hold particles.csv; the first {MAX_PANELS} "
+                              "are shown.")
+        return Section(sid, title, body=body)
+
+    def nees_section(self, sid: str, prefix: str, folder: ResultsFolder) -> Section:
+        """Run-averaged pose NEES with 95 % chi-square bounds, when steps.csv has 'nees'."""
+        title = "Pose NEES (consistency)"
+        series = []
+        for group in folder.groups():
+            seeds = folder.seeds(group)
+            if not seeds or not folder.steps(group, seeds[0]).has("nees"):
+                continue
+            matrix_rows = []
+            for seed in seeds:
+                steps = folder.steps(group, seed)
+                if not steps.has("nees"):
+                    raise ResultsFormatError(
+                        f"{steps.path}: column 'nees' is missing (seed {seeds[0]} of the same "
+                        "group has it)")
+                matrix_rows.append(steps.num("nees"))
+            folder.forget_steps()
+            width = max(len(r) for r in matrix_rows)
+            matrix = np.full((len(matrix_rows), width), np.nan)
+            for i, r in enumerate(matrix_rows):
+                matrix[i, : len(r)] = r
+            s = nees_series(group.estimator, group.particles, matrix)
+            if s is not None:
+                series.append(s)
+        if not series:
+            return Section(sid, title, skipped_note="steps.csv has no 'nees' column")
+        rows = [[(self._name(s.estimator), "name"), (str(s.particles), ""), (str(s.runs), ""),
+                 (f"[{s.low:.3f}, {s.high:.3f}]", ""),
+                 (format_value(float(np.nanmean(s.mean))), ""),
+                 (f"{100 * s.inside:.1f} %", "")] for s in series]
+        body = ("<p>Pose NEES averaged over runs at each step (steps where every run has a "
+                "value). Bounds: chi2.ppf(0.025 and 0.975, 3 \u00d7 runs) / runs.</p>"
+                + table_html(["Estimator", "N", "runs", "95 % bounds", "mean NEES",
+                              "steps inside"], rows)
+                + self._figure(plot_nees(series, self._name), f"{prefix}nees.png",
+                               "Run-averaged pose NEES and its two-sided 95 % chi-square "
+                               "bounds."))
+        return Section(sid, title, body=body)
+
+    def scaling_section(self, sid: str, prefix: str, folder: ResultsFolder) -> Section:
+        """Log-log time per call against landmarks in view, from scaling.csv."""
+        title = "Scaling with the number of landmarks in view"
+        table = folder.optional_table(SCALING_FILE, SCALING_COLUMNS)
+        if table is None:
+            return Section(sid, title, skipped_note=f"no {SCALING_FILE} in the results folder")
+        fig = plot_scaling(table, self._name)
+        if fig is None:
+            return Section(sid, title, skipped_note=f"{SCALING_FILE} has no rows")
+        fits = scaling_fits(table)
+        rows = [[(self._name(e), "name"),
+                 (f"{f.exponent:.3f}" if f else "\u2014", ""),
+                 (format_value(f.coefficient) if f else "\u2014", ""),
+                 (str(f.points) if f else "\u2014", "")] for e, f in fits.items()]
+        body = (table_html(["Estimator", "exponent b", "coefficient a (\u00b5s)", "points"], rows)
+                + self._figure(fig, f"{prefix}scaling.png",
+                               "Time per call against landmarks in view (log-log) with the "
+                               "least-squares fit a \u00b7 n^b."))
+        return Section(sid, title, body=body)
+
+    # --- sections across folders --------------------------------------------------------------
+
+    def sweep_points(self) -> tuple[list[SweepPoint], list[str]]:
+        """Sensitivity points from summary/sweep columns or from each folder's config.json."""
+        points: list[SweepPoint] = []
+        notes: list[str] = []
+        for folder in self.folders:
+            options = folder.scenario_options
+            pd = options.get("detection_probability", options.get("detection_probability_nominal"))
+            clutter = options.get("clutter_rate")
+            pd = float(pd) if isinstance(pd, (int, float)) else math.nan
+            clutter = float(clutter) if isinstance(clutter, (int, float)) else math.nan
+            sweep = folder.optional_table(SWEEP_FILE, ("estimator", "particles"))
+            if sweep is not None:
+                points += points_from_table(sweep, pd, clutter)
+                continue
+            summary = folder.summary
+            if summary is None:
+                continue
+            if first_column(summary, PD_COLUMNS) or first_column(summary, CLUTTER_COLUMNS):
+                points += points_from_table(summary, pd, clutter)
+                continue
+            if math.isnan(pd) and math.isnan(clutter):
+                notes.append(f"{folder.path}: config.json states no detection probability or "
+                             "clutter rate")
+                continue
+            for point in points_from_table(summary, pd, clutter):
+                group = Group(point.estimator, point.particles)
+                se = standard_error_of_values(
+                    [float(r["pos_rmse_m"]) for r in folder.runs_rows(group)])
+                points.append(SweepPoint(**{**point.__dict__, "pos_rmse_se": se}))
+        return points, notes
+
+    def sensitivity_section(self) -> Section:
+        """Fig. 5 analogue: GOSPA and position RMSE against pD and clutter rate."""
+        title = "Fig. 5 analogue: sensitivity to pD and clutter rate"
+        points, notes = self.sweep_points()
+        fig = plot_sensitivity(points, self._name)
+        if fig is None:
+            return Section("sensitivity", title, skipped_note=(
+                "no sweep: the results hold a single detection probability and clutter rate "
+                "(give several results folders with different --pd / --clutter-rate, or a "
+                "sweep.csv / summary.csv with pd or clutter_rate columns)"))
+        body = self._figure(fig, "fig5-sensitivity.png",
+                            "Final-map GOSPA and position RMSE (\u00b1 SE) against the detection "
+                            "probability and the clutter rate.")
+        body += "".join(note_html(n) for n in notes)
+        return Section("sensitivity", title, body=body)
+
+    # --- whole report -------------------------------------------------------------------------
+
+    def folder_intro(self, folder: ResultsFolder) -> str:
+        """A short description of a results folder from its config.json."""
+        config = folder.config or {}
+        options = folder.scenario_options
+        shown = ", ".join(f"{k} = {options[k]}" for k in
+                          ("steps", "detection_probability", "detection_probability_nominal",
+                           "clutter_rate") if k in options)
+        seeds = config.get("seeds") or []
+        program = config.get("program") or {}
+        return (f"<p class=\"meta\">Results folder <code>{escape(folder.path)}</code>: scenario "
+                f"<b>{escape(folder.scenario_name or 'unknown')}</b>"
+                f"{' (' + escape(shown) + ')' if shown else ''}; "
+                f"{len(seeds)} seed(s); estimators "
+                f"{escape(', '.join(sorted((config.get('estimators') or {}).keys())) or '?')}; "
+                f"experiment {escape(config.get('experiment', '?'))}; program "
+                f"{escape(program.get('name', '?'))} {escape(program.get('version', ''))}.</p>")
+
+    def build(self) -> Report:
+        """Every section, the page, and the figure files."""
+        sections: list[Section] = []
+        intro = ["<p>Built from results files only (summary.csv, runs.csv, config.json and the "
+                 "per-run files of each results folder).</p>"]
+        for index, folder in enumerate(self.folders):
+            prefix = self._prefix(index)
+            level = 2
+            if len(self.folders) > 1:
+                sections.append(Section(f"d{index}", f"Results folder {index + 1}: "
+                                        f"{folder.path.name}", body=self.folder_intro(folder)))
+                level = 3
+            else:
+                intro.append(self.folder_intro(folder))
+            comparison = compare(folder, self.paper, self.options.paper_table)
+            built = [
+                self.summary_section(f"{prefix}summary", folder, comparison),
+                self.paper_tables_section(f"{prefix}paper-tables", folder, comparison),
+                self.trajectory_section(f"{prefix}fig1", prefix, folder),
+                self.metrics_over_time_section(f"{prefix}fig2", prefix, folder),
+                self.particles_section(f"{prefix}fig3", prefix, folder),
+                self.nees_section(f"{prefix}nees", prefix, folder),
+                self.scaling_section(f"{prefix}scaling", prefix, folder),
+            ]
+            for s in built:
+                s.level = level
+            sections += built
+        sections.append(self.sensitivity_section())
+        html = render_page(self.options.title, "\n".join(intro), sections)
+        return Report(html=html, sections=sections, figure_files=self.figure_files)
+
+
+def build_report(results_dirs: Sequence[Path | str], out_dir: Path | str,
+                 paper: PaperValues | None = None,
+                 options: ReportOptions | None = None) -> Report:
+    """Builds the report of ``results_dirs`` into ``out_dir`` (index.html and PNG files)."""
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    folders = [ResultsFolder(p) for p in results_dirs]
+    builder = ReportBuilder(folders, out, paper or PaperValues.load(), options or ReportOptions())
+    report = builder.build()
+    (out / "index.html").write_text(report.html, encoding="utf-8")
+    return report

@@ -1,0 +1,235 @@
+"""A phdslam results folder (layout in validation/README.md) opened for reading.
+
+Files are read lazily and validated on first use; every problem raises ResultsFormatError naming
+the file (and, for CSV files, the line and column).
+"""
+
+from __future__ import annotations
+
+import json
+import re
+from dataclasses import dataclass
+from functools import cached_property
+from pathlib import Path
+from typing import Any
+
+from .csv_table import CsvTable, ResultsFormatError, read_csv
+
+SUMMARY_FILE = "summary.csv"
+RUNS_TABLE_FILE = "runs.csv"
+CONFIG_FILE = "config.json"
+TRUTH_MAP_FILE = "truth_map.csv"
+RUNS_FOLDER = "runs"
+STEPS_FILE = "steps.csv"
+MAP_FILE = "map.csv"
+PARTICLES_FILE = "particles.csv"
+SCALING_FILE = "scaling.csv"
+SWEEP_FILE = "sweep.csv"
+
+SUMMARY_COLUMNS = (
+    "estimator", "particles", "runs", "steps", "pos_rmse_m", "heading_rmse_deg", "gospa_mean_m",
+    "gospa_std_m", "ess_pct", "resampling_pct", "ms_per_step_mean",
+)
+RUNS_COLUMNS = (
+    "estimator", "particles", "seed", "steps", "pos_rmse_m", "heading_rmse_deg", "gospa_m",
+    "ess_pct", "resampling_pct", "ms_per_step_mean",
+)
+STEPS_COLUMNS = (
+    "step", "t", "x", "y", "theta", "x_true", "y_true", "theta_true", "pos_err_m",
+    "heading_err_deg", "ess", "resampled", "hypotheses", "map_components", "ms",
+)
+MAP_COLUMNS = ("x", "y")
+PARTICLES_COLUMNS = ("step", "particle", "x", "y", "weight")
+SCALING_COLUMNS = ("estimator", "landmarks_in_fov", "us_per_call")
+
+_GROUP_FOLDER = re.compile(r"^(?P<estimator>.+)-N(?P<particles>\d+)$")
+_SEED_FOLDER = re.compile(r"^seed-(?P<seed>\d+)$")
+
+
+@dataclass(frozen=True, order=True)
+class Group:
+    """One (estimator, particle count) pair: a row of summary.csv and a folder of runs/."""
+
+    estimator: str
+    particles: int
+
+    @property
+    def folder_name(self) -> str:
+        """``<estimator>-N<particles>``, as the runner names the group's folder."""
+        return f"{self.estimator}-N{self.particles}"
+
+
+def _as_int(value: float, path: Path, column: str, row: int) -> int:
+    if value != value or value != int(value):
+        raise ResultsFormatError(f"{path}, row {row}, column '{column}': expected an integer")
+    return int(value)
+
+
+class ResultsFolder:
+    """Read access to the files of one ``phdslam run --out DIR`` folder."""
+
+    def __init__(self, path: Path | str) -> None:
+        self.path = Path(path)
+        if not self.path.is_dir():
+            raise ResultsFormatError(f"{self.path}: not a folder")
+        if not (self.path / SUMMARY_FILE).is_file() and not (self.path / RUNS_FOLDER).is_dir():
+            raise ResultsFormatError(
+                f"{self.path}: not a results folder (neither {SUMMARY_FILE} nor {RUNS_FOLDER}/)"
+            )
+        self._steps_cache: dict[tuple[Group, int], CsvTable] = {}
+
+    # --- folder-level files -------------------------------------------------------------------
+
+    @cached_property
+    def config(self) -> dict[str, Any] | None:
+        """config.json as a dict, or None when absent."""
+        path = self.path / CONFIG_FILE
+        if not path.is_file():
+            return None
+        try:
+            data = json.loads(path.read_text(encoding="utf-8"))
+        except (OSError, UnicodeDecodeError, json.JSONDecodeError) as error:
+            raise ResultsFormatError(f"{path}: not valid JSON: {error}") from error
+        if not isinstance(data, dict):
+            raise ResultsFormatError(f"{path}: expected a JSON object at the top level")
+        return data
+
+    @cached_property
+    def summary(self) -> CsvTable | None:
+        """summary.csv, or None when absent."""
+        path = self.path / SUMMARY_FILE
+        if not path.is_file():
+            return None
+        table = read_csv(path, SUMMARY_COLUMNS, text_columns=("estimator",))
+        for i, value in enumerate(table.num("particles")):
+            _as_int(value, path, "particles", i + 1)
+        return table
+
+    @cached_property
+    def runs_table(self) -> CsvTable | None:
+        """runs.csv, or None when absent."""
+        path = self.path / RUNS_TABLE_FILE
+        if not path.is_file():
+            return None
+        return read_csv(path, RUNS_COLUMNS, text_columns=("estimator",))
+
+    @cached_property
+    def truth_map(self) -> CsvTable | None:
+        """truth_map.csv, or None when the scenario has no true map."""
+        path = self.path / TRUTH_MAP_FILE
+        return read_csv(path, MAP_COLUMNS) if path.is_file() else None
+
+    def optional_table(self, name: str, required: tuple[str, ...]) -> CsvTable | None:
+        """A CSV file at the folder's top level (scaling.csv, sweep.csv), or None."""
+        path = self.path / name
+        return read_csv(path, required, text_columns=("estimator",)) if path.is_file() else None
+
+    # --- configuration ------------------------------------------------------------------------
+
+    @property
+    def scenario_name(self) -> str | None:
+        """The scenario name from config.json."""
+        scenario = (self.config or {}).get("scenario")
+        return scenario.get("name") if isinstance(scenario, dict) else None
+
+    @property
+    def scenario_options(self) -> dict[str, Any]:
+        """The resolved scenario options from config.json (empty when unknown)."""
+        scenario = (self.config or {}).get("scenario")
+        options = scenario.get("options") if isinstance(scenario, dict) else None
+        return options if isinstance(options, dict) else {}
+
+    def estimator_parameters(self, group: Group) -> dict[str, Any]:
+        """The resolved parameters of ``group`` from config.json (empty when unknown)."""
+        estimators = (self.config or {}).get("estimators")
+        entry = estimators.get(group.estimator) if isinstance(estimators, dict) else None
+        parameters = entry.get("parameters") if isinstance(entry, dict) else None
+        if not isinstance(parameters, dict):
+            return {}
+        value = parameters.get(str(group.particles))
+        return value if isinstance(value, dict) else {}
+
+    # --- groups and runs ----------------------------------------------------------------------
+
+    def groups(self) -> list[Group]:
+        """Every (estimator, particles) of summary.csv and of runs/, sorted."""
+        found: set[Group] = set()
+        if self.summary is not None:
+            for name, n in zip(self.summary.str("estimator"), self.summary.num("particles")):
+                found.add(Group(name, int(n)))
+        runs = self.path / RUNS_FOLDER
+        if runs.is_dir():
+            for child in runs.iterdir():
+                match = _GROUP_FOLDER.match(child.name)
+                if child.is_dir() and match:
+                    found.add(Group(match["estimator"], int(match["particles"])))
+        return sorted(found)
+
+    def summary_row(self, group: Group) -> dict[str, object] | None:
+        """The summary.csv row of ``group``, or None."""
+        if self.summary is None:
+            return None
+        for row in self.summary.records():
+            if row["estimator"] == group.estimator and int(row["particles"]) == group.particles:
+                return row
+        return None
+
+    def runs_rows(self, group: Group) -> list[dict[str, object]]:
+        """The runs.csv rows of ``group`` (empty without runs.csv)."""
+        if self.runs_table is None:
+            return []
+        return [
+            row for row in self.runs_table.records()
+            if row["estimator"] == group.estimator and int(row["particles"]) == group.particles
+        ]
+
+    def run_folder(self, group: Group, seed: int) -> Path:
+        """``runs/<estimator>-N<particles>/seed-<seed>``."""
+        return self.path / RUNS_FOLDER / group.folder_name / f"seed-{seed}"
+
+    def seeds(self, group: Group) -> list[int]:
+        """Seeds of ``group`` whose steps.csv exists, in increasing order."""
+        folder = self.path / RUNS_FOLDER / group.folder_name
+        if not folder.is_dir():
+            return []
+        seeds = []
+        for child in folder.iterdir():
+            match = _SEED_FOLDER.match(child.name)
+            if match and (child / STEPS_FILE).is_file():
+                seeds.append(int(match["seed"]))
+        return sorted(seeds)
+
+    def steps(self, group: Group, seed: int) -> CsvTable:
+        """steps.csv of one run."""
+        key = (group, seed)
+        if key not in self._steps_cache:
+            self._steps_cache[key] = read_csv(
+                self.run_folder(group, seed) / STEPS_FILE, STEPS_COLUMNS
+            )
+        return self._steps_cache[key]
+
+    def forget_steps(self) -> None:
+        """Drops the cached steps.csv tables (they can be large)."""
+        self._steps_cache.clear()
+
+    def run_map(self, group: Group, seed: int) -> CsvTable | None:
+        """map.csv of one run, or None."""
+        path = self.run_folder(group, seed) / MAP_FILE
+        return read_csv(path, MAP_COLUMNS) if path.is_file() else None
+
+    def particle_files(self) -> list[tuple[Group, int, Path]]:
+        """Every run folder's particles.csv as (group, seed, path), sorted."""
+        found = []
+        for group in self.groups():
+            folder = self.path / RUNS_FOLDER / group.folder_name
+            if not folder.is_dir():
+                continue
+            for child in folder.iterdir():
+                match = _SEED_FOLDER.match(child.name)
+                if match and (child / PARTICLES_FILE).is_file():
+                    found.append((group, int(match["seed"]), child / PARTICLES_FILE))
+        return sorted(found, key=lambda item: (item[0], item[1]))
+
+    def particles(self, path: Path) -> CsvTable:
+        """A particles.csv file (step, particle, x, y, weight)."""
+        return read_csv(path, PARTICLES_COLUMNS)
