@@ -19,6 +19,8 @@ namespace phdslam::datasets {
 
 /// Origin label of a clutter measurement.
 inline constexpr int kClutter = -1;
+/// Origin label of a real detection whose landmark is unknown (real data sets).
+inline constexpr int kUnknownOrigin = -2;
 
 /// What an estimator receives at one filter step.
 struct StepData {
@@ -33,8 +35,8 @@ struct StepData {
 
 struct ScenarioStep {
   StepData data;
-  /// Hidden: for each measurement its landmark index (0-based) or kClutter. Empty when unknown
-  /// (real data).
+  /// Hidden: for each measurement its landmark index (0-based), kClutter, or kUnknownOrigin for
+  /// a real detection of an unidentified landmark. Empty when nothing is known.
   std::vector<int> origin;
 };
 

@@ -128,11 +128,11 @@ void CheckStep(const ScenarioStep& step, std::size_t k, double* last_time,
   for (std::size_t j = 0; j < step.origin.size(); ++j) {
     const int o = step.origin[j];
     const bool valid =
-        o == kClutter ||
+        o == kClutter || o == kUnknownOrigin ||
         (o >= 0 && (landmark_count == 0 || static_cast<std::size_t>(o) < landmark_count));
     if (!valid) {
       rep.Fail(where, "origin[" + std::to_string(j) + "] is " + std::to_string(o) +
-                          ", expected kClutter (-1) or a landmark index below " +
+                          ", expected kClutter (-1), kUnknownOrigin (-2) or a landmark index below " +
                           std::to_string(landmark_count));
     }
   }

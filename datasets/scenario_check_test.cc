@@ -94,8 +94,10 @@ TEST(CheckScenario, OriginSizeAndValues) {
   s = SmallScenario();
   s.steps[2].origin[2] = 2;  // only two landmarks
   EXPECT_NE(ErrorOf(s).find("step 2: origin[2] is 2"), std::string::npos);
-  s.steps[2].origin[2] = -2;
-  EXPECT_NE(ErrorOf(s).find("step 2: origin[2] is -2"), std::string::npos);
+  s.steps[2].origin[2] = -3;
+  EXPECT_NE(ErrorOf(s).find("step 2: origin[2] is -3"), std::string::npos);
+  s.steps[2].origin[2] = kUnknownOrigin;  // a real detection of an unidentified landmark
+  EXPECT_EQ(ErrorOf(s), "");
 }
 
 TEST(CheckScenario, TruthAndParameters) {

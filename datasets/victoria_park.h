@@ -13,10 +13,6 @@
 
 namespace phdslam::datasets {
 
-/// Origin label of a real Victoria Park detection: which tree (or spurious return) produced it
-/// is unknown. Artificial clutter is labelled kClutter.
-inline constexpr int kUnknownOrigin = -2;
-
 /// Millisecond clock value of t = 0 s: every source is put on t = (ms - 20967) / 1000 s.
 inline constexpr double kVictoriaParkClockOriginMs = 20967.0;
 

@@ -4,6 +4,8 @@
 
 #include "src/core/random.h"
 #include "src/filters/odometry_estimator.h"
+#include "src/filters/phd_slam_family.h"
+#include "src/filters/phd_slam_params_json.h"
 #include "validation/runner/parameter_overrides.h"
 
 namespace phdslam::validation {
@@ -42,12 +44,50 @@ EstimatorEntry OdometryEntry() {
   return e;
 }
 
+// Paper defaults for the request's scenario, its particle count, then the overrides.
+filters::PhdSlamParams ResolvePhdSlamParams(const EstimatorRequest& request) {
+  const std::string& scenario =
+      request.scenario != nullptr ? request.scenario->name : request.scenario_name;
+  filters::PhdSlamParams params = filters::PhdSlamParams::ForScenario(scenario);
+  try {
+    filters::ApplyJson(request.overrides, params);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument("estimator '" + request.name + "': " + e.what());
+  }
+  if (request.particles < 1) {
+    throw std::invalid_argument("estimator '" + request.name + "': --particles must be >= 1");
+  }
+  params.particles = request.particles;
+  return params;
+}
+
+EstimatorEntry PhdSlamEntry(const filters::PhdSlamVariant& variant) {
+  EstimatorEntry e;
+  e.name = variant.name;
+  e.description = variant.description;
+  e.resolved_parameters = [](const EstimatorRequest& request) {
+    return filters::ToJson(ResolvePhdSlamParams(request));
+  };
+  e.make_online = [](const EstimatorRequest& request) -> std::unique_ptr<filters::OnlineEstimator> {
+    return filters::MakePhdSlam(request.name,
+                                filters::EstimatorContext::FromScenario(RequireScenario(request)),
+                                ResolvePhdSlamParams(request), request.stream_seed);
+  };
+  return e;
+}
+
+std::vector<EstimatorEntry> BuildTable() {
+  std::vector<EstimatorEntry> table = {OdometryEntry()};
+  for (const filters::PhdSlamVariant& v : filters::PhdSlamVariants()) {
+    table.push_back(PhdSlamEntry(v));
+  }
+  return table;
+}
+
 }  // namespace
 
 const std::vector<EstimatorEntry>& EstimatorTable() {
-  static const std::vector<EstimatorEntry> table = {
-      OdometryEntry(),
-  };
+  static const std::vector<EstimatorEntry> table = BuildTable();
   return table;
 }
 

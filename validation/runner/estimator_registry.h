@@ -23,6 +23,9 @@ struct EstimatorRequest {
   /// The run's scenario. Online estimators build their EstimatorContext from its public part;
   /// the oracle and the smoother may read hidden labels through it.
   const datasets::Scenario* scenario = nullptr;
+  /// The scenario's registered name; set even when `scenario` is not (parameter resolution
+  /// happens before any scenario is built, and defaults depend on the scenario).
+  std::string scenario_name;
   nlohmann::json overrides = nlohmann::json::object();  ///< parameter overrides (experiment/CLI)
 };
 

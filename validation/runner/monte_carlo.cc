@@ -93,6 +93,7 @@ std::map<ParameterKey, nlohmann::json> ResolveParameters(const MonteCarloPlan& p
       request.name = s.entry.name;
       request.particles = n;
       request.overrides = s.overrides;
+      request.scenario_name = plan.scenario.name;
       params[{s.entry.name, n}] = s.entry.resolved_parameters
                                       ? s.entry.resolved_parameters(request)
                                       : ApplyOverrides(nlohmann::json::object(), s.overrides,
@@ -308,6 +309,7 @@ MonteCarloReport RunMonteCarlo(const MonteCarloPlan& plan, const MonteCarloSetti
       request.particles = job.particles;
       request.stream_seed = identity.at("stream_seed").get<std::uint64_t>();
       request.scenario = &scenario;
+      request.scenario_name = plan.scenario.name;
       request.overrides = selection.overrides;
       const RunRecord record = RunEstimator(selection.entry, request, scenario,
                                             [&](std::size_t n) { progress.StepsDone(n); });

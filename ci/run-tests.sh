@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# The test command: installs what is missing, builds the release preset (warnings are errors),
+# runs every unit test with CTest, then the accuracy regression gates (ci/regression.yaml against
+# ci/thresholds.yaml). Exits non-zero on any failure.
+#
+#   ci/run-tests.sh              release build + unit tests + accuracy gates
+#   ci/run-tests.sh --sanitize   also build and run the unit tests under ASan + UBSan
+set -euo pipefail
+cd "$(dirname "$0")/.."
+ci/install-deps.sh
+
+jobs=$(nproc 2>/dev/null || echo 2)
+cmake --preset release >/dev/null
+cmake --build --preset release -j "$jobs"
+ctest --preset release
+
+if [[ "${1:-}" == "--sanitize" ]]; then
+  cmake --preset sanitize >/dev/null
+  cmake --build --preset sanitize -j "$jobs"
+  ctest --preset sanitize
+fi
+
+ci/check-gates.sh build/release
