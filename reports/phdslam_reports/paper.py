@@ -135,25 +135,28 @@ def _parse_table(path: Path, index: int, entry: Any) -> PaperTable:
 def resampling_enabled(parameters: dict[str, Any]) -> bool:
     """False when the resolved estimator parameters switch resampling off, else True.
 
-    Looks (also in nested objects) for a key containing "resampl" whose value is false, 0,
-    "never", "none" or "off", or an ``ess_threshold`` of 0.
+    Looks for a key containing "resampl" (or ``ess_threshold``) whose value, or a value nested
+    under it, is false, 0, "never", "none" or "off".
     """
     off_words = {"never", "none", "off", "false", "no"}
 
-    def walk(node: Any) -> bool:
+    def is_off(value: Any) -> bool:
+        if value is False or (isinstance(value, (int, float)) and value == 0):
+            return True
+        return isinstance(value, str) and value.lower() in off_words
+
+    def walk(node: Any, inside: bool) -> bool:
         if isinstance(node, dict):
             for key, value in node.items():
                 name = str(key).lower()
-                if "resampl" in name or name == "ess_threshold":
-                    if value is False or (isinstance(value, (int, float)) and value == 0):
-                        return False
-                    if isinstance(value, str) and value.lower() in off_words:
-                        return False
-                if not walk(value):
+                here = inside or "resampl" in name or name == "ess_threshold"
+                if here and not isinstance(value, (dict, list)) and is_off(value):
+                    return False
+                if not walk(value, here):
                     return False
         return True
 
-    return walk(parameters)
+    return walk(parameters, False)
 
 
 def option_mismatches(

@@ -1,0 +1,185 @@
+"""A synthetic results folder with the layout of ``phdslam run --out DIR`` (validation/README.md).
+
+The numbers are made up but consistent: summary.csv pools the per-step errors of the runs exactly
+as the runner does, so tests can check the report's arithmetic against hand computations.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import sys
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+REPORTS_DIR = Path(__file__).resolve().parent.parent
+if str(REPORTS_DIR) not in sys.path:
+    sys.path.insert(0, str(REPORTS_DIR))
+
+from phdslam_reports.results import RUNS_COLUMNS, STEPS_COLUMNS, SUMMARY_COLUMNS  # noqa: E402
+
+RUNS_EXTRA = ("pos_rmse_std_m", "heading_rmse_std_deg", "map_size", "truth_map_size",
+              "pos_err_count", "ms_run")
+SUMMARY_EXTRA = ("pos_rmse_std_m", "heading_rmse_std_deg", "gospa_sem_m", "map_size_mean",
+                 "pos_err_count", "failed_runs", "ms_per_step_std", "ms_run_mean")
+
+
+@dataclass
+class FixtureSpec:
+    """What the fixture folder holds."""
+
+    groups: tuple[tuple[str, int], ...] = (("phd3", 1), ("phd3", 10), ("odometry", 1))
+    seeds: tuple[int, ...] = (1, 2, 3)
+    steps: int = 60
+    scenario: str = "paper-synthetic"
+    steps_option: int | None = None  # config.json scenario.options.steps (default: steps)
+    pd: float = 0.95
+    clutter_rate: float = 5.0
+    nees: bool = False
+    particles_file: bool = False
+    scaling: bool = False
+    resampling: bool = True
+    landmarks: int = 24
+    error_scale: dict[str, float] = field(default_factory=lambda: {"odometry": 4.0})
+
+
+def _fmt(value: float) -> str:
+    return "" if value is None or not math.isfinite(value) else f"{value:.10g}"
+
+
+def _write_csv(path: Path, header: list[str], rows: list[list[object]]) -> None:
+    path.parent.mkdir(parents=True, exist_ok=True)
+    lines = [",".join(header)]
+    for row in rows:
+        lines.append(",".join(_fmt(v) if isinstance(v, float) else str(v) for v in row))
+    path.write_text("\n".join(lines) + "\n", encoding="utf-8")
+
+
+def truth_landmarks(count: int) -> np.ndarray:
+    """Landmarks on two rings around the circular trajectory."""
+    angles = np.linspace(0, 2 * np.pi, count, endpoint=False)
+    radii = np.where(np.arange(count) % 2 == 0, 130.0, 70.0)
+    return np.column_stack([100 + radii * np.cos(angles), 100 + radii * np.sin(angles)])
+
+
+def make_results_folder(root: Path, spec: FixtureSpec | None = None) -> Path:
+    """Writes a results folder under ``root`` and returns its path."""
+    spec = spec or FixtureSpec()
+    root = Path(root)
+    root.mkdir(parents=True, exist_ok=True)
+    rng = np.random.default_rng(12345)
+    landmarks = truth_landmarks(spec.landmarks)
+    _write_csv(root / "truth_map.csv", ["x", "y", "weight", "pxx", "pxy", "pyy"],
+               [[float(x), float(y), 1.0, "", "", ""] for x, y in landmarks])
+
+    k = np.arange(spec.steps)
+    phase = 2 * np.pi * k / max(spec.steps, 1)
+    x_true = 100 + 100 * np.cos(phase)
+    y_true = 100 + 100 * np.sin(phase)
+    theta_true = phase + np.pi / 2
+
+    run_rows, summary_rows = [], []
+    for estimator, particles in spec.groups:
+        scale = spec.error_scale.get(estimator, 1.0) / math.sqrt(particles)
+        errs_all, heads_all, gospas, ess_all, res_all, ms_all = [], [], [], [], [], []
+        for seed in spec.seeds:
+            folder = root / "runs" / f"{estimator}-N{particles}" / f"seed-{seed}"
+            dx = np.cumsum(rng.normal(0, 0.3 * scale, spec.steps))
+            dy = np.cumsum(rng.normal(0, 0.3 * scale, spec.steps))
+            dth = np.cumsum(rng.normal(0, 0.002 * scale, spec.steps))
+            x, y, theta = x_true + dx, y_true + dy, theta_true + dth
+            pos_err = np.hypot(dx, dy)
+            head_err = np.degrees(np.abs(dth))
+            ess = np.full(spec.steps, float(particles)) if particles == 1 else \
+                rng.uniform(0.3, 1.0, spec.steps) * particles
+            resampled = (ess < 0.5 * particles).astype(int) if particles > 1 else \
+                np.zeros(spec.steps, int)
+            map_components = np.minimum(spec.landmarks, 2 + k // 3)
+            ms = rng.uniform(0.5, 1.5, spec.steps) * 0.1 * particles
+            header = list(STEPS_COLUMNS) + (["nees"] if spec.nees else [])
+            rows = []
+            for i in range(spec.steps):
+                row = [i, float(i), float(x[i]), float(y[i]), float(theta[i]), float(x_true[i]),
+                       float(y_true[i]), float(theta_true[i]), float(pos_err[i]),
+                       float(head_err[i]), float(ess[i]), int(resampled[i]),
+                       3 if estimator != "odometry" else 0, int(map_components[i]), float(ms[i])]
+                if spec.nees:
+                    row.append(float(rng.chisquare(3)) if i > 0 else "")
+                rows.append(row)
+            _write_csv(folder / "steps.csv", header, rows)
+            est_map = landmarks + rng.normal(0, 1.0 * scale, landmarks.shape)
+            if estimator == "odometry":
+                map_rows = [[float(a), float(b), 1.0, "", "", ""] for a, b in est_map]
+            else:
+                map_rows = [[float(a), float(b), 0.9, 4.0 * scale, 1.0 * scale, 2.0 * scale]
+                            for a, b in est_map]
+            _write_csv(folder / "map.csv", ["x", "y", "weight", "pxx", "pxy", "pyy"], map_rows)
+            if spec.particles_file and particles > 1:
+                prow = []
+                for i in range(spec.steps):
+                    for p in range(particles):
+                        prow.append([i, p, float(x[i] + 2 * p), float(y[i] - p),
+                                     float(1.0 / (p + 1))])
+                _write_csv(folder / "particles.csv", ["step", "particle", "x", "y", "weight"],
+                           prow)
+            (folder / "metrics.json").write_text(json.dumps(
+                {"estimator": estimator, "particles": particles, "seed": seed}), encoding="utf-8")
+            gospa = float(30.0 * scale + rng.normal(0, 2.0))
+            rmse = float(np.sqrt(np.mean(pos_err ** 2)))
+            hrmse = float(np.sqrt(np.mean(head_err ** 2)))
+            ess_pct = float(100 * np.mean(ess / particles))
+            res_pct = float(100 * np.mean(resampled))
+            run_rows.append([estimator, particles, seed, spec.steps, rmse, hrmse, gospa, ess_pct,
+                             res_pct, float(np.mean(ms)), float(np.std(pos_err, ddof=1)),
+                             float(np.std(head_err, ddof=1)), spec.landmarks, spec.landmarks,
+                             spec.steps, float(np.sum(ms))])
+            errs_all.append(pos_err)
+            heads_all.append(head_err)
+            gospas.append(gospa)
+            ess_all.append(ess / particles)
+            res_all.append(resampled)
+            ms_all.append(ms)
+        e, h = np.concatenate(errs_all), np.concatenate(heads_all)
+        runs = len(spec.seeds)
+        g = np.asarray(gospas)
+        gstd = float(np.std(g, ddof=1)) if runs > 1 else math.nan
+        summary_rows.append([
+            estimator, particles, runs, float(spec.steps), float(np.sqrt(np.mean(e ** 2))),
+            float(np.sqrt(np.mean(h ** 2))), float(np.mean(g)), gstd,
+            float(100 * np.mean(np.concatenate(ess_all))),
+            float(100 * np.mean(np.concatenate(res_all))),
+            float(np.mean(np.concatenate(ms_all))), float(np.std(e, ddof=1)),
+            float(np.std(h, ddof=1)), gstd / math.sqrt(runs), float(spec.landmarks), e.size, 0,
+            float(np.std(np.concatenate(ms_all), ddof=1)), float(np.sum(ms_all) / runs),
+        ])
+    _write_csv(root / "runs.csv", list(RUNS_COLUMNS) + list(RUNS_EXTRA), run_rows)
+    _write_csv(root / "summary.csv", list(SUMMARY_COLUMNS) + list(SUMMARY_EXTRA), summary_rows)
+
+    parameters = {} if spec.resampling else {"resampling": False}
+    config = {
+        "program": {"name": "phdslam", "version": "0.1.0"},
+        "experiment": "fixture",
+        "scenario": {"name": spec.scenario, "options": {
+            "steps": spec.steps if spec.steps_option is None else spec.steps_option,
+            "detection_probability": spec.pd, "clutter_rate": spec.clutter_rate}},
+        "seeds": list(spec.seeds),
+        "particles": sorted({n for _, n in spec.groups}),
+        "estimators": {
+            name: {"description": name, "batch": False, "overrides": {},
+                   "parameters": {str(n): dict(parameters) for e, n in spec.groups if e == name}}
+            for name in sorted({e for e, _ in spec.groups})
+        },
+        "metrics": {"gospa_c": 20.0, "gospa_p": 2.0, "gps_window_s": 0.025},
+        "jobs": 1,
+    }
+    (root / "config.json").write_text(json.dumps(config, indent=2), encoding="utf-8")
+    if spec.scaling:
+        rows = []
+        for estimator, exponent in (("phd3", 1.0), ("phd2b", 3.0)):
+            for n in (5, 10, 20, 40, 80):
+                rows.append([estimator, n, float(2.0 * n ** exponent), 100])
+        _write_csv(root / "scaling.csv", ["estimator", "landmarks_in_fov", "us_per_call",
+                                          "calls"], rows)
+    return root

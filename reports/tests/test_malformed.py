@@ -1,0 +1,121 @@
+"""Malformed results files give errors that name the file, the line and the column."""
+
+import contextlib
+import io
+import tempfile
+import unittest
+from pathlib import Path
+
+from fixture import FixtureSpec, make_results_folder
+from phdslam_reports.csv_table import ResultsFormatError, read_csv
+from phdslam_reports.report import build_report
+
+import make_report
+import tables
+
+
+def replace_line(path: Path, index: int, old: str, new: str) -> None:
+    lines = path.read_text().splitlines()
+    lines[index] = lines[index].replace(old, new, 1)
+    path.write_text("\n".join(lines) + "\n")
+
+
+class MalformedInputTest(unittest.TestCase):
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.results = make_results_folder(Path(self.tmp.name) / "r", FixtureSpec(
+            groups=(("phd3", 10),), steps=10, seeds=(1, 2)))
+        self.out = Path(self.tmp.name) / "out"
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def assert_report_error(self, *fragments: str) -> str:
+        with self.assertRaises(ResultsFormatError) as caught:
+            build_report([self.results], self.out)
+        message = str(caught.exception)
+        for fragment in fragments:
+            self.assertIn(fragment, message)
+        return message
+
+    def test_summary_missing_column(self):
+        path = self.results / "summary.csv"
+        replace_line(path, 0, "gospa_std_m", "gospa_sd")
+        self.assert_report_error(str(path), "'gospa_std_m'", "missing")
+
+    def test_summary_non_number(self):
+        path = self.results / "summary.csv"
+        lines = path.read_text().splitlines()
+        cells = lines[1].split(",")
+        cells[4] = "fast"  # pos_rmse_m
+        lines[1] = ",".join(cells)
+        path.write_text("\n".join(lines) + "\n")
+        self.assert_report_error(str(path), "line 2", "column 'pos_rmse_m'", "'fast'")
+
+    def test_steps_non_number_names_line_and_column(self):
+        path = self.results / "runs" / "phd3-N10" / "seed-2" / "steps.csv"
+        lines = path.read_text().splitlines()
+        cells = lines[4].split(",")
+        cells[8] = "abc"  # pos_err_m of step 3, file line 5
+        lines[4] = ",".join(cells)
+        path.write_text("\n".join(lines) + "\n")
+        self.assert_report_error(str(path), "line 5", "column 'pos_err_m'", "'abc'")
+
+    def test_steps_missing_column(self):
+        path = self.results / "runs" / "phd3-N10" / "seed-1" / "steps.csv"
+        replace_line(path, 0, "heading_err_deg", "heading_error")
+        self.assert_report_error(str(path), "'heading_err_deg'")
+
+    def test_runs_short_row(self):
+        path = self.results / "runs.csv"
+        lines = path.read_text().splitlines()
+        lines[2] = lines[2].rsplit(",", 2)[0]
+        path.write_text("\n".join(lines) + "\n")
+        self.assert_report_error(str(path), "line 3", "cells")
+
+    def test_map_missing_y(self):
+        path = self.results / "runs" / "phd3-N10" / "seed-1" / "map.csv"
+        replace_line(path, 0, "x,y,", "x,yy,")
+        self.assert_report_error(str(path), "'y'")
+
+    def test_config_not_json(self):
+        (self.results / "config.json").write_text("{ not json")
+        self.assert_report_error(str(self.results / "config.json"), "JSON")
+
+    def test_cli_exit_code_and_message(self):
+        path = self.results / "summary.csv"
+        replace_line(path, 0, "ms_per_step_mean", "ms")
+        for main, argv in ((make_report.main, [str(self.results), "--out", str(self.out)]),
+                           (tables.main, [str(self.results)])):
+            stderr = io.StringIO()
+            with contextlib.redirect_stderr(stderr), contextlib.redirect_stdout(io.StringIO()):
+                self.assertEqual(main(argv), 1)
+            self.assertIn(f"{path}: required column 'ms_per_step_mean' is missing",
+                          stderr.getvalue())
+
+    def test_not_a_results_folder(self):
+        empty = Path(self.tmp.name) / "empty"
+        empty.mkdir()
+        with self.assertRaises(ResultsFormatError) as caught:
+            build_report([empty], self.out)
+        self.assertIn("not a results folder", str(caught.exception))
+
+
+class CsvReaderTest(unittest.TestCase):
+    def test_empty_cells_are_nan_and_comments_skipped(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            path = Path(tmp) / "m.csv"
+            path.write_text("# a comment\nx,y,weight\n1,2,\n\n3,,0.5\n")
+            table = read_csv(path, ("x", "y"))
+            self.assertEqual(table.rows, 2)
+            self.assertEqual(list(table.num("x")), [1.0, 3.0])
+            self.assertNotEqual(table.num("y")[1], table.num("y")[1])  # NaN
+            path.write_text("# a comment\nx,y\n1,2\n\n3,oops\n")
+            with self.assertRaises(ResultsFormatError) as caught:
+                read_csv(path, ("x", "y"))
+            self.assertIn(f"{path}, line 5, column 'y': 'oops' is not a number",
+                          str(caught.exception))
+
+
+if __name__ == "__main__":
+    unittest.main()
