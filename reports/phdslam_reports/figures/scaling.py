@@ -6,6 +6,7 @@ from typing import Callable
 
 import numpy as np
 from matplotlib.figure import Figure
+from matplotlib.ticker import ScalarFormatter
 
 from ..csv_table import CsvTable
 from ..stats import PowerLaw, fit_power_law
@@ -39,11 +40,14 @@ def plot_scaling(table: CsvTable, display_name: Callable[[str], str] = str) -> F
         fit = fits[estimator]
         label = display_name(estimator)
         if fit is not None:
-            label += f": \u221d n^{fit.exponent:.2f}"
+            label += f": $\\propto n^{{{fit.exponent:.2f}}}$"
         ax.loglog(x[rows], y[rows], "o", color=colour, ms=4, label=label)
         if fit is not None:
             grid = np.geomspace(np.min(x[rows]), np.max(x[rows]), 50)
             ax.loglog(grid, fit.coefficient * grid ** fit.exponent, color=colour, lw=1.0)
+    ax.xaxis.set_major_formatter(ScalarFormatter())
+    ax.xaxis.set_minor_formatter(ScalarFormatter())
+    ax.grid(True, which="both", alpha=0.25)
     ax.set_xlabel("landmarks in the field of view")
     ax.set_ylabel("time per call (\u00b5s)")
     ax.legend(loc="best", framealpha=0.85)
