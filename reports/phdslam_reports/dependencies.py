@@ -1,7 +1,8 @@
 """Makes sure the interpreter has the Debian packages the report needs.
 
 Some machines put another python3 (e.g. pyenv's) first on PATH, without matplotlib. The command
-line scripts then restart themselves once under the system interpreter when it has the packages.
+line scripts and the tests then restart themselves once, with the same arguments, under the
+system interpreter when it has the packages.
 """
 
 from __future__ import annotations
@@ -36,7 +37,8 @@ def ensure_dependencies() -> None:
         return
     if not os.environ.get(_RESTARTED) and _system_python_has_modules():
         os.environ[_RESTARTED] = "1"
-        os.execv(SYSTEM_PYTHON, [SYSTEM_PYTHON, *sys.argv])
+        arguments = list(getattr(sys, "orig_argv", [sys.executable, *sys.argv]))[1:]
+        os.execv(SYSTEM_PYTHON, [SYSTEM_PYTHON, *arguments])
     sys.stderr.write(
         f"error: {sys.executable} cannot import {', '.join(missing)}; install the Debian packages "
         "python3-matplotlib python3-numpy python3-scipy python3-yaml (ci/install-deps.sh) and "

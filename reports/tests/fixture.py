@@ -12,11 +12,15 @@ import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 
-import numpy as np
-
 REPORTS_DIR = Path(__file__).resolve().parent.parent
 if str(REPORTS_DIR) not in sys.path:
     sys.path.insert(0, str(REPORTS_DIR))
+
+from phdslam_reports.dependencies import ensure_dependencies  # noqa: E402
+
+ensure_dependencies()
+
+import numpy as np  # noqa: E402
 
 from phdslam_reports.results import RUNS_COLUMNS, STEPS_COLUMNS, SUMMARY_COLUMNS  # noqa: E402
 

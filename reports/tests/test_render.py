@@ -7,10 +7,9 @@ import tempfile
 import unittest
 from pathlib import Path
 
+from fixture import FixtureSpec, make_results_folder  # first: checks the interpreter
 import numpy as np
 from matplotlib import image as mpimg
-
-from fixture import FixtureSpec, make_results_folder
 from phdslam_reports.report import build_report
 
 

@@ -4,9 +4,8 @@ import math
 import unittest
 import warnings
 
+import fixture  # noqa: F401  (first: puts reports/ on sys.path, checks the interpreter)
 import numpy as np
-
-import fixture  # noqa: F401  (puts reports/ on sys.path)
 from phdslam_reports import stats
 
 
