@@ -86,7 +86,10 @@ AssociationCosts BuildAssociationCosts(const ProposalInput& input, const PhdSlam
 ProposalOutput GmIplDensity::Build(const ProposalInput& input) const {
   const auto& active = input.map->active();
   if (params_.max_hypotheses <= 0 || active.empty() || input.measurements.empty()) {
-    return PriorOnly(input);
+    ProposalOutput prior = PriorOnly(input);
+    // Nothing to associate with: every measurement is clutter or a new landmark.
+    prior.best_association.assign(input.measurements.size(), -1);
+    return prior;
   }
   const AssociationCosts costs = BuildAssociationCosts(input, params_);
   const int r = static_cast<int>(costs.rows.size());

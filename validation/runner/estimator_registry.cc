@@ -2,6 +2,8 @@
 
 #include <stdexcept>
 
+#include "oracle/oracle_params_json.h"
+#include "oracle/oracle_rbpf.h"
 #include "src/core/random.h"
 #include "src/filters/odometry_estimator.h"
 #include "src/filters/phd_slam_family.h"
@@ -76,11 +78,49 @@ EstimatorEntry PhdSlamEntry(const filters::PhdSlamVariant& variant) {
   return e;
 }
 
+oracle::OracleParams ResolveOracleParams(const EstimatorRequest& request) {
+  const std::string& scenario =
+      request.scenario != nullptr ? request.scenario->name : request.scenario_name;
+  if (scenario == "victoria-park") {
+    throw std::invalid_argument("estimator '" + request.name +
+                                "' needs the hidden landmark identities, which scenario '" +
+                                scenario + "' does not have");
+  }
+  oracle::OracleParams params;
+  try {
+    oracle::ApplyJson(request.overrides, params);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument("estimator '" + request.name + "': " + e.what());
+  }
+  if (request.particles < 1) {
+    throw std::invalid_argument("estimator '" + request.name + "': --particles must be >= 1");
+  }
+  params.particles = request.particles;
+  return params;
+}
+
+EstimatorEntry OracleEntry() {
+  EstimatorEntry e;
+  e.name = "oracle";
+  e.description =
+      "oracle RBPF: FastSLAM 2.0 with the known data association (reads the hidden origin "
+      "labels) and the partitioned IPL proposal; synthetic scenarios only";
+  e.resolved_parameters = [](const EstimatorRequest& request) {
+    return oracle::ToJson(ResolveOracleParams(request));
+  };
+  e.make_online = [](const EstimatorRequest& request) -> std::unique_ptr<filters::OnlineEstimator> {
+    return oracle::OracleRbpf::FromScenario(RequireScenario(request),
+                                            ResolveOracleParams(request), request.stream_seed);
+  };
+  return e;
+}
+
 std::vector<EstimatorEntry> BuildTable() {
   std::vector<EstimatorEntry> table = {OdometryEntry()};
   for (const filters::PhdSlamVariant& v : filters::PhdSlamVariants()) {
     table.push_back(PhdSlamEntry(v));
   }
+  table.push_back(OracleEntry());
   return table;
 }
 
