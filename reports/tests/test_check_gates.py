@@ -138,19 +138,18 @@ class CheckGatesTest(unittest.TestCase):
             "--scenario", "paper-synthetic", "--estimator", "phd3", "--particles", "1,10",
             "--seeds", "1-5", "--steps", "4000"])
 
-    def test_repository_thresholds(self):
+    def test_repository_thresholds_are_well_formed(self):
         regression, gates = check_gates.load_thresholds(CI_DIR / "thresholds.yaml")
-        self.assertEqual(regression.seed_count(), 5)
-        odometry = [g for g in gates if g.estimator == "odometry"]
-        self.assertTrue(odometry and all(g.band is not None for g in odometry))
-        placeholders = [g for g in gates if g.band is None]
-        self.assertTrue(all("PLACEHOLDER" in g.reason for g in placeholders))
-        # the measured odometry values sit inside their bands
-        with tempfile.TemporaryDirectory() as tmp:
-            s = Path(tmp) / "summary.csv"
-            s.write_text(SUMMARY)
-            outcomes = check_gates.evaluate(odometry, s, 5)
-        self.assertTrue(all(o.passed for o in outcomes))
+        self.assertGreaterEqual(regression.seed_count(), 1)
+        self.assertTrue(gates)
+        for gate in gates:
+            if gate.band is None:
+                self.assertIn("PLACEHOLDER", gate.reason, gate)
+            else:
+                self.assertLessEqual(gate.band[0], gate.band[1], gate)
+        gated = {g.estimator for g in gates}
+        run = {e for r in regression.runs for e in r.estimators}
+        self.assertLessEqual(gated, run, "every gated estimator is part of the regression run")
 
 
 class CheckGatesScriptTest(unittest.TestCase):
@@ -172,16 +171,22 @@ class CheckGatesScriptTest(unittest.TestCase):
                 'mkdir -p "$out"\n'
                 f"cat > \"$out/summary.csv\" <<'CSV'\n{SUMMARY}CSV\n")
             fake.chmod(0o755)
+            thresholds = Path(tmp) / "thresholds.yaml"
+            thresholds.write_text(THRESHOLDS.replace("[2.5, 2.9]", "null"))
             done = subprocess.run(["bash", str(CI_DIR / "check-gates.sh"), str(build)],
                                   capture_output=True, text=True, timeout=120,
-                                  env={**os.environ})
+                                  env={**os.environ,
+                                       "PHDSLAM_GATES_THRESHOLDS": str(thresholds)})
             self.assertEqual(done.returncode, 1, done.stdout + done.stderr)  # placeholders fail
             self.assertIn("PASS", line_of(done.stdout, "pos_rmse_m", "odometry"))
-            self.assertIn("FAIL: no band (placeholder)", done.stdout)
-            first_call = calls.read_text().splitlines()[0]
-            self.assertTrue(first_call.startswith(
+            self.assertIn("FAIL: no band (placeholder)",
+                          line_of(done.stdout, "pos_rmse_m", "phd3"))
+            calls_made = calls.read_text().splitlines()
+            self.assertEqual(len(calls_made), 2)
+            self.assertTrue(calls_made[0].startswith(
                 "run --scenario paper-synthetic --estimator odometry --particles 1 --seeds 1-5 "
-                "--steps 4000 --out "), first_call)
+                "--steps 4000 --out "), calls_made[0])
+            self.assertIn("--estimator phd3 --particles 1,10", calls_made[1])
 
     def test_script_without_program_exits_2(self):
         with tempfile.TemporaryDirectory() as tmp:
