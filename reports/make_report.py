@@ -47,7 +47,8 @@ def parse_arguments(argv: list[str] | None = None) -> argparse.Namespace:
     parser.add_argument("--title", default="PHD-SLAM validation report",
                         help="report title (default: %(default)s)")
     parser.add_argument("--paper-values", type=Path, default=DEFAULT_PAPER_VALUES,
-                        metavar="YAML", help="published numbers (default: reports/paper_values.yaml)")
+                        metavar="YAML",
+                        help="published numbers (default: reports/paper_values.yaml)")
     parser.add_argument("--paper-table", default=None, metavar="ID",
                         help="compare with this table of the paper-values file (table1, table2, "
                              "table3, ...) whatever the configuration, or 'none'; default: "

@@ -62,7 +62,8 @@ def parse_arguments(argv: list[str] | None = None) -> argparse.Namespace:
     parser.add_argument("--csv", type=Path, default=None, metavar="CSV_FILE",
                         help="CSV file to write (default: RESULTS_DIR/table.csv)")
     parser.add_argument("--paper-values", type=Path, default=DEFAULT_PAPER_VALUES,
-                        metavar="YAML", help="published numbers (default: reports/paper_values.yaml)")
+                        metavar="YAML",
+                        help="published numbers (default: reports/paper_values.yaml)")
     parser.add_argument("--paper-table", default=None, metavar="ID",
                         help="compare with this table id (table1, table2, table3) or 'none'; "
                              "default: chosen from the configuration")

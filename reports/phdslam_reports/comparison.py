@@ -120,17 +120,19 @@ def compare(
         for metric in metrics:
             ours = _number(record.get(metric))
             reference = table.value(group.estimator, group.particles, metric) if table else None
+            known = reference is not None
             row.cells.append(Cell(
                 metric=metric,
                 ours=ours,
                 se=metric_standard_error(metric, record, runs_rows),
                 paper=reference,
-                relative=relative_difference(ours, reference) if reference is not None else math.nan,
-                flagged=is_flagged(ours, reference) if reference is not None else False,
+                relative=relative_difference(ours, reference) if known else math.nan,
+                flagged=is_flagged(ours, reference) if known else False,
             ))
         rows.append(row)
     if results.runs_table is None:
-        notes.append("runs.csv is missing: standard errors of the pooled metrics are not available.")
+        notes.append(
+            "runs.csv is missing: standard errors of the pooled metrics are not available.")
     return Comparison(rows=rows, metrics=metrics, notes=notes)
 
 

@@ -31,7 +31,7 @@ def _system_python_has_modules() -> bool:
 
 
 def ensure_dependencies() -> None:
-    """Returns when the modules import; else re-runs the script under /usr/bin/python3 or exits 2."""
+    """Returns when the modules import; else re-runs under /usr/bin/python3, or exits 2."""
     missing = missing_modules()
     if not missing:
         return

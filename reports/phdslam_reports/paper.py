@@ -1,4 +1,4 @@
-"""The paper's published numbers (reports/paper_values.yaml) and which of them fit a results folder."""
+"""The paper's published numbers (reports/paper_values.yaml) and which of them fit the results."""
 
 from __future__ import annotations
 

@@ -104,7 +104,8 @@ class ReportBuilder:
                 flagged += int(cell.flagged)
                 second = ""
                 if cell.paper is not None:
-                    second = f"paper {format_value(cell.paper)}, \u0394 {format_relative(cell.relative)}"
+                    second = (f"paper {format_value(cell.paper)}, "
+                              f"\u0394 {format_relative(cell.relative)}")
                 cells.append((ours_with_se(cell.ours, cell.se), css, second))
             rows.append(cells)
         parts = [

@@ -104,5 +104,14 @@ class BandAndFitTest(unittest.TestCase):
         self.assertIsNone(stats.fit_power_law([5.0, 5.0], [1.0, 2.0]))
 
 
+class LogScaleTest(unittest.TestCase):
+    def test_log_scale_only_for_levels_far_apart(self):
+        from phdslam_reports.figures.metrics_over_time import needs_log_scale
+        flat = np.array([0.0, 1.0, 2.0, 3.0])
+        self.assertFalse(needs_log_scale([flat, 5 * flat]))
+        self.assertTrue(needs_log_scale([flat, 100 * flat]))
+        self.assertFalse(needs_log_scale([flat]))
+
+
 if __name__ == "__main__":
     unittest.main()

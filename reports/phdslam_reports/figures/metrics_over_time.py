@@ -46,6 +46,20 @@ def collect_series(results: ResultsFolder, group: Group) -> GroupSeries | None:
     return GroupSeries(group=group, runs=len(seeds), bands=bands)
 
 
+def needs_log_scale(means: list[np.ndarray], ratio: float = 20.0) -> bool:
+    """True when the typical levels of the curves differ by more than ``ratio``.
+
+    The level of a curve is the median of its positive values; a linear axis would flatten the
+    curves of the accurate estimators next to, e.g., dead reckoning.
+    """
+    levels = []
+    for mean in means:
+        positive = mean[np.isfinite(mean) & (mean > 0)]
+        if positive.size:
+            levels.append(float(np.median(positive)))
+    return len(levels) >= 2 and max(levels) > ratio * min(levels)
+
+
 def plot_metrics_over_time(
     series: list[GroupSeries], display_name: Callable[[str], str] = str,
 ) -> Figure | None:
@@ -73,11 +87,9 @@ def plot_metrics_over_time(
             drawn = True
         ax.set_xlabel("step k")
         ax.set_ylabel(label)
-        if name in ("pos_err_m", "heading_err_deg") and drawn:
-            positive = [s.bands[name].mean for s in series]
-            if any(np.nanmax(np.abs(v)) > 100 * max(np.nanmedian(np.abs(v)), 1e-9)
-                   for v in positive if np.any(np.isfinite(v))):
-                ax.set_yscale("symlog", linthresh=1.0)
+        if name in ("pos_err_m", "heading_err_deg") and drawn and needs_log_scale(
+                [s.bands[name].mean for s in series]):
+            ax.set_yscale("log", nonpositive="mask")
         if not drawn:
             ax.text(0.5, 0.5, "not available for these runs", transform=ax.transAxes,
                     ha="center", va="center", color="#777")

@@ -1,4 +1,4 @@
-"""Scaling: time per call against the number of landmarks in view, log-log, with fitted exponents."""
+"""Scaling: time per call against the landmarks in view, log-log, with fitted exponents."""
 
 from __future__ import annotations
 

@@ -61,7 +61,7 @@ def plot_trajectory_maps(
     panels: list[TrajectoryPanel], known_estimators: list[str],
     display_name: Callable[[str], str] = str,
 ) -> Figure | None:
-    """One panel per run: trajectories, true landmarks and the estimated map with 3-sigma ellipses."""
+    """One panel per run: trajectories, true landmarks, the estimated map with 3-sigma ellipses."""
     if not panels:
         return None
     cols = min(3, len(panels))
