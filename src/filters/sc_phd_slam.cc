@@ -1,0 +1,378 @@
+#include "src/filters/sc_phd_slam.h"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <stdexcept>
+#include <string>
+
+#include "src/core/gaussian.h"
+#include "src/core/log_sum_exp.h"
+#include "src/filters/resampling.h"
+#include "src/models/sensor_model.h"
+
+namespace phdslam::filters {
+namespace {
+
+constexpr const char* kControlNoiseName = "control-noise";
+constexpr const char* kLinearisedGaussianName = "linearised-gaussian";
+
+double NumberAt(const nlohmann::json& v, const std::string& key) {
+  if (!v.is_number()) throw std::invalid_argument("parameter '" + key + "': expected a number");
+  const double d = v.get<double>();
+  if (!std::isfinite(d)) throw std::invalid_argument("parameter '" + key + "': not finite");
+  return d;
+}
+
+int IntAt(const nlohmann::json& v, const std::string& key) {
+  const double d = NumberAt(v, key);
+  if (d != std::floor(d) || std::abs(d) > 1e9) {
+    throw std::invalid_argument("parameter '" + key + "': expected an integer");
+  }
+  return static_cast<int>(d);
+}
+
+bool BoolAt(const nlohmann::json& v, const std::string& key) {
+  if (!v.is_boolean()) throw std::invalid_argument("parameter '" + key + "': expected true/false");
+  return v.get<bool>();
+}
+
+void Require(bool ok, const std::string& key, const std::string& what) {
+  if (!ok) throw std::invalid_argument("parameter '" + key + "': " + what);
+}
+
+/// A factor L with L L^T = Q for a symmetric positive semi-definite Q (eigen-decomposition, so a
+/// singular Q such as zero noise is allowed). Throws naming `what` otherwise.
+template <int N>
+Eigen::Matrix<double, N, N> PsdFactor(const Eigen::Matrix<double, N, N>& q,
+                                      const std::string& what) {
+  const double scale = std::max(1.0, q.cwiseAbs().maxCoeff());
+  if (!q.allFinite() || (q - q.transpose()).cwiseAbs().maxCoeff() > 1e-12 * scale) {
+    throw std::invalid_argument("ScPhdSlam: " + what + " must be finite and symmetric");
+  }
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, N, N>> eig(q);
+  Eigen::Matrix<double, N, 1> d = eig.eigenvalues();
+  for (int i = 0; i < N; ++i) {
+    if (d(i) < -1e-12 * scale) {
+      throw std::invalid_argument("ScPhdSlam: " + what + " must be positive semi-definite");
+    }
+    d(i) = std::sqrt(std::max(0.0, d(i)));
+  }
+  return eig.eigenvectors() * d.asDiagonal();
+}
+
+}  // namespace
+
+ScPhdSlamParams::ScPhdSlamParams() {
+  map.birth_log_weight = std::log(0.01);
+  map.reference_births_from_ungated_only = false;
+  map.reference_omit_missed_detection_mass = false;
+}
+
+ScPhdSlamParams ScPhdSlamParams::ForScenario(const std::string& scenario) {
+  ScPhdSlamParams p;
+  if (scenario == "victoria-park") p.map.merge_threshold = 10.0;
+  return p;
+}
+
+nlohmann::json ToJson(const ScPhdSlamParams& p) {
+  nlohmann::json j;
+  j["particles"] = p.particles;
+  j["shotgun"] = p.shotgun;
+  j["birth_log_weight"] = p.map.birth_log_weight;
+  j["gate_threshold"] = p.map.gate_threshold;
+  j["prune_log_weight"] = p.map.prune_log_weight;
+  j["merge_threshold"] = p.map.merge_threshold;
+  j["spread_kill_log_weight"] = p.map.spread_kill_log_weight;
+  j["reference_merge_leading_covariance"] = p.map.reference_merge_leading_covariance;
+  j["reference_merge_double_membership"] = p.map.reference_merge_double_membership;
+  j["reference_spread_kill"] = p.map.reference_spread_kill;
+  j["reference_births_from_ungated_only"] = p.map.reference_births_from_ungated_only;
+  j["reference_omit_missed_detection_mass"] = p.map.reference_omit_missed_detection_mass;
+  j["pose_regularisation"] = {p.pose_regularisation(0, 0), p.pose_regularisation(1, 1),
+                              p.pose_regularisation(2, 2)};
+  j["prediction"] = p.prediction == ScPredictionSampling::kControlNoise ? kControlNoiseName
+                                                                        : kLinearisedGaussianName;
+  j["empty_scan_update"] = p.empty_scan_update;
+  return j;
+}
+
+void ApplyJson(const nlohmann::json& overrides, ScPhdSlamParams& p) {
+  if (!overrides.is_object()) throw std::invalid_argument("parameters: expected an object");
+  for (const auto& [key, v] : overrides.items()) {
+    if (key == "particles") {
+      p.particles = IntAt(v, key);
+      Require(p.particles >= 1, key, "must be >= 1");
+    } else if (key == "shotgun") {
+      p.shotgun = IntAt(v, key);
+      Require(p.shotgun >= 1, key, "must be >= 1");
+    } else if (key == "birth_log_weight") {
+      p.map.birth_log_weight = NumberAt(v, key);
+    } else if (key == "gate_threshold") {
+      p.map.gate_threshold = NumberAt(v, key);
+      Require(p.map.gate_threshold > 0, key, "must be > 0");
+    } else if (key == "prune_log_weight") {
+      p.map.prune_log_weight = NumberAt(v, key);
+    } else if (key == "merge_threshold") {
+      p.map.merge_threshold = NumberAt(v, key);
+      Require(p.map.merge_threshold >= 0, key, "must be >= 0");
+    } else if (key == "spread_kill_log_weight") {
+      p.map.spread_kill_log_weight = NumberAt(v, key);
+    } else if (key == "reference_merge_leading_covariance") {
+      p.map.reference_merge_leading_covariance = BoolAt(v, key);
+    } else if (key == "reference_merge_double_membership") {
+      p.map.reference_merge_double_membership = BoolAt(v, key);
+    } else if (key == "reference_spread_kill") {
+      p.map.reference_spread_kill = BoolAt(v, key);
+    } else if (key == "reference_births_from_ungated_only") {
+      p.map.reference_births_from_ungated_only = BoolAt(v, key);
+    } else if (key == "reference_omit_missed_detection_mass") {
+      p.map.reference_omit_missed_detection_mass = BoolAt(v, key);
+    } else if (key == "pose_regularisation") {
+      Require(v.is_array() && v.size() == 3, key, "expected [qx, qy, qtheta]");
+      for (int i = 0; i < 3; ++i) {
+        p.pose_regularisation(i, i) = NumberAt(v[i], key);
+        Require(p.pose_regularisation(i, i) >= 0, key, "entries must be >= 0");
+      }
+    } else if (key == "prediction") {
+      const std::string expected = std::string("expected \"") + kControlNoiseName + "\" or \"" +
+                                   kLinearisedGaussianName + "\"";
+      Require(v.is_string(), key, expected);
+      const std::string s = v.get<std::string>();
+      Require(s == kControlNoiseName || s == kLinearisedGaussianName, key, expected);
+      p.prediction = s == kControlNoiseName ? ScPredictionSampling::kControlNoise
+                                            : ScPredictionSampling::kLinearisedGaussian;
+    } else if (key == "empty_scan_update") {
+      p.empty_scan_update = BoolAt(v, key);
+    } else {
+      throw std::invalid_argument("unknown parameter '" + key + "'");
+    }
+  }
+}
+
+double UpdateDaughterMap(phd::GmPhdMap& map, const Pose& pose,
+                         std::span<const Measurement> measurements,
+                         const models::SensorModel& sensor, const phd::MapParams& params,
+                         bool empty_scan_update, std::vector<int>* ungated) {
+  if (ungated != nullptr) ungated->clear();
+  if (!measurements.empty()) {
+    phd::PhdUpdateResult result = map.Update(pose, measurements, sensor, params);
+    if (ungated != nullptr) *ungated = std::move(result.ungated);
+    return result.log_likelihood;
+  }
+  if (!empty_scan_update) return 0.0;
+  // No measurements: every component is missed, w <- (1 - pD) w, likelihood exp(-sum pD w).
+  std::vector<phd::GaussianComponent> components = map.active();
+  const models::FovView fov(sensor, pose);
+  double missed_mass = 0.0;
+  for (phd::GaussianComponent& c : components) {
+    const double pd = fov.DetectionProbability(c.mean);
+    if (pd <= 0.0) continue;
+    missed_mass += pd * std::exp(c.log_weight);
+    c.log_weight += std::log1p(-pd);
+  }
+  map.SetActive(std::move(components));
+  return params.reference_omit_missed_detection_mass ? 0.0 : -missed_mass;
+}
+
+std::vector<phd::GaussianComponent> CardinalityMapEstimate(const phd::GmPhdMap& map) {
+  std::vector<phd::GaussianComponent> all = map.active();
+  all.insert(all.end(), map.passive().begin(), map.passive().end());
+  double cardinality = 0.0;
+  for (const phd::GaussianComponent& c : all) cardinality += std::exp(c.log_weight);
+  const auto count = std::min<std::size_t>(
+      all.size(), static_cast<std::size_t>(std::max(0L, std::lround(cardinality))));
+  std::stable_sort(all.begin(), all.end(),
+                   [](const phd::GaussianComponent& a, const phd::GaussianComponent& b) {
+                     return a.log_weight > b.log_weight;
+                   });
+  all.resize(count);
+  return all;
+}
+
+std::vector<std::pair<double, double>> CompareParentWeights(
+    std::span<const Pose> parent_poses, const phd::GmPhdMap& predicted_map,
+    std::span<const Measurement> measurements, const models::SensorModel& sensor,
+    const phd::MapParams& params) {
+  phd::MapParams single_cluster = params;
+  single_cluster.reference_omit_missed_detection_mass = false;
+  phd::MapParams rb_phd = params;
+  rb_phd.reference_omit_missed_detection_mass = true;
+  std::vector<double> log_sc;
+  std::vector<double> log_rb;
+  for (const Pose& x : parent_poses) {
+    phd::GmPhdMap a = predicted_map;
+    log_sc.push_back(UpdateDaughterMap(a, x, measurements, sensor, single_cluster, true, nullptr));
+    phd::GmPhdMap b = predicted_map;
+    log_rb.push_back(UpdateDaughterMap(b, x, measurements, sensor, rb_phd, true, nullptr));
+  }
+  const std::vector<double> w_sc = NormalisedWeights(log_sc);
+  const std::vector<double> w_rb = NormalisedWeights(log_rb);
+  std::vector<std::pair<double, double>> out;
+  out.reserve(w_sc.size());
+  for (std::size_t i = 0; i < w_sc.size(); ++i) out.emplace_back(w_sc[i], w_rb[i]);
+  return out;
+}
+
+ScPhdSlam::ScPhdSlam(EstimatorContext context, ScPhdSlamParams params, std::uint64_t stream_seed)
+    : context_(std::move(context)), params_(std::move(params)), rng_(stream_seed) {
+  if (params_.particles < 1) {
+    throw std::invalid_argument("ScPhdSlam: particles must be >= 1, got " +
+                                std::to_string(params_.particles));
+  }
+  if (params_.shotgun < 1) {
+    throw std::invalid_argument("ScPhdSlam: shotgun must be >= 1, got " +
+                                std::to_string(params_.shotgun));
+  }
+  if (context_.motion == nullptr) throw std::invalid_argument("ScPhdSlam: no motion model");
+  control_noise_sqrt_ = PsdFactor<2>(context_.control_noise_cov, "control noise covariance Q_u");
+  regularisation_sqrt_ = PsdFactor<3>(params_.pose_regularisation, "pose_regularisation Q_n");
+  parents_.resize(params_.particles);
+  for (ScParent& p : parents_) {
+    p.pose = context_.initial_pose;
+    p.log_weight = -std::log(static_cast<double>(params_.particles));
+  }
+}
+
+Pose ScPhdSlam::SamplePose(const Pose& pose, const datasets::StepData& step,
+                           std::span<const double> xi) const {
+  const Vec3 xi_pose(xi[0], xi[1], xi[2]);
+  const std::size_t intervals = step.times.size() - 1;
+  if (params_.prediction == ScPredictionSampling::kControlNoise) {
+    Pose x = pose + regularisation_sqrt_ * xi_pose;
+    for (std::size_t i = 0; i < intervals; ++i) {
+      const double dt = step.times[i + 1] - step.times[i];
+      const Control u = step.controls[i] + control_noise_sqrt_ * Vec2(xi[3 + 2 * i], xi[4 + 2 * i]);
+      x = context_.motion->Predict(x, u, dt);
+    }
+    return x;
+  }
+  // Linearised Gaussian, as the RB-PHD-SLAM family propagates it, then one draw.
+  Pose mean = pose;
+  Mat3 cov = params_.pose_regularisation;
+  for (std::size_t i = 0; i < intervals; ++i) {
+    const double dt = step.times[i + 1] - step.times[i];
+    const auto j = context_.motion->Jacobians(mean, step.controls[i], dt);
+    mean = context_.motion->Predict(mean, step.controls[i], dt);
+    cov = j.fx * cov * j.fx.transpose() + j.fu * context_.control_noise_cov * j.fu.transpose();
+    Symmetrize(cov);
+  }
+  const auto chol = CholeskyLower<3>(cov);
+  return chol ? Pose(mean + *chol * xi_pose) : mean;
+}
+
+StepOutput ScPhdSlam::Step(const datasets::StepData& step) {
+  if (step.times.empty()) throw std::invalid_argument("ScPhdSlam::Step: step has no time stamps");
+  const std::size_t intervals = step.times.size() - 1;
+  if (step.controls.size() < intervals) {
+    throw std::invalid_argument("ScPhdSlam::Step: " + std::to_string(step.times.size()) +
+                                " time stamps need " + std::to_string(intervals) +
+                                " controls, got " + std::to_string(step.controls.size()));
+  }
+  const int num_parents = static_cast<int>(parents_.size());
+  // Without propagation every copy of a parent would be identical: one child per parent.
+  const int copies = intervals > 0 ? params_.shotgun : 1;
+  const std::size_t per_child = intervals > 0 ? 3 + 2 * intervals : 0;
+
+  // The step's random numbers, child by child (parent-major), drawn before anything else.
+  std::vector<double> normals(static_cast<std::size_t>(num_parents) * copies * per_child);
+  for (double& v : normals) v = rng_.Normal();
+
+  // 1. Births from the previous step's measurements at the pose they were taken from.
+  for (ScParent& p : parents_) {
+    if (p.births.empty()) continue;
+    p.map.AddBirths(p.pose, p.births, context_.sensor.noise_cov, params_.map);
+    p.births.clear();
+  }
+
+  // 2-3. Shotgun prediction, daughter update and single-cluster weight of every child.
+  std::vector<ScParent> children;
+  children.reserve(static_cast<std::size_t>(num_parents) * copies);
+  children_.clear();
+  std::vector<int> ungated;
+  for (int i = 0; i < num_parents; ++i) {
+    ScParent& parent = parents_[i];
+    for (int c = 0; c < copies; ++c) {
+      ScParent child;
+      const std::size_t offset = children.size() * per_child;
+      child.pose = intervals > 0
+                       ? SamplePose(parent.pose, step,
+                                    std::span<const double>(normals).subspan(offset, per_child))
+                       : parent.pose;
+      if (c + 1 < copies) {
+        child.map = parent.map;
+      } else {
+        child.map = std::move(parent.map);  // the last copy takes the parent's map
+      }
+      child.log_weight =
+          parent.log_weight + UpdateDaughterMap(child.map, child.pose, step.measurements,
+                                                context_.sensor, params_.map,
+                                                params_.empty_scan_update, &ungated);
+      child.births.reserve(ungated.size());
+      for (int j : ungated) child.births.push_back(step.measurements[j]);
+      children_.push_back({i, child.pose, child.log_weight, false});
+      children.push_back(std::move(child));
+    }
+  }
+
+  // 4. Keep the N highest-weight children (lower child index first on ties), in child order.
+  std::vector<int> order(children.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(),
+                   [&](int a, int b) { return children[a].log_weight > children[b].log_weight; });
+  const int keep = params_.particles;
+  order.resize(std::min<std::size_t>(order.size(), keep));
+  std::sort(order.begin(), order.end());
+  std::vector<ScParent> next;
+  next.reserve(order.size());
+  for (int k : order) {
+    children_[k].kept = true;
+    next.push_back(std::move(children[k]));
+  }
+  parents_ = std::move(next);
+  std::vector<double> log_w;
+  log_w.reserve(parents_.size());
+  for (const ScParent& p : parents_) log_w.push_back(p.log_weight);
+  const double log_total = LogSumExp(log_w);
+  for (ScParent& p : parents_) p.log_weight -= log_total;
+
+  // 5. Map reduction at each survivor's pose.
+  for (ScParent& p : parents_) p.map.Reduce(p.pose, context_.sensor, params_.map);
+
+  // 6. Estimates.
+  const std::vector<double> w = NormalisedWeights(log_w);
+  StepOutput out;
+  out.pose.setZero();
+  best_ = 0;
+  for (std::size_t i = 0; i < parents_.size(); ++i) {
+    out.pose += w[i] * parents_[i].pose;
+    if (parents_[i].log_weight > parents_[best_].log_weight) best_ = static_cast<int>(i);
+  }
+  if (parents_.size() > 1) {
+    Mat3 spread = Mat3::Zero();
+    for (std::size_t i = 0; i < parents_.size(); ++i) {
+      const Vec3 d = parents_[i].pose - out.pose;
+      spread += w[i] * d * d.transpose();
+    }
+    out.pose_cov = spread;
+  }
+  last_map_ = CardinalityMapEstimate(parents_[best_].map);
+  out.diag.ess = parents_.size() == 1 ? 1.0 : EffectiveSampleSize(w);
+  out.diag.resampled = false;
+  out.diag.hypotheses = copies;
+  out.diag.map_components = static_cast<int>(parents_[best_].map.size());
+  return out;
+}
+
+MapEstimate ScPhdSlam::Map() const {
+  MapEstimate m;
+  for (const phd::GaussianComponent& c : last_map_) {
+    m.means.push_back(c.mean);
+    m.covs.push_back(c.cov);
+    m.log_weights.push_back(c.log_weight);
+  }
+  return m;
+}
+
+}  // namespace phdslam::filters
