@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The test command: installs what is missing, builds the release preset (warnings are errors),
-# runs every unit test with CTest, then the accuracy regression gates (ci/regression.yaml against
-# ci/thresholds.yaml). Exits non-zero on any failure.
+# runs every unit test with CTest, then the accuracy regression gates (the regression run and
+# bands of ci/thresholds.yaml). Exits non-zero on any failure.
 #
 #   ci/run-tests.sh              release build + unit tests + accuracy gates
 #   ci/run-tests.sh --sanitize   also build and run the unit tests under ASan + UBSan
