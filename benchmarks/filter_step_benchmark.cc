@@ -8,7 +8,9 @@
 // kTimedSteps **consecutive** steps (steps 501-700), one step per benchmark iteration. The filter
 // is not copied back to a saved state between iterations (it owns its importance density and is
 // not copyable); timing consecutive steps of one run is also what the paper's per-recursion mean
-// is. The iteration count is fixed, so every benchmark times exactly the same steps.
+// is. The iteration count is fixed, so every benchmark times exactly the same steps. Step() is
+// single-threaded: on a shared machine read the CPU column, since the wall time also counts
+// waiting for a core. Counters: mean proposal components, map components, resampling rate.
 #include <benchmark/benchmark.h>
 
 #include <memory>

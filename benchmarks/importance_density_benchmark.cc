@@ -13,11 +13,13 @@
 //
 // Reported, per density and M: CPU time per call (= per particle, one proposal per particle), the
 // mean number of associated components (detections in the best association, the same count for
-// every density) and the time per associated component. A final table gives the fitted log-log
-// exponent b of time ~ M^b (least squares over the M values, against the nominal M and against
-// the mean associated count, and the slope between the two largest M, where the leading term
-// dominates); the table is also written as CSV to --scaling_csv=<path>
-// (default importance_density_scaling.csv in the working directory).
+// every density) and the time per associated component; also the mean number of proposal
+// mixture components (3.0's hypotheses plus the all-clutter one; 1 otherwise) and the time per
+// mixture component, the other reading of the paper's "per particle and component". A final table
+// gives the fitted log-log exponent b of time ~ M^b (least squares over the M values, against the
+// nominal M and against the mean associated count, and the slope between the two largest M, where
+// the leading term dominates); the table is also written as CSV to --scaling_csv=<path> (default
+// importance_density_scaling.csv in the working directory).
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -138,6 +140,18 @@ void BenchmarkBuild(benchmark::State& state, const Workload* workload,
   state.counters["active"] = workload->mean_active;
 }
 
+/// Mean number of Gaussian components of the proposal over the stored states (1 for 1.0, 2.0a
+/// and 2.0b; the hypotheses plus the all-clutter component for 3.0).
+double MeanMixtureSize(const Workload& workload, const filters::ImportanceDensity& density) {
+  double total = 0.0;
+  for (const StoredState& s : workload.states) {
+    total += static_cast<double>(
+        density.Build({s.predicted_mean, s.predicted_cov, &s.map, s.measurements, &workload.sensor})
+            .mixture.size());
+  }
+  return total / static_cast<double>(workload.states.size());
+}
+
 /// Keeps the per-iteration CPU time of every run while printing as the console reporter does.
 /// CPU time, not wall time: Build() is single-threaded, and on a shared machine the wall time
 /// also counts the time the process waits for a core.
@@ -189,13 +203,14 @@ std::string BenchmarkName(const std::string& density, int m) {
 
 void PrintAndWriteScaling(const CollectingReporter& reporter,
                           const std::vector<std::unique_ptr<Workload>>& workloads,
+                          const std::map<std::string, double>& mixture_sizes,
                           const std::string& csv_path) {
   std::ofstream csv(csv_path);
   if (!csv) throw std::runtime_error("cannot write the scaling CSV '" + csv_path + "'");
-  csv << "density,landmarks_in_view,mean_active,mean_associated,us_per_call,"
-         "us_per_associated_component\n";
-  std::printf("\n%-15s %5s %8s %10s %12s %14s\n", "density", "M", "active", "associated", "us/call",
-              "us/component");
+  csv << "density,landmarks_in_view,mean_active,mean_associated,mean_mixture_components,"
+         "us_per_call,us_per_associated_component,us_per_mixture_component\n";
+  std::printf("\n%-15s %5s %7s %10s %8s %11s %13s %13s\n", "density", "M", "active", "associated",
+              "mixture", "us/call", "us/assoc.comp", "us/mix.comp");
   std::vector<std::string> fits;
   for (const char* density : kDensities) {
     std::vector<double> nominal, associated, seconds;
@@ -206,10 +221,13 @@ void PrintAndWriteScaling(const CollectingReporter& reporter,
       associated.push_back(w->mean_associated);
       seconds.push_back(s);
       const double us = 1e6 * s;
-      std::printf("%-15s %5d %8.1f %10.1f %12.2f %14.3f\n", density, w->landmarks_in_view,
-                  w->mean_active, w->mean_associated, us, us / w->mean_associated);
+      const double mixture = mixture_sizes.at(BenchmarkName(density, w->landmarks_in_view));
+      std::printf("%-15s %5d %7.1f %10.1f %8.1f %11.2f %13.3f %13.3f\n", density,
+                  w->landmarks_in_view, w->mean_active, w->mean_associated, mixture, us,
+                  us / w->mean_associated, us / mixture);
       csv << density << ',' << w->landmarks_in_view << ',' << w->mean_active << ','
-          << w->mean_associated << ',' << us << ',' << us / w->mean_associated << '\n';
+          << w->mean_associated << ',' << mixture << ',' << us << ',' << us / w->mean_associated
+          << ',' << us / mixture << '\n';
     }
     if (seconds.size() < 2) continue;
     const std::size_t last = seconds.size() - 1;
@@ -253,12 +271,15 @@ int main(int argc, char** argv) {
   const filters::PhdSlamParams params = filters::PhdSlamParams::ForScenario("generated");
   std::vector<std::unique_ptr<Workload>> workloads;
   std::vector<std::unique_ptr<filters::ImportanceDensity>> densities;
+  std::map<std::string, double> mixture_sizes;
   for (int m : kLandmarksInView) {
     workloads.push_back(std::make_unique<Workload>(MakeWorkload(m, params)));
   }
   for (const char* name : kDensities) {
     densities.push_back(MakeDensity(name, params));
     for (const auto& w : workloads) {
+      mixture_sizes[BenchmarkName(name, w->landmarks_in_view)] =
+          MeanMixtureSize(*w, *densities.back());
       benchmark::RegisterBenchmark(BenchmarkName(name, w->landmarks_in_view).c_str(),
                                    BenchmarkBuild, w.get(), densities.back().get())
           ->Unit(benchmark::kMicrosecond);
@@ -266,7 +287,7 @@ int main(int argc, char** argv) {
   }
   CollectingReporter reporter;
   benchmark::RunSpecifiedBenchmarks(&reporter);
-  PrintAndWriteScaling(reporter, workloads, csv_path);
+  PrintAndWriteScaling(reporter, workloads, mixture_sizes, csv_path);
   benchmark::Shutdown();
   return 0;
 }
