@@ -13,6 +13,7 @@
 
 #include "reference/ceres/odometry_factor.h"
 #include "reference/ceres/range_bearing_factor.h"
+#include "reference/ceres/velocity_odometry_factor.h"
 #include "src/core/gaussian.h"
 #include "src/models/range_bearing_model.h"
 
@@ -29,8 +30,10 @@ std::unique_ptr<ceres::LossFunction> MakeLoss(const std::string& name, double sc
   if (name == "cauchy") return std::make_unique<ceres::CauchyLoss>(scale);
   if (name == "huber") return std::make_unique<ceres::HuberLoss>(scale);
   if (name == "none" || name.empty()) return nullptr;
-  throw std::invalid_argument("SmootherOptions.robust_loss: expected \"cauchy\", \"huber\" or "
-                              "\"none\", got \"" + name + "\"");
+  throw std::invalid_argument(
+      "SmootherOptions.robust_loss: expected \"cauchy\", \"huber\" or "
+      "\"none\", got \"" +
+      name + "\"");
 }
 
 ceres::SparseLinearAlgebraLibraryType SparseLibrary() {
@@ -122,39 +125,62 @@ std::vector<Mat2> PoseKnownLandmarkCovariances(const datasets::Scenario& scenari
   return covs;
 }
 
+/// How the odometry of a solve is modelled.
+struct OdometrySpec {
+  const std::vector<OdometryIncrement>* increments;  ///< pose-space increments with the floor
+  OdometryNoiseFloor floor;
+  bool control_space;  ///< VelocityOdometryFactor where it applies
+};
+
+/// The odometry factor of step k (linking pose k-1, or the anchor, to pose k).
+ceres::CostFunction* MakeOdometryCost(const datasets::Scenario& scenario, std::size_t k,
+                                      const OdometrySpec& spec) {
+  const datasets::StepData& step = scenario.steps[k].data;
+  if (spec.control_space && scenario.motion == datasets::MotionKind::kVelocity &&
+      step.controls.size() == 1 && step.times[1] > step.times[0]) {
+    return VelocityOdometryFactor::Create(step.controls[0], step.times[1] - step.times[0],
+                                          WhiteningMatrix<2>(scenario.control_noise_cov),
+                                          spec.floor.position_std);
+  }
+  const OdometryIncrement& inc = (*spec.increments)[k];
+  return OdometryFactor::Create(inc.delta, WhiteningMatrix<3>(inc.covariance));
+}
+
 /// The factor graph of one solve. Parameter blocks point into `poses` and `landmarks`, which must
 /// not be resized while the graph lives.
 class FactorGraph {
  public:
-  FactorGraph(const datasets::Scenario& scenario, const std::vector<OdometryIncrement>& increments,
-              const Association& association, ceres::LossFunction* loss,
-              std::vector<Pose>* poses, std::vector<Landmark>* landmarks)
-      : anchor_(scenario.initial_pose), poses_(poses), landmarks_(landmarks) {
+  /// The graph of the first association.size() steps (all of `poses` when it has that many).
+  FactorGraph(const datasets::Scenario& scenario, const OdometrySpec& odometry,
+              const Association& association, ceres::LossFunction* loss, std::vector<Pose>* poses,
+              std::vector<Landmark>* landmarks)
+      : anchor_(scenario.initial_pose),
+        steps_(association.size()),
+        poses_(poses),
+        landmarks_(landmarks) {
     ceres::Problem::Options problem_options;
     problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
     problem_ = std::make_unique<ceres::Problem>(problem_options);
-    if (poses->empty()) return;
-    for (Pose& x : *poses) problem_->AddParameterBlock(x.data(), 3);
+    if (steps_ == 0) return;
+    for (std::size_t k = 0; k < steps_; ++k) problem_->AddParameterBlock((*poses)[k].data(), 3);
     for (Landmark& m : *landmarks) problem_->AddParameterBlock(m.data(), 2);
 
     // Gauge: the initial pose is known exactly. Without propagation at step 0, pose 0 is that
     // pose and is held constant; otherwise a constant anchor block holds it and step 0's
     // odometry links the anchor to pose 0.
-    if (increments[0].propagated) {
+    if ((*odometry.increments)[0].propagated) {
       problem_->AddParameterBlock(anchor_.data(), 3);
       problem_->SetParameterBlockConstant(anchor_.data());
-      problem_->AddResidualBlock(
-          OdometryFactor::Create(increments[0].delta, WhiteningMatrix<3>(increments[0].covariance)),
-          nullptr, anchor_.data(), (*poses)[0].data());
+      problem_->AddResidualBlock(MakeOdometryCost(scenario, 0, odometry), nullptr, anchor_.data(),
+                                 (*poses)[0].data());
     } else {
       (*poses)[0] = scenario.initial_pose;
       problem_->SetParameterBlockConstant((*poses)[0].data());
       pose0_constant_ = true;
     }
-    for (std::size_t k = 1; k < poses->size(); ++k) {
-      problem_->AddResidualBlock(
-          OdometryFactor::Create(increments[k].delta, WhiteningMatrix<3>(increments[k].covariance)),
-          nullptr, (*poses)[k - 1].data(), (*poses)[k].data());
+    for (std::size_t k = 1; k < steps_; ++k) {
+      problem_->AddResidualBlock(MakeOdometryCost(scenario, k, odometry), nullptr,
+                                 (*poses)[k - 1].data(), (*poses)[k].data());
     }
     const Mat2 w = WhiteningMatrix<2>(scenario.sensor.noise_cov);
     for (std::size_t k = 0; k < association.size(); ++k) {
@@ -169,7 +195,7 @@ class FactorGraph {
     }
   }
 
-  ceres::Solver::Summary Optimise(const SmootherOptions& options) {
+  ceres::Solver::Summary Optimise(const SmootherOptions& options, double function_tolerance) {
     ceres::Solver::Options o;
     // Sparse normal Cholesky (CHOLMOD, AMD ordering) by default: the graph is a long pose chain
     // with ~160 landmarks each seen from hundreds of poses. Eliminating the chain leaves a small
@@ -182,14 +208,14 @@ class FactorGraph {
     if (options.linear_solver == SparseLinearSolver::kSparseSchur) {
       auto ordering = std::make_shared<ceres::ParameterBlockOrdering>();
       for (Landmark& m : *landmarks_) ordering->AddElementToGroup(m.data(), 0);
-      for (Pose& x : *poses_) ordering->AddElementToGroup(x.data(), 1);
+      for (std::size_t k = 0; k < steps_; ++k) ordering->AddElementToGroup((*poses_)[k].data(), 1);
       if (problem_->HasParameterBlock(anchor_.data())) {
         ordering->AddElementToGroup(anchor_.data(), 1);
       }
       o.linear_solver_ordering = ordering;
     }
     o.max_num_iterations = options.max_iterations;
-    o.function_tolerance = options.function_tolerance;
+    o.function_tolerance = function_tolerance;
     o.num_threads = options.num_threads;
     o.logging_type = ceres::SILENT;
     ceres::Solver::Summary summary;
@@ -208,14 +234,14 @@ class FactorGraph {
     co.num_threads = num_threads;
     ceres::Covariance covariance(co);
     std::vector<std::pair<const double*, const double*>> blocks;
-    for (std::size_t k = 0; k < poses_->size(); ++k) {
+    for (std::size_t k = 0; k < steps_; ++k) {
       if (k == 0 && pose0_constant_) continue;
       blocks.emplace_back((*poses_)[k].data(), (*poses_)[k].data());
     }
     for (const Landmark& m : *landmarks_) blocks.emplace_back(m.data(), m.data());
     if (!covariance.Compute(blocks, problem_.get())) return false;
-    pose_covs->assign(poses_->size(), std::nullopt);
-    for (std::size_t k = 0; k < poses_->size(); ++k) {
+    pose_covs->assign(steps_, std::nullopt);
+    for (std::size_t k = 0; k < steps_; ++k) {
       if (k == 0 && pose0_constant_) {
         (*pose_covs)[0] = Mat3::Zero();
         continue;
@@ -243,6 +269,7 @@ class FactorGraph {
 
  private:
   Pose anchor_;
+  std::size_t steps_;
   std::vector<Pose>* poses_;
   std::vector<Landmark>* landmarks_;
   std::unique_ptr<ceres::Problem> problem_;
@@ -287,8 +314,11 @@ BatchSmoother::BatchSmoother(SmootherOptions options) : options_(std::move(optio
   };
   require(options_.max_iterations > 0, "max_iterations: expected > 0");
   require(options_.function_tolerance > 0.0, "function_tolerance: expected > 0");
+  require(options_.intermediate_function_tolerance > 0.0,
+          "intermediate_function_tolerance: expected > 0");
   require(options_.num_threads > 0, "num_threads: expected > 0");
   require(options_.reassociation_rounds >= 0, "reassociation_rounds: expected >= 0");
+  require(options_.initial_pass_solve_steps >= 0, "initial_pass_solve_steps: expected >= 0");
   require(options_.gate_chi2 > 0.0, "gate_chi2: expected > 0");
   require(options_.min_observations >= 1, "min_observations: expected >= 1");
   require(options_.merge_position_std >= 0.0, "merge_position_std: expected >= 0");
@@ -297,6 +327,9 @@ BatchSmoother::BatchSmoother(SmootherOptions options) : options_(std::move(optio
   require(options_.robust_scale > 0.0, "robust_scale: expected > 0");
   require(options_.odometry_floor.position_std > 0.0 && options_.odometry_floor.heading_std > 0.0,
           "odometry_floor: expected positive standard deviations");
+  require(
+      options_.warm_start_floor.position_std > 0.0 && options_.warm_start_floor.heading_std > 0.0,
+      "warm_start_floor: expected positive standard deviations");
   MakeLoss(options_.robust_loss, options_.robust_scale);  // validates the name
 }
 
@@ -310,6 +343,16 @@ filters::BatchResult BatchSmoother::Solve(const datasets::Scenario& scenario) {
 
   const std::vector<OdometryIncrement> increments =
       ScenarioOdometry(scenario, options_.odometry_floor);
+  // Every solve but the last uses the looser warm-start floor when it is larger (README.md).
+  const bool warm_start =
+      options_.warm_start_floor.position_std > options_.odometry_floor.position_std;
+  const std::vector<OdometryIncrement> loose_increments =
+      warm_start ? ScenarioOdometry(scenario, options_.warm_start_floor) : increments;
+  const bool control_space = options_.odometry_residual == OdometryResidual::kControlSpace;
+  const OdometrySpec final_odometry{&increments, options_.odometry_floor, control_space};
+  const OdometrySpec loose_odometry{
+      &loose_increments, warm_start ? options_.warm_start_floor : options_.odometry_floor,
+      control_space};
   std::vector<Pose> poses = DeadReckoning(scenario, increments);
   std::vector<Landmark> landmarks;
   const std::unique_ptr<ceres::LossFunction> robust =
@@ -317,11 +360,12 @@ filters::BatchResult BatchSmoother::Solve(const datasets::Scenario& scenario) {
 
   // Builds the graph on the current association and estimates, optimises it in place and
   // records the solve; returns the graph for the covariance step.
-  const auto optimise = [&](ceres::LossFunction* loss) {
+  const auto optimise = [&](const OdometrySpec& odometry, ceres::LossFunction* loss,
+                            double function_tolerance) {
     const Clock::time_point t = Clock::now();
     auto graph =
-        std::make_unique<FactorGraph>(scenario, increments, association_, loss, &poses, &landmarks);
-    const ceres::Solver::Summary summary = graph->Optimise(options_);
+        std::make_unique<FactorGraph>(scenario, odometry, association_, loss, &poses, &landmarks);
+    const ceres::Solver::Summary summary = graph->Optimise(options_, function_tolerance);
     report_.optimisation_seconds += SecondsSince(t);
     report_.iterations += static_cast<int>(summary.iterations.size()) - 1;
     ++report_.solves;
@@ -342,8 +386,7 @@ filters::BatchResult BatchSmoother::Solve(const datasets::Scenario& scenario) {
       break;
     }
     case AssociationMode::kFilter: {
-      CheckLabelShape(scenario, options_.filter_association,
-                      "SmootherOptions.filter_association");
+      CheckLabelShape(scenario, options_.filter_association, "SmootherOptions.filter_association");
       CompactLabels(options_.filter_association, &association_, &labels_);
       landmarks = InitialLandmarks(scenario, poses, association_, labels_.size());
       final_loss = robust.get();
@@ -357,14 +400,33 @@ filters::BatchResult BatchSmoother::Solve(const datasets::Scenario& scenario) {
       ao.min_detection_ratio = options_.min_detection_ratio;
       ao.sensor = scenario.sensor;
       ao.measurement_cov = scenario.sensor.noise_cov;
+      // Stage 1: the sequential pass, with a smoothing solve of the steps done so far (confirmed
+      // landmarks only) every initial_pass_solve_steps steps.
       Clock::time_point t = Clock::now();
-      AssociatedMap map = SequentialAssociation(scenario, increments, ao);
+      SequentialAssociator associator(scenario, loose_increments, ao);
+      const std::size_t chunk = options_.initial_pass_solve_steps > 0
+                                    ? static_cast<std::size_t>(options_.initial_pass_solve_steps)
+                                    : scenario.steps.size();
+      for (std::size_t end = chunk; end < scenario.steps.size(); end += chunk) {
+        associator.AdvanceTo(end);
+        std::vector<int> track_ids;
+        AssociatedMap partial = associator.Confirmed(&track_ids);
+        report_.association_seconds += SecondsSince(t);
+        association_ = std::move(partial.association);
+        poses = std::move(partial.poses);
+        landmarks = std::move(partial.landmarks);
+        optimise(loose_odometry, robust.get(), options_.intermediate_function_tolerance);
+        t = Clock::now();
+        associator.Correct(poses, track_ids, landmarks);
+      }
+      associator.AdvanceTo(scenario.steps.size());
+      AssociatedMap map = associator.Finish();
       report_.association_seconds += SecondsSince(t);
       association_ = std::move(map.association);
       landmarks = std::move(map.landmarks);
       poses = std::move(map.poses);
       for (int round = 0; round < options_.reassociation_rounds; ++round) {
-        optimise(robust.get());
+        optimise(loose_odometry, robust.get(), options_.intermediate_function_tolerance);
         t = Clock::now();
         map = Reassociate(scenario, poses, landmarks, association_, ao);
         report_.association_seconds += SecondsSince(t);
@@ -382,14 +444,18 @@ filters::BatchResult BatchSmoother::Solve(const datasets::Scenario& scenario) {
     }
   }
 
-  const std::unique_ptr<FactorGraph> graph = optimise(final_loss);
+  if (warm_start && options_.association != AssociationMode::kUnknown) {
+    optimise(loose_odometry, final_loss, options_.intermediate_function_tolerance);
+  }
+  const std::unique_ptr<FactorGraph> graph =
+      optimise(final_odometry, final_loss, options_.function_tolerance);
 
   result.pose_covs.assign(poses.size(), std::nullopt);
   std::vector<Mat2> landmark_covs;
   if (options_.compute_covariances) {
     const Clock::time_point t = Clock::now();
-    report_.covariance_ok = graph->Covariances(options_.num_threads, &result.pose_covs,
-                                              &landmark_covs);
+    report_.covariance_ok =
+        graph->Covariances(options_.num_threads, &result.pose_covs, &landmark_covs);
     report_.covariance_seconds = SecondsSince(t);
     if (!report_.covariance_ok) result.pose_covs.assign(poses.size(), std::nullopt);
   }

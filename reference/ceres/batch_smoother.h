@@ -28,17 +28,42 @@ enum class SparseLinearSolver {
   kSparseSchur,           ///< landmarks eliminated first, then a sparse Cholesky on the poses
 };
 
+/// How the odometry factor is whitened (README.md, "Odometry factor").
+enum class OdometryResidual {
+  /// Velocity-model steps with one sub-interval: the control that explains the relative pose,
+  /// whitened by Qu, plus the no-sideways-slip constraint (VelocityOdometryFactor); other steps
+  /// (car model, several sub-intervals) fall back to kPoseSpace.
+  kControlSpace,
+  /// Every step: the pose increment whitened by the propagated covariance plus the floor
+  /// (OdometryFactor).
+  kPoseSpace,
+};
+
 struct SmootherOptions {
   AssociationMode association = AssociationMode::kKnown;
   int max_iterations = 100;          ///< Levenberg-Marquardt iterations per solve
-  double function_tolerance = 1e-9;  ///< relative cost decrease that ends a solve
-  bool compute_covariances = true;   ///< marginal pose and landmark covariances (ceres::Covariance)
+  double function_tolerance = 1e-9;  ///< relative cost decrease that ends the final solve
+  /// Ends the solves before the final one (warm start, association), which only need to bring
+  /// the estimate close.
+  double intermediate_function_tolerance = 1e-6;
+  bool compute_covariances = true;  ///< marginal pose and landmark covariances (ceres::Covariance)
   SparseLinearSolver linear_solver = SparseLinearSolver::kSparseNormalCholesky;
   int num_threads = 1;
-  OdometryNoiseFloor odometry_floor;  ///< see odometry_increment.h
+  OdometryResidual odometry_residual = OdometryResidual::kControlSpace;
+  /// Pose-space floor (odometry_increment.h); in control space, position_std is the std of the
+  /// no-sideways-slip constraint.
+  OdometryNoiseFloor odometry_floor;
+  /// A looser floor for every solve but the last (README.md, "Odometry floor"): from dead
+  /// reckoning, a tight floor makes the odometry a near-rigid chain and Levenberg-Marquardt
+  /// crawls; a first solve with this floor brings the trajectory close, and the final solve with
+  /// odometry_floor then takes a few iterations. No effect when not larger than odometry_floor.
+  OdometryNoiseFloor warm_start_floor{0.05, 1e-5};
 
   // Unknown mode (README.md): solve with a robust loss, re-associate, repeat; then a final solve
   // with the squared loss on the last (gated) association.
+  /// The initial sequential association pass is interrupted every this many steps by a solve of
+  /// the steps done so far, and continues from the smoothed trajectory and map (0: never).
+  int initial_pass_solve_steps = 200;
   int reassociation_rounds = 5;  ///< maximum solve/re-associate rounds
   /// Gate for associating a measurement and for merging landmarks: chi2 with 2 dof at 0.999.
   double gate_chi2 = 13.8;
@@ -65,7 +90,7 @@ struct SmootherOptions {
 struct SmootherReport {
   int iterations = 0;  ///< Levenberg-Marquardt iterations summed over all solves
   int solves = 0;
-  int reassociation_rounds = 0;  ///< rounds run (unknown mode)
+  int reassociation_rounds = 0;        ///< rounds run (unknown mode)
   bool association_converged = false;  ///< the last round left the association unchanged
   double association_seconds = 0.0;
   double optimisation_seconds = 0.0;
@@ -73,8 +98,8 @@ struct SmootherReport {
   bool covariance_ok = false;
   std::size_t landmarks = 0;
   std::size_t associated_measurements = 0;
-  double initial_cost = 0.0;  ///< of the last solve
-  double final_cost = 0.0;    ///< of the last solve
+  double initial_cost = 0.0;               ///< of the last solve
+  double final_cost = 0.0;                 ///< of the last solve
   std::vector<std::string> brief_reports;  ///< ceres::Solver::Summary::BriefReport per solve
 };
 

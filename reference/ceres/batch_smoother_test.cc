@@ -31,8 +31,7 @@ void ExpectTruthRecovered(const datasets::Scenario& s, const filters::BatchResul
   }
   ASSERT_EQ(r.map.means.size(), labels.size());
   for (std::size_t i = 0; i < labels.size(); ++i) {
-    EXPECT_LT((r.map.means[i] - s.truth.landmarks[static_cast<std::size_t>(labels[i])]).norm(),
-              tol)
+    EXPECT_LT((r.map.means[i] - s.truth.landmarks[static_cast<std::size_t>(labels[i])]).norm(), tol)
         << "landmark " << i;
   }
 }
@@ -61,9 +60,13 @@ TEST(BatchSmoother, NoiseFreeCarModelWithSubIntervalsAndAnchoredFirstStep) {
   phdslam::testing::ExpectSymmetricPositiveDefinite(*r.pose_covs[0]);
 }
 
-TEST(BatchSmoother, SmoothingBeatsDeadReckoningWithNoise) {
+class SmoothingBeatsDeadReckoning : public ::testing::TestWithParam<OdometryResidual> {};
+
+TEST_P(SmoothingBeatsDeadReckoning, WithNoise) {
   const datasets::Scenario s = MakeCircleScenario(CircleScenarioOptions{});
-  BatchSmoother smoother(SmootherOptions{});
+  SmootherOptions o;
+  o.odometry_residual = GetParam();
+  BatchSmoother smoother(o);
   const filters::BatchResult r = smoother.Solve(s);
   const double dr = PositionRmse(s, DeadReckoning(s, ScenarioOdometry(s, {})));
   const double sm = PositionRmse(s, r.poses);
@@ -78,6 +81,10 @@ TEST(BatchSmoother, SmoothingBeatsDeadReckoningWithNoise) {
   EXPECT_GT(smoother.report().iterations, 0);
   EXPECT_EQ(r.iterations, smoother.report().iterations);
 }
+
+INSTANTIATE_TEST_SUITE_P(BatchSmoother, SmoothingBeatsDeadReckoning,
+                         ::testing::Values(OdometryResidual::kControlSpace,
+                                           OdometryResidual::kPoseSpace));
 
 TEST(BatchSmoother, CovariancesAreSymmetricPositiveDefiniteAndConsistent) {
   const datasets::Scenario s = MakeCircleScenario(CircleScenarioOptions{});
@@ -143,7 +150,8 @@ TEST(BatchSmoother, FilterModeWithRelabelledTruthEqualsKnownMode) {
     EXPECT_EQ(smoother.landmark_labels()[i], 1000 - 7 * static_cast<int>(n - 1 - i));
     EXPECT_LT((b.map.means[i] - a.map.means[n - 1 - i]).norm(), 1e-6);
   }
-  for (std::size_t k = 0; k < a.poses.size(); ++k) EXPECT_LT((a.poses[k] - b.poses[k]).norm(), 1e-6);
+  for (std::size_t k = 0; k < a.poses.size(); ++k)
+    EXPECT_LT((a.poses[k] - b.poses[k]).norm(), 1e-6);
 }
 
 TEST(BatchSmoother, RejectsLabelsThatDoNotMatchTheMeasurements) {
@@ -198,8 +206,10 @@ TEST(BatchSmoother, UnknownAssociationWithClutterRecoversTheLandmarkCount) {
   const datasets::Scenario s = MakeCircleScenario(c);
   SmootherOptions o;
   o.association = AssociationMode::kUnknown;
+  o.initial_pass_solve_steps = 25;  // exercise the intermediate solves on this short run
   BatchSmoother smoother(o);
   const filters::BatchResult r = smoother.Solve(s);
+  EXPECT_EQ(smoother.report().solves, 3 + smoother.report().reassociation_rounds + 1);
   // Association accuracy against the hidden labels.
   int true_pos = 0;
   int detections = 0;

@@ -9,6 +9,7 @@
 #include "reference/ceres/odometry_factor.h"
 #include "reference/ceres/odometry_increment.h"
 #include "reference/ceres/range_bearing_factor.h"
+#include "reference/ceres/velocity_odometry_factor.h"
 #include "src/core/angles.h"
 #include "src/models/car_motion_model.h"
 #include "src/models/range_bearing_model.h"
@@ -84,8 +85,7 @@ void ExpectEquivariant(const models::MotionModel& model, const datasets::StepDat
     }
     EXPECT_LT((ComposeRelative(x0, inc.delta) - x).norm(), 1e-9);
     Mat3 t = Mat3::Identity();
-    t.topLeftCorner<2, 2>() << std::cos(x0(2)), -std::sin(x0(2)), std::sin(x0(2)),
-        std::cos(x0(2));
+    t.topLeftCorner<2, 2>() << std::cos(x0(2)), -std::sin(x0(2)), std::sin(x0(2)), std::cos(x0(2));
     EXPECT_LT((t * inc.covariance * t.transpose() - p).cwiseAbs().maxCoeff(), 1e-12);
   }
 }
@@ -97,10 +97,9 @@ TEST(ComposeStepOdometry, VelocityModelIsEquivariant) {
 }
 
 TEST(ComposeStepOdometry, CarModelWithSubIntervalsIsEquivariant) {
-  ExpectEquivariant(models::CarMotionModel(),
-                    MakeStep(10.0, {{0.025, Control(2.5, 0.1)},
-                                    {0.025, Control(2.6, 0.12)},
-                                    {0.030, Control(2.4, -0.05)}}));
+  ExpectEquivariant(models::CarMotionModel(), MakeStep(10.0, {{0.025, Control(2.5, 0.1)},
+                                                              {0.025, Control(2.6, 0.12)},
+                                                              {0.030, Control(2.4, -0.05)}}));
 }
 
 TEST(ComposeStepOdometry, SingleVelocityIntervalHasRankTwoAndTheFloorFillsTheNullDirection) {
@@ -128,9 +127,8 @@ TEST(ComposeStepOdometry, StepWithoutPropagationHasOnlyTheFloor) {
   EXPECT_FALSE(inc.propagated);
   EXPECT_EQ(inc.delta, Pose::Zero());
   step.controls.push_back(Control(1.0, 0.0));  // a control without a time interval
-  EXPECT_THROW(
-      ComposeStepOdometry(models::VelocityMotionModel(), step, kQu, OdometryNoiseFloor{}),
-      std::invalid_argument);
+  EXPECT_THROW(ComposeStepOdometry(models::VelocityMotionModel(), step, kQu, OdometryNoiseFloor{}),
+               std::invalid_argument);
 }
 
 TEST(WhiteningMatrix, WhitensTheCovariance) {
@@ -180,10 +178,72 @@ TEST(OdometryFactor, JacobiansMatchFiniteDifferences) {
   }
 }
 
+TEST(VelocityOdometryFactor, InvertsTheMotionModel) {
+  const models::VelocityMotionModel model;
+  const Mat2 w = WhiteningMatrix<2>(kQu);
+  const Pose a(300.0, 400.0, 9.0);  // unwrapped heading
+  for (const Control& u : {Control(1.0, 0.0172), Control(0.9, -0.3), Control(-1.19, 0.018),
+                           Control(1.0, 0.0), Control(1.0, 1e-12), Control(1.0, 5e-5)}) {
+    for (double dt : {1.0, 0.4}) {
+      const Control odometry(1.1, 0.01);
+      const std::unique_ptr<ceres::CostFunction> f(
+          VelocityOdometryFactor::Create(odometry, dt, w, 1e-4));
+      // Any pose the model reaches is explained exactly by its control: the residual is the
+      // whitened control difference and the sideways term is zero.
+      const Vec3 r = EvaluateOdometry(*f, a, model.Predict(a, u, dt));
+      const Vec2 expected = w * (u - odometry);
+      EXPECT_NEAR(r(0), expected(0), 1e-6 * (1.0 + std::abs(expected(0)))) << u.transpose();
+      EXPECT_NEAR(r(1), expected(1), 1e-6 * (1.0 + std::abs(expected(1)))) << u.transpose();
+      EXPECT_NEAR(r(2), 0.0, 1e-6) << u.transpose();
+    }
+  }
+}
+
+TEST(VelocityOdometryFactor, SidewaysOffsetIsTheLateralResidual) {
+  const models::VelocityMotionModel model;
+  const Control u(1.0, 0.2);
+  const std::unique_ptr<ceres::CostFunction> f(
+      VelocityOdometryFactor::Create(u, 1.0, WhiteningMatrix<2>(kQu), 0.01));
+  const Pose a(1.0, 2.0, 0.5);
+  const Pose b = model.Predict(a, u, 1.0);
+  // Shift b by 3 mm perpendicular to the chord (direction theta_a + omega dt / 2).
+  const double chord = a(2) + 0.1;
+  const Pose shifted = b + Pose(-std::sin(chord), std::cos(chord), 0.0) * 3e-3;
+  const Vec3 r = EvaluateOdometry(*f, a, shifted);
+  EXPECT_NEAR(r(2), 0.3, 1e-9);  // 3 mm / 10 mm
+  EXPECT_NEAR(r(0), 0.0, 1e-9);
+  EXPECT_NEAR(r(1), 0.0, 1e-9);
+}
+
+TEST(VelocityOdometryFactor, HalfAngleRatioIsSmoothAcrossTheSeriesSwitch) {
+  for (double h : {0.0, 5e-5, 9.999e-5, 1.0001e-4, 2e-4, 0.5}) {
+    const double exact = h == 0.0 ? 1.0 : h / std::sin(h);
+    EXPECT_NEAR(VelocityOdometryFactor::HalfAngleRatio(h), exact, 1e-15) << h;
+  }
+}
+
+TEST(VelocityOdometryFactor, JacobiansMatchFiniteDifferences) {
+  const std::unique_ptr<ceres::CostFunction> f(
+      VelocityOdometryFactor::Create(Control(1.0, 0.01), 1.0, WhiteningMatrix<2>(kQu), 1e-2));
+  for (const auto& [a, b] : {std::pair{Pose(1.0, 2.0, 0.3), Pose(1.9, 2.4, 0.32)},
+                             std::pair{Pose(-5.0, 7.0, -9.0), Pose(-4.0, 6.0, -8.8)},
+                             std::pair{Pose(0.0, 0.0, 0.0), Pose(1.0, 0.001, 1e-6)}}) {
+    RowMajor33 ja;
+    RowMajor33 jb;
+    EvaluateOdometry(*f, a, b, &ja, &jb);
+    const Mat3 ja_col = ja;
+    const Mat3 jb_col = jb;
+    ExpectJacobianNear<3, 3>(
+        ja_col, [&](const Vec3& aa) { return EvaluateOdometry(*f, aa, b); }, a, 1e-5);
+    ExpectJacobianNear<3, 3>(
+        jb_col, [&](const Vec3& bb) { return EvaluateOdometry(*f, a, bb); }, b, 1e-5);
+  }
+}
+
 TEST(RangeBearingFactor, ResidualWrapsOnlyTheBearing) {
   const Mat2 w = WhiteningMatrix<2>(kR);
   const Pose x(0.0, 0.0, 4.0 * std::numbers::pi);  // unwrapped heading
-  const Landmark m(-10.0, 1e-3);  // almost straight behind the world x axis
+  const Landmark m(-10.0, 1e-3);                   // almost straight behind the world x axis
   const Measurement h = models::PredictMeasurement(x, m);
   ASSERT_GT(h(1), std::numbers::pi - 1e-3);
   // A measurement whose bearing sits on the other side of +-pi from the prediction.

@@ -29,9 +29,8 @@ void ExportG2o(const std::filesystem::path& path, const datasets::Scenario& scen
                                 " poses, scenario has " + std::to_string(steps) + " steps");
   }
   if (association.size() != steps) {
-    throw std::invalid_argument("ExportG2o: association has " +
-                                std::to_string(association.size()) + " steps, expected " +
-                                std::to_string(steps));
+    throw std::invalid_argument("ExportG2o: association has " + std::to_string(association.size()) +
+                                " steps, expected " + std::to_string(steps));
   }
   for (std::size_t k = 0; k < steps; ++k) {
     if (association[k].size() != scenario.steps[k].data.measurements.size()) {
@@ -57,8 +56,8 @@ void ExportG2o(const std::filesystem::path& path, const datasets::Scenario& scen
   if (!os) throw std::runtime_error("ExportG2o: cannot open " + path.string() + " for writing");
   os << std::setprecision(17);
   os << "# phdslam Ceres batch smoother problem, g2o format (reference/ceres/README.md).\n"
-     << "# scenario: " << scenario.name << ", seed " << scenario.seed << ", " << steps
-     << " steps, " << landmarks << " landmarks.\n"
+     << "# scenario: " << scenario.name << ", seed " << scenario.seed << ", " << steps << " steps, "
+     << landmarks << " landmarks.\n"
      << "# Units: m and rad. Headings are not wrapped.\n"
      << "# VERTEX_SE2 0.." << (steps == 0 ? 0 : steps - 1)
      << ": the pose at each step (estimated values); VERTEX_XY " << steps << ".."
@@ -110,8 +109,8 @@ void ExportG2o(const std::filesystem::path& path, const datasets::Scenario& scen
       const Landmark d = models::InverseMeasurement(Pose::Zero(), zs[j]);
       Mat2 info = models::BirthCovariance(Pose::Zero(), zs[j], r).inverse();
       info = 0.5 * (info + info.transpose());
-      os << "EDGE_SE2_XY " << k << ' ' << steps + static_cast<std::size_t>(i) << ' ' << d(0)
-         << ' ' << d(1) << ' ' << info(0, 0) << ' ' << info(0, 1) << ' ' << info(1, 1) << '\n';
+      os << "EDGE_SE2_XY " << k << ' ' << steps + static_cast<std::size_t>(i) << ' ' << d(0) << ' '
+         << d(1) << ' ' << info(0, 0) << ' ' << info(0, 1) << ' ' << info(1, 1) << '\n';
     }
   }
   if (!os) throw std::runtime_error("ExportG2o: write to " + path.string() + " failed");

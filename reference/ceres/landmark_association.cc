@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <numeric>
 #include <optional>
 #include <stdexcept>
@@ -54,6 +55,29 @@ class LandmarkGrid {
     cells_[b].push_back(id);
   }
 
+  void Remove(int id, const Vec2& p) {
+    std::vector<int>& cell = cells_[Key(p)];
+    const auto it = std::find(cell.begin(), cell.end(), id);
+    if (it != cell.end()) {
+      *it = cell.back();
+      cell.pop_back();
+    }
+  }
+
+  /// Appends the ids stored in the cells that overlap the disc of the given radius around p.
+  void NearRadius(const Vec2& p, double radius, std::vector<int>* out) const {
+    const std::int64_t x0 = Cell(p(0) - radius);
+    const std::int64_t x1 = Cell(p(0) + radius);
+    const std::int64_t y0 = Cell(p(1) - radius);
+    const std::int64_t y1 = Cell(p(1) + radius);
+    for (std::int64_t cx = x0; cx <= x1; ++cx) {
+      for (std::int64_t cy = y0; cy <= y1; ++cy) {
+        const auto it = cells_.find(Key(cx, cy));
+        if (it != cells_.end()) out->insert(out->end(), it->second.begin(), it->second.end());
+      }
+    }
+  }
+
   /// Appends the ids stored in the 3 x 3 cells around p.
   void Near(const Vec2& p, std::vector<int>* out) const {
     const std::int64_t cx = Cell(p(0));
@@ -67,7 +91,9 @@ class LandmarkGrid {
   }
 
  private:
-  static std::int64_t Cell(double v) { return static_cast<std::int64_t>(std::floor(v / kGridCell)); }
+  static std::int64_t Cell(double v) {
+    return static_cast<std::int64_t>(std::floor(v / kGridCell));
+  }
   static std::int64_t Key(std::int64_t cx, std::int64_t cy) {
     return cx * 4294967296LL + (cy & 0xffffffffLL);
   }
@@ -90,9 +116,8 @@ Vec2 Innovation(const Pose& x, const Landmark& m, const Measurement& z) {
 
 /// Squared Mahalanobis distance of z to landmark (m, pm) seen from x (pose covariance px, or
 /// none for a pose taken as known); nullopt outside the gate or when S is singular.
-std::optional<double> GateDistance(const Pose& x, const Mat3* px, const Landmark& m,
-                                   const Mat2& pm, const Measurement& z, const Mat2& r,
-                                   double gate) {
+std::optional<double> GateDistance(const Pose& x, const Mat3* px, const Landmark& m, const Mat2& pm,
+                                   const Measurement& z, const Mat2& r, double gate) {
   if ((m - x.head<2>()).squaredNorm() < 1e-18) return std::nullopt;
   const models::RangeBearingJacobians j = models::MeasurementJacobians(x, m);
   Mat2 s = j.hm * pm * j.hm.transpose() + r;
@@ -126,6 +151,8 @@ struct Track {
   Landmark m;
   Mat2 p;
   int count = 0;
+  double expected = 0.0;  ///< sum of pD over the steps so far (initial pass only)
+  bool dead = false;      ///< can no longer gain support: out of the grid (initial pass only)
 };
 
 /// EKF update of a track with z taken at the known pose x.
@@ -213,7 +240,8 @@ void DropUnsupportedLandmarks(const AssociationOptions& options, const std::vect
     bool keep = counts[i] >= options.min_observations;
     if (keep && options.min_detection_ratio > 0.0) {
       double expected = 0.0;
-      for (const Pose& x : poses) expected += options.sensor.DetectionProbability(x, map->landmarks[i]);
+      for (const Pose& x : poses)
+        expected += options.sensor.DetectionProbability(x, map->landmarks[i]);
       keep = counts[i] >= options.min_detection_ratio * expected;
     }
     if (keep) {
@@ -256,72 +284,171 @@ std::vector<int> CountObservations(const Association& association, std::size_t l
   return counts;
 }
 
+struct SequentialAssociator::State {
+  const datasets::Scenario* scenario;
+  std::vector<OdometryIncrement> increments;
+  AssociationOptions options;
+  std::vector<Track> tracks;
+  LandmarkGrid grid;
+  Pose x;
+  Mat3 px = Mat3::Zero();
+  Association association;
+  std::vector<Pose> poses;
+  int born = 0;
+
+  void Step(std::size_t k);
+  /// Seen often enough, in absolute terms and relative to the detections the sensor model
+  /// expected so far: the tracks that correct the pose and enter the intermediate solves.
+  [[nodiscard]] bool Supported(const Track& t) const {
+    return !t.dead && t.count >= options.min_observations &&
+           t.count >= options.min_detection_ratio * t.expected;
+  }
+};
+
+void SequentialAssociator::State::Step(std::size_t k) {
+  const Mat2& r = options.measurement_cov;
+  const OdometryIncrement& inc = increments[k];
+  if (inc.propagated) {
+    const double c = std::cos(x(2));
+    const double s = std::sin(x(2));
+    Mat3 jx = Mat3::Identity();
+    jx(0, 2) = -s * inc.delta(0) - c * inc.delta(1);
+    jx(1, 2) = c * inc.delta(0) - s * inc.delta(1);
+    Mat3 jd = Mat3::Identity();
+    jd.topLeftCorner<2, 2>() << c, -s, s, c;
+    px = jx * px * jx.transpose() + jd * inc.covariance * jd.transpose();
+    x = ComposeRelative(x, inc.delta);
+  }
+  const std::vector<Measurement>& zs = scenario->steps[k].data.measurements;
+  std::vector<Candidate> candidates;
+  std::vector<int> near;
+  for (std::size_t j = 0; j < zs.size(); ++j) {
+    near.clear();
+    grid.Near(models::InverseMeasurement(x, zs[j]), &near);
+    for (int i : near) {
+      const Track& t = tracks[static_cast<std::size_t>(i)];
+      const auto d2 = GateDistance(x, &px, t.m, t.p, zs[j], r, options.gate_chi2);
+      if (d2) candidates.push_back({static_cast<int>(j), i, *d2});
+    }
+  }
+  std::vector<int> assigned = AssignGreedy(std::move(candidates), zs.size());
+
+  std::vector<std::pair<Measurement, const Track*>> confirmed;
+  for (std::size_t j = 0; j < zs.size(); ++j) {
+    const int i = assigned[j];
+    if (i == kUnassociated) continue;
+    const Track& t = tracks[static_cast<std::size_t>(i)];
+    if (Supported(t)) confirmed.emplace_back(zs[j], &t);
+  }
+  CorrectPose(confirmed, r, &x, &px);
+
+  for (std::size_t j = 0; j < zs.size(); ++j) {
+    if (assigned[j] == kUnassociated) {
+      assigned[j] = static_cast<int>(tracks.size());
+      tracks.push_back(BirthTrack(x, zs[j], r));
+      grid.Insert(assigned[j], tracks.back().m);
+      ++born;
+    } else {
+      Track& t = tracks[static_cast<std::size_t>(assigned[j])];
+      const Landmark before = t.m;
+      UpdateTrack(x, zs[j], r, &t);
+      grid.Move(assigned[j], before, t.m);
+    }
+  }
+  // Expected detections of every live track around the pose. A track detected in fewer than
+  // min_detection_ratio of the scans expected to see it is dead: it would fail the final support
+  // test anyway, and leaving the grid keeps clutter tracks from piling up.
+  near.clear();
+  grid.NearRadius(x.head<2>(), options.sensor.fov_range, &near);
+  for (int i : near) {
+    Track& t = tracks[static_cast<std::size_t>(i)];
+    t.expected += options.sensor.DetectionProbability(x, t.m);
+    if (static_cast<double>(t.count) < options.min_detection_ratio * t.expected) {
+      t.dead = true;
+      grid.Remove(i, t.m);
+    }
+  }
+  association.push_back(std::move(assigned));
+  poses.push_back(x);
+}
+
+SequentialAssociator::SequentialAssociator(const datasets::Scenario& scenario,
+                                           std::vector<OdometryIncrement> increments,
+                                           AssociationOptions options)
+    : state_(std::make_unique<State>()) {
+  CheckSizes(scenario, increments.size(), "SequentialAssociator");
+  state_->scenario = &scenario;
+  state_->increments = std::move(increments);
+  state_->options = std::move(options);
+  state_->x = scenario.initial_pose;
+}
+
+SequentialAssociator::~SequentialAssociator() = default;
+
+std::size_t SequentialAssociator::steps_done() const { return state_->poses.size(); }
+
+void SequentialAssociator::AdvanceTo(std::size_t end) {
+  end = std::min(end, state_->scenario->steps.size());
+  for (std::size_t k = steps_done(); k < end; ++k) state_->Step(k);
+}
+
+AssociatedMap SequentialAssociator::Confirmed(std::vector<int>* track_ids) const {
+  const State& st = *state_;
+  std::vector<int> index(st.tracks.size(), kUnassociated);
+  track_ids->clear();
+  AssociatedMap out;
+  for (std::size_t i = 0; i < st.tracks.size(); ++i) {
+    if (!st.Supported(st.tracks[i])) continue;
+    index[i] = static_cast<int>(track_ids->size());
+    track_ids->push_back(static_cast<int>(i));
+    out.landmarks.push_back(st.tracks[i].m);
+  }
+  out.association = st.association;
+  for (auto& step : out.association) {
+    for (int& a : step) {
+      if (a != kUnassociated) a = index[static_cast<std::size_t>(a)];
+    }
+  }
+  out.poses = st.poses;
+  out.born = st.born;
+  return out;
+}
+
+void SequentialAssociator::Correct(const std::vector<Pose>& poses,
+                                   const std::vector<int>& track_ids,
+                                   const std::vector<Landmark>& means) {
+  State& st = *state_;
+  if (poses.size() != st.poses.size() || track_ids.size() != means.size()) {
+    throw std::invalid_argument("SequentialAssociator::Correct: expected " +
+                                std::to_string(st.poses.size()) + " poses and one mean per track");
+  }
+  st.poses = poses;
+  if (!poses.empty()) st.x = poses.back();
+  for (std::size_t n = 0; n < track_ids.size(); ++n) {
+    const int id = track_ids[n];
+    Track& t = st.tracks.at(static_cast<std::size_t>(id));
+    st.grid.Move(id, t.m, means[n]);
+    t.m = means[n];
+  }
+}
+
+AssociatedMap SequentialAssociator::Finish() const {
+  const State& st = *state_;
+  AssociatedMap out;
+  out.association = st.association;
+  out.poses = st.poses;
+  out.born = st.born;
+  for (const Track& t : st.tracks) out.landmarks.push_back(t.m);
+  DropUnsupportedLandmarks(st.options, out.poses, &out);
+  return out;
+}
+
 AssociatedMap SequentialAssociation(const datasets::Scenario& scenario,
                                     const std::vector<OdometryIncrement>& increments,
                                     const AssociationOptions& options) {
-  CheckSizes(scenario, increments.size(), "SequentialAssociation");
-  const Mat2& r = options.measurement_cov;
-  AssociatedMap out;
-  std::vector<Track> tracks;
-  LandmarkGrid grid;
-  Pose x = scenario.initial_pose;
-  Mat3 px = Mat3::Zero();
-  std::vector<int> near;
-  for (std::size_t k = 0; k < scenario.steps.size(); ++k) {
-    const OdometryIncrement& inc = increments[k];
-    if (inc.propagated) {
-      const double c = std::cos(x(2));
-      const double s = std::sin(x(2));
-      Mat3 jx = Mat3::Identity();
-      jx(0, 2) = -s * inc.delta(0) - c * inc.delta(1);
-      jx(1, 2) = c * inc.delta(0) - s * inc.delta(1);
-      Mat3 jd = Mat3::Identity();
-      jd.topLeftCorner<2, 2>() << c, -s, s, c;
-      px = jx * px * jx.transpose() + jd * inc.covariance * jd.transpose();
-      x = ComposeRelative(x, inc.delta);
-    }
-    const std::vector<Measurement>& zs = scenario.steps[k].data.measurements;
-    std::vector<Candidate> candidates;
-    for (std::size_t j = 0; j < zs.size(); ++j) {
-      near.clear();
-      grid.Near(models::InverseMeasurement(x, zs[j]), &near);
-      for (int i : near) {
-        const Track& t = tracks[static_cast<std::size_t>(i)];
-        const auto d2 = GateDistance(x, &px, t.m, t.p, zs[j], r, options.gate_chi2);
-        if (d2) candidates.push_back({static_cast<int>(j), i, *d2});
-      }
-    }
-    std::vector<int> assigned = AssignGreedy(std::move(candidates), zs.size());
-
-    std::vector<std::pair<Measurement, const Track*>> confirmed;
-    for (std::size_t j = 0; j < zs.size(); ++j) {
-      const int i = assigned[j];
-      if (i == kUnassociated) continue;
-      const Track& t = tracks[static_cast<std::size_t>(i)];
-      if (t.count >= options.min_observations) confirmed.emplace_back(zs[j], &t);
-    }
-    CorrectPose(confirmed, r, &x, &px);
-
-    for (std::size_t j = 0; j < zs.size(); ++j) {
-      if (assigned[j] == kUnassociated) {
-        assigned[j] = static_cast<int>(tracks.size());
-        tracks.push_back(BirthTrack(x, zs[j], r));
-        grid.Insert(assigned[j], tracks.back().m);
-        ++out.born;
-      } else {
-        Track& t = tracks[static_cast<std::size_t>(assigned[j])];
-        const Landmark before = t.m;
-        UpdateTrack(x, zs[j], r, &t);
-        grid.Move(assigned[j], before, t.m);
-      }
-    }
-    out.association.push_back(std::move(assigned));
-    out.poses.push_back(x);
-  }
-  out.landmarks.reserve(tracks.size());
-  for (const Track& t : tracks) out.landmarks.push_back(t.m);
-  DropUnsupportedLandmarks(options, out.poses, &out);
-  return out;
+  SequentialAssociator associator(scenario, increments, options);
+  associator.AdvanceTo(scenario.steps.size());
+  return associator.Finish();
 }
 
 AssociatedMap Reassociate(const datasets::Scenario& scenario, const std::vector<Pose>& poses,
@@ -409,7 +536,8 @@ AssociatedMap Reassociate(const datasets::Scenario& scenario, const std::vector<
   std::vector<std::vector<int>> steps_seen(n);
   for (std::size_t k = 0; k < out.association.size(); ++k) {
     for (int a : out.association[k]) {
-      if (a != kUnassociated) steps_seen[static_cast<std::size_t>(a)].push_back(static_cast<int>(k));
+      if (a != kUnassociated)
+        steps_seen[static_cast<std::size_t>(a)].push_back(static_cast<int>(k));
     }
   }
   LandmarkGrid all_grid;
@@ -462,7 +590,8 @@ AssociatedMap Reassociate(const datasets::Scenario& scenario, const std::vector<
     weighted[static_cast<std::size_t>(keep)] += weighted[static_cast<std::size_t>(gone)];
     const Mat2& ik = info[static_cast<std::size_t>(keep)];
     if (std::abs(ik.determinant()) > 1e-300) {
-      out.landmarks[static_cast<std::size_t>(keep)] = ik.inverse() * weighted[static_cast<std::size_t>(keep)];
+      out.landmarks[static_cast<std::size_t>(keep)] =
+          ik.inverse() * weighted[static_cast<std::size_t>(keep)];
     }
     ++out.merged;
   }

@@ -19,6 +19,7 @@
 // scans whose FOV covers it; a real landmark in about pD of them.
 #pragma once
 
+#include <memory>
 #include <vector>
 
 #include "datasets/scenario.h"
@@ -33,16 +34,16 @@ using Association = std::vector<std::vector<int>>;
 inline constexpr int kUnassociated = -1;
 
 struct AssociationOptions {
-  double gate_chi2 = 13.8;    ///< squared Mahalanobis gate (2 dof)
-  int min_observations = 3;   ///< landmarks seen fewer times are dropped (and, in the initial
-                              ///< pass, do not correct the pose)
+  double gate_chi2 = 13.8;   ///< squared Mahalanobis gate (2 dof)
+  int min_observations = 3;  ///< landmarks seen fewer times are dropped (and, in the initial
+                             ///< pass, do not correct the pose)
   /// Merging adds merge_position_std^2 I to the two landmarks' covariances: the relative drift of
   /// the trajectory between two visits, which the pose-known landmark covariances leave out.
   double merge_position_std = 1.0;  ///< m
   /// Landmarks detected fewer than min_detection_ratio times the number of detections the sensor
   /// model predicts for them (sum over steps of pD(x_k, m), FOV included) are dropped too.
   double min_detection_ratio = 0.3;
-  models::SensorModel sensor;  ///< FOV and pD for the expected detections
+  models::SensorModel sensor;               ///< FOV and pD for the expected detections
   Mat2 measurement_cov = Mat2::Identity();  ///< R (normally sensor.noise_cov)
 };
 
@@ -56,8 +57,38 @@ struct AssociatedMap {
   int born = 0;             ///< landmarks created from unassociated measurements
 };
 
-/// Initial association (stage 1). `increments[k]` is the odometry of step k and `initial_pose`
-/// the exactly known start.
+/// The initial pass (stage 1), resumable: the smoother alternates AdvanceTo with a solve of the
+/// steps associated so far and Correct, so that the pass continues from a smoothed trajectory
+/// and map (README.md, "Unknown association"). `increments[k]` is the odometry of step k; the
+/// pass starts at the scenario's initial pose, which is known exactly. `scenario` must outlive
+/// the associator.
+class SequentialAssociator {
+ public:
+  SequentialAssociator(const datasets::Scenario& scenario,
+                       std::vector<OdometryIncrement> increments, AssociationOptions options);
+  ~SequentialAssociator();
+  SequentialAssociator(const SequentialAssociator&) = delete;
+  SequentialAssociator& operator=(const SequentialAssociator&) = delete;
+
+  /// Associates steps [steps_done(), end) (end is clamped to the number of steps).
+  void AdvanceTo(std::size_t end);
+  [[nodiscard]] std::size_t steps_done() const;
+  /// The steps done so far with only the confirmed landmarks (seen >= min_observations times),
+  /// numbered 0..n-1; `track_ids` receives their internal ids for Correct.
+  AssociatedMap Confirmed(std::vector<int>* track_ids) const;
+  /// Replaces the poses of the steps done and the means of the landmarks `track_ids` by
+  /// smoothed values; the next step is predicted from the last of these poses.
+  void Correct(const std::vector<Pose>& poses, const std::vector<int>& track_ids,
+               const std::vector<Landmark>& means);
+  /// Drops the landmarks without support and returns the map of the steps done.
+  [[nodiscard]] AssociatedMap Finish() const;
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
+
+/// The initial pass over all steps without intermediate smoothing.
 AssociatedMap SequentialAssociation(const datasets::Scenario& scenario,
                                     const std::vector<OdometryIncrement>& increments,
                                     const AssociationOptions& options);

@@ -23,11 +23,11 @@ struct CircleScenarioOptions {
   double landmark_radius = 25.0;  ///< m, ring of landmarks centred on the circle's centre
   double speed = 1.0;             ///< m/s
   datasets::MotionKind motion = datasets::MotionKind::kVelocity;
-  int sub_intervals = 1;          ///< per 1 s step (zero-order hold, same control)
+  int sub_intervals = 1;               ///< per 1 s step (zero-order hold, same control)
   bool first_step_propagates = false;  ///< step 0 moves from the initial pose
-  bool noise = true;              ///< odometry and measurement noise
+  bool noise = true;                   ///< odometry and measurement noise
   double detection_probability = 0.95;
-  double clutter_rate = 0.0;      ///< Poisson mean per scan, uniform in (r, phi) over the FOV
+  double clutter_rate = 0.0;  ///< Poisson mean per scan, uniform in (r, phi) over the FOV
   std::uint64_t seed = 1;
 };
 
