@@ -99,7 +99,10 @@ StepOutput RbPhdSlam::Step(const datasets::StepData& step) {
     const int t = PickComponent(proposal, uniforms[idx]);
     if (proposal.chol[t]) {
       const Pose x = proposal.mixture.means[t] + *proposal.chol[t] * normals[idx];
-      if (proposal.mixture.size() > 1) {
+      // log f - log q, exactly 0 when the proposal is the prior itself (the bootstrap case).
+      const bool is_prior = proposal.mixture.size() == 1 &&
+                            proposal.mixture.means[0] == mu0 && proposal.mixture.covs[0] == sigma0;
+      if (!is_prior) {
         const auto log_prior = LogNormalPdf<3>(x, mu0, sigma0);
         if (log_prior) p.log_weight += *log_prior - LogMixtureDensity(proposal, x);
       }
@@ -177,6 +180,13 @@ MapEstimate RbPhdSlam::Map() const {
     m.log_weights.push_back(c.log_weight);
   }
   return m;
+}
+
+std::vector<std::pair<Pose, double>> RbPhdSlam::ParticleStates() const {
+  std::vector<std::pair<Pose, double>> states;
+  states.reserve(particles_.size());
+  for (const PhdParticle& p : particles_) states.emplace_back(p.pose, p.log_weight);
+  return states;
 }
 
 }  // namespace phdslam::filters

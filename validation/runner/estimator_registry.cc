@@ -8,6 +8,7 @@
 #include "src/filters/odometry_estimator.h"
 #include "src/filters/phd_slam_family.h"
 #include "src/filters/phd_slam_params_json.h"
+#include "src/filters/sc_phd_slam.h"
 #include "validation/runner/parameter_overrides.h"
 
 namespace phdslam::validation {
@@ -115,11 +116,46 @@ EstimatorEntry OracleEntry() {
   return e;
 }
 
+filters::ScPhdSlamParams ResolveScPhdSlamParams(const EstimatorRequest& request) {
+  const std::string& scenario =
+      request.scenario != nullptr ? request.scenario->name : request.scenario_name;
+  filters::ScPhdSlamParams params = filters::ScPhdSlamParams::ForScenario(scenario);
+  try {
+    filters::ApplyJson(request.overrides, params);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument("estimator '" + request.name + "': " + e.what());
+  }
+  if (request.particles < 1) {
+    throw std::invalid_argument("estimator '" + request.name + "': --particles must be >= 1");
+  }
+  params.particles = request.particles;
+  return params;
+}
+
+EstimatorEntry ScPhdSlamEntry() {
+  EstimatorEntry e;
+  e.name = "scphd";
+  e.description =
+      "single-cluster PHD SLAM (Lee, Clark & Salvi 2012): N pose parents shotgun-sampled into M "
+      "children with GM-PHD maps, single-cluster likelihood weights, pruned to the N best; "
+      "expected a posteriori pose";
+  e.resolved_parameters = [](const EstimatorRequest& r) {
+    return filters::ToJson(ResolveScPhdSlamParams(r));
+  };
+  e.make_online = [](const EstimatorRequest& r) -> std::unique_ptr<filters::OnlineEstimator> {
+    return std::make_unique<filters::ScPhdSlam>(
+        filters::EstimatorContext::FromScenario(RequireScenario(r)), ResolveScPhdSlamParams(r),
+        r.stream_seed);
+  };
+  return e;
+}
+
 std::vector<EstimatorEntry> BuildTable() {
   std::vector<EstimatorEntry> table = {OdometryEntry()};
   for (const filters::PhdSlamVariant& v : filters::PhdSlamVariants()) {
     table.push_back(PhdSlamEntry(v));
   }
+  table.push_back(ScPhdSlamEntry());
   table.push_back(OracleEntry());
   return table;
 }
