@@ -4,9 +4,7 @@
 
 namespace phdslam::reference {
 
-std::string ToString(AssociationMethod m) {
-  return m == AssociationMethod::kJcbb ? "jcbb" : "nn";
-}
+std::string ToString(AssociationMethod m) { return m == AssociationMethod::kJcbb ? "jcbb" : "nn"; }
 
 std::string ToString(AssociationMetric m) {
   return m == AssociationMetric::kMatchingLikelihood ? "ml" : "mahalanobis";

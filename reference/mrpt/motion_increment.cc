@@ -24,8 +24,7 @@ PoseGaussian PropagateOverStep(const models::MotionModel& motion, const Mat2& co
     }
     const models::MotionJacobians j = motion.Jacobians(out.mean, step.controls[i], dt);
     out.mean = motion.Predict(out.mean, step.controls[i], dt);
-    out.cov = j.fx * out.cov * j.fx.transpose() +
-              j.fu * control_noise_cov * j.fu.transpose();
+    out.cov = j.fx * out.cov * j.fx.transpose() + j.fu * control_noise_cov * j.fu.transpose();
     Symmetrize(out.cov);
   }
   return out;

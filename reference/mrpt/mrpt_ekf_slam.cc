@@ -189,7 +189,7 @@ MrptEkfSlam::MrptEkfSlam(filters::EstimatorContext context, MrptEkfSlamOptions o
   o.std_sensor_yaw = static_cast<float>(std::sqrt(r(1, 1)));
   o.create_simplemap = false;
   o.data_assoc_method = options_.association == AssociationMethod::kJcbb ? mrpt::slam::assocJCBB
-                                                                          : mrpt::slam::assocNN;
+                                                                         : mrpt::slam::assocNN;
   o.data_assoc_metric = options_.metric == AssociationMetric::kMatchingLikelihood
                             ? mrpt::slam::metricML
                             : mrpt::slam::metricMaha;
@@ -239,6 +239,10 @@ filters::StepOutput MrptEkfSlam::Step(const datasets::StepData& step) {
   auto actions = MakeOdometryAction(increment);
   auto scan = MakeScan(step.measurements, context_.sensor);
   filter_->processActionObservation(actions, scan);
+  if (options_.symmetrize_covariance) {
+    auto pkk = filter_->internal_getPkk().asEigen();
+    pkk = (0.5 * (pkk + pkk.transpose())).eval();
+  }
 
   std::size_t n_landmarks = filter_->getNumberOfLandmarksInTheMap();
   association_counts_.resize(n_landmarks, 0);

@@ -7,8 +7,9 @@
 // odometry action (the motion model's increment over the step's sub-intervals, covariance
 // Fu Q_u Fu^T propagated and rotated into the robot frame) and a bearing-range observation, the
 // initial pose, the unwrapped heading of the output, the count of associations per landmark and
-// the post-processed map built from it, and two documented deviations from stock MRPT (see
-// MrptEkfSlamOptions::mrpt_kdtree_candidates and the note on Step()).
+// the post-processed map built from it, and documented deviations from stock MRPT, each an option
+// (MrptEkfSlamOptions: mrpt_kdtree_candidates, prune_after_steps, symmetrize_covariance; and the
+// note on Step()).
 #pragma once
 
 #include <memory>
@@ -46,6 +47,11 @@ struct MrptEkfSlamOptions {
   /// about a third of new clutter points get associated with old ones.
   int prune_after_steps = 0;
   int prune_min_associations = 2;
+  /// MRPT's kfEKFNaive update writes P <- (I - K H) P, which does not keep P symmetric; over
+  /// thousands of updates the asymmetry grows until P is indefinite and the filter explodes (seen
+  /// on the paper's scenario, seed 2, near step 3778). true (default): P <- (P + P^T) / 2 after
+  /// every step, a deviation from MRPT; false: stock MRPT.
+  bool symmetrize_covariance = true;
 
   /// Throws std::invalid_argument naming the field.
   void Validate() const;

@@ -2,11 +2,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <memory>
 #include <numbers>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "reference/mrpt/association_options.h"
@@ -38,6 +40,8 @@ TEST(MrptEkfSlam, TracksTheTruthWithoutClutter) {
     MrptEkfSlam ekf(filters::EstimatorContext::FromScenario(s));
     const double rmse = PositionRmse(s, RunOnline(ekf, s));
     const double dr = DeadReckoningRmse(s);
+    ::testing::Test::RecordProperty("rmse_seed" + std::to_string(seed), std::to_string(rmse));
+    ::testing::Test::RecordProperty("dr_rmse_seed" + std::to_string(seed), std::to_string(dr));
     EXPECT_LT(rmse, 0.3) << "seed " << seed;
     EXPECT_LT(rmse, 0.2 * dr) << "seed " << seed;
     const filters::MapEstimate map = ekf.PostProcessedMap();
@@ -94,6 +98,26 @@ TEST(MrptEkfSlam, TrackDeletionRemovesClutterFromTheState) {
   EXPECT_LT(CountFarFromTruth(raw, s, 1.0), 25);
   EXPECT_EQ(CountCoveredTruth(raw, s, 1.0), 20);
   EXPECT_EQ(CountFarFromTruth(ekf.PostProcessedMap(), s, 1.0), 0);
+}
+
+// MRPT's EKF update P <- (I - K H) P does not keep P symmetric; the default re-symmetrises it.
+TEST(MrptEkfSlam, KeepsThePoseCovarianceSymmetric) {
+  CircleScenarioOptions o;
+  o.steps = 60;
+  const datasets::Scenario s = MakeCircleScenario(o, 2);
+  MrptEkfSlamOptions stock;
+  stock.symmetrize_covariance = false;
+  MrptEkfSlam a(filters::EstimatorContext::FromScenario(s));
+  MrptEkfSlam b(filters::EstimatorContext::FromScenario(s), stock);
+  double worst_stock = 0.0;
+  for (const datasets::ScenarioStep& step : s.steps) {
+    const filters::StepOutput oa = a.Step(step.data);
+    const filters::StepOutput ob = b.Step(step.data);
+    ASSERT_EQ(*oa.pose_cov, oa.pose_cov->transpose());
+    worst_stock =
+        std::max(worst_stock, (*ob.pose_cov - ob.pose_cov->transpose()).cwiseAbs().maxCoeff());
+  }
+  EXPECT_GT(worst_stock, 0.0);
 }
 
 filters::EstimatorContext StaticContext() {

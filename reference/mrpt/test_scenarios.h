@@ -105,7 +105,8 @@ inline datasets::Scenario MakeCircleScenario(const CircleScenarioOptions& o, std
 inline std::vector<Pose> RunOnline(filters::OnlineEstimator& estimator,
                                    const datasets::Scenario& s) {
   std::vector<Pose> poses;
-  for (const datasets::ScenarioStep& step : s.steps) poses.push_back(estimator.Step(step.data).pose);
+  for (const datasets::ScenarioStep& step : s.steps)
+    poses.push_back(estimator.Step(step.data).pose);
   return poses;
 }
 
