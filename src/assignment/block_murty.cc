@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <stdexcept>
 
@@ -25,14 +26,24 @@ std::vector<Assignment> BlockMurtyKBest(const Eigen::MatrixXd& cost, int k, doub
   const int cols = static_cast<int>(cost.cols());
   if (k <= 0 || rows == 0) return MurtyKBest(cost, k, max_cost_gap);
   if (rows > cols) throw std::invalid_argument("BlockMurtyKBest: more rows than columns");
+  if (std::isnan(max_cost_gap)) throw std::invalid_argument("BlockMurtyKBest: NaN cost gap");
 
-  // Rows that share a finite column belong to one block.
+  // The finite columns of every row (one flat list), and rows that share one joined in a block.
+  std::vector<int> row_start(rows + 1, 0);
+  std::vector<int> finite_cols;
+  finite_cols.reserve(static_cast<std::size_t>(rows) * 4);
   std::vector<int> parent(rows);
   std::iota(parent.begin(), parent.end(), 0);
   std::vector<int> first_row_of_col(cols, -1);
   for (int r = 0; r < rows; ++r) {
+    row_start[r] = static_cast<int>(finite_cols.size());
     for (int c = 0; c < cols; ++c) {
-      if (!std::isfinite(cost(r, c))) continue;
+      const double v = cost(r, c);
+      if (std::isnan(v) || v == -std::numeric_limits<double>::infinity()) {
+        throw std::invalid_argument("BlockMurtyKBest: cost entry is NaN or -inf");
+      }
+      if (!std::isfinite(v)) continue;
+      finite_cols.push_back(c);
       if (first_row_of_col[c] < 0) {
         first_row_of_col[c] = r;
       } else {
@@ -40,19 +51,12 @@ std::vector<Assignment> BlockMurtyKBest(const Eigen::MatrixXd& cost, int k, doub
       }
     }
   }
-  std::vector<std::vector<int>> block_rows;
-  std::vector<int> block_of_root(rows, -1);
-  for (int r = 0; r < rows; ++r) {
-    const int root = Find(parent, r);
-    if (block_of_root[root] < 0) {
-      block_of_root[root] = static_cast<int>(block_rows.size());
-      block_rows.emplace_back();
-    }
-    block_rows[block_of_root[root]].push_back(r);
-  }
-  if (block_rows.size() == 1) return MurtyKBest(cost, k, max_cost_gap);
+  row_start[rows] = static_cast<int>(finite_cols.size());
+  std::vector<int> block_size(rows, 0);
+  for (int r = 0; r < rows; ++r) ++block_size[Find(parent, r)];
+  if (block_size[Find(parent, 0)] == rows) return MurtyKBest(cost, k, max_cost_gap);
 
-  // Each block's ranked list; blocks with one option are fixed into `base`, the others are
+  // Blocks with one option within the gap are fixed into `base`; the others are ranked and
   // combined by index, partial lists cut to k entries within the gap.
   Assignment base{std::vector<int>(rows, -1), 0.0};
   struct MultiBlock {
@@ -61,49 +65,74 @@ std::vector<Assignment> BlockMurtyKBest(const Eigen::MatrixXd& cost, int k, doub
     std::vector<Assignment> ranked;
   };
   std::vector<MultiBlock> multi;
-  std::vector<int> bc;
-  for (const std::vector<int>& br : block_rows) {
-    bc.clear();
-    for (int c = 0; c < cols; ++c) {
-      for (int r : br) {
-        if (std::isfinite(cost(r, c))) {
-          bc.push_back(c);
-          break;
-        }
-      }
-    }
-    const int nr = static_cast<int>(br.size());
-    const int nc = static_cast<int>(bc.size());
-    if (nc < nr) return {};  // this block has no feasible assignment
-    std::vector<Assignment> ranked;
-    if (nr == 1) {
+  std::vector<char> done(rows, 0);
+  for (int r0 = 0; r0 < rows; ++r0) {
+    if (done[r0]) continue;
+    const int root = Find(parent, r0);
+    if (block_size[root] == 1) {
       // A single row: its k best assignments are its finite entries in cost order.
-      ranked.reserve(nc);
-      for (int b = 0; b < nc; ++b) {
-        Assignment a{{b}, cost(br[0], bc[b])};
-        auto pos = ranked.end();
-        while (pos != ranked.begin() && (pos - 1)->cost > a.cost) --pos;
-        ranked.insert(pos, std::move(a));
+      done[r0] = 1;
+      const int b0 = row_start[r0];
+      const int b1 = row_start[r0 + 1];
+      if (b0 == b1) return {};  // no feasible assignment
+      int best = finite_cols[b0];
+      for (int b = b0 + 1; b < b1; ++b) {
+        if (cost(r0, finite_cols[b]) < cost(r0, best)) best = finite_cols[b];
       }
-      while (!ranked.empty() && (static_cast<int>(ranked.size()) > k ||
-                                 ranked.back().cost - ranked.front().cost > max_cost_gap)) {
-        ranked.pop_back();
+      const double best_cost = cost(r0, best);
+      int within = 0;
+      for (int b = b0; b < b1; ++b) {
+        if (cost(r0, finite_cols[b]) - best_cost <= max_cost_gap) ++within;
       }
-    } else {
-      Eigen::MatrixXd sub(nr, nc);
-      for (int a = 0; a < nr; ++a) {
-        for (int b = 0; b < nc; ++b) sub(a, b) = cost(br[a], bc[b]);
+      if (within == 1 || k == 1) {
+        base.row_to_col[r0] = best;
+        base.cost += best_cost;
+        continue;
       }
-      ranked = MurtyKBest(sub, k, max_cost_gap);
+      MultiBlock mb;
+      mb.rows = {r0};
+      for (int b = b0; b < b1; ++b) {
+        const int c = finite_cols[b];
+        if (cost(r0, c) - best_cost > max_cost_gap) continue;
+        mb.cols.push_back(c);
+        mb.ranked.push_back({{static_cast<int>(mb.cols.size()) - 1}, cost(r0, c)});
+      }
+      std::stable_sort(mb.ranked.begin(), mb.ranked.end(),
+                       [](const Assignment& x, const Assignment& y) { return x.cost < y.cost; });
+      if (static_cast<int>(mb.ranked.size()) > k) mb.ranked.resize(k);
+      multi.push_back(std::move(mb));
+      continue;
     }
-    if (ranked.empty()) return {};
-    if (ranked.size() == 1) {
-      base.cost += ranked[0].cost;
-      for (int i = 0; i < nr; ++i) base.row_to_col[br[i]] = bc[ranked[0].row_to_col[i]];
+    // A block of several rows: rank it with Murty on its own columns.
+    MultiBlock mb;
+    for (int r = r0; r < rows; ++r) {
+      if (!done[r] && Find(parent, r) == root) {
+        mb.rows.push_back(r);
+        done[r] = 1;
+      }
+    }
+    for (int c = 0; c < cols; ++c) {
+      if (first_row_of_col[c] >= 0 && Find(parent, first_row_of_col[c]) == root) {
+        mb.cols.push_back(c);
+      }
+    }
+    const int nr = static_cast<int>(mb.rows.size());
+    const int nc = static_cast<int>(mb.cols.size());
+    if (nc < nr) return {};
+    Eigen::MatrixXd sub(nr, nc);
+    for (int a = 0; a < nr; ++a) {
+      for (int b = 0; b < nc; ++b) sub(a, b) = cost(mb.rows[a], mb.cols[b]);
+    }
+    mb.ranked = MurtyKBest(sub, k, max_cost_gap);
+    if (mb.ranked.empty()) return {};
+    if (mb.ranked.size() == 1) {
+      base.cost += mb.ranked[0].cost;
+      for (int i = 0; i < nr; ++i) base.row_to_col[mb.rows[i]] = mb.cols[mb.ranked[0].row_to_col[i]];
     } else {
-      multi.push_back({br, bc, std::move(ranked)});
+      multi.push_back(std::move(mb));
     }
   }
+  if (multi.empty()) return {base};
 
   // Partial combinations: cost and the chosen entry of each multi block so far.
   struct Partial {

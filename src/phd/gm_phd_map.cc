@@ -61,44 +61,51 @@ PhdUpdateResult GmPhdMap::Update(const Pose& pose, std::span<const Measurement> 
                          std::log(pd) + c.log_weight - log_two_pi - 0.5 * std::log(s.determinant())});
   }
 
-  // Gated detection terms l_ij, stored per measurement.
+  // Gated detection terms l_ij, grouped by measurement (one flat list with offsets).
   struct Detection {
     int component;  // index into `predicted`
     double log_gain;
     Vec2 innovation;
   };
-  std::vector<std::vector<Detection>> detections(num_z);
+  std::vector<Detection> detections;
+  std::vector<int> first(num_z + 1, 0);
+  detections.reserve(predicted.size() * 2);
   for (int j = 0; j < num_z; ++j) {
+    first[j] = static_cast<int>(detections.size());
     for (int p = 0; p < static_cast<int>(predicted.size()); ++p) {
       const Predicted& pc = predicted[p];
       Vec2 nu = measurements[j] - pc.z_hat;
       nu(1) = WrapAngle(nu(1));
       const double d2 = nu.dot(pc.s_inv * nu);
       if (d2 < params.gate_threshold) {
-        detections[j].push_back({p, pc.log_norm - 0.5 * d2, nu});
+        detections.push_back({p, pc.log_norm - 0.5 * d2, nu});
       }
     }
   }
+  first[num_z] = static_cast<int>(detections.size());
 
-  // Misdetected copies of the existing components (pD = 0 components unchanged).
-  std::vector<GaussianComponent> updated = active_;
+  // Misdetected copies of the existing components (pD = 0 components unchanged), then the
+  // detected components, ordered by measurement and then by component.
+  const std::size_t old_size = active_.size();
+  active_.reserve(old_size + detections.size());
   for (const Predicted& pc : predicted) {
-    updated[pc.index].log_weight += std::log1p(-pc.pd);
+    active_[pc.index].log_weight += std::log1p(-pc.pd);
   }
-  // Detected components, ordered by measurement and then by component.
   for (int j = 0; j < num_z; ++j) {
-    if (detections[j].empty()) {
+    if (first[j] == first[j + 1]) {
       result.log_likelihood += log_clutter;
       result.ungated.push_back(j);
       continue;
     }
     double c_j = log_clutter;
-    for (const Detection& d : detections[j]) c_j = LogAddExp(c_j, d.log_gain);
+    for (int d = first[j]; d < first[j + 1]; ++d) c_j = LogAddExp(c_j, detections[d].log_gain);
     result.log_likelihood += c_j;
-    for (const Detection& d : detections[j]) {
-      const Predicted& pc = predicted[d.component];
-      const GaussianComponent& prior = active_[pc.index];
-      updated.push_back({prior.mean + pc.gain * d.innovation, pc.cov_post, d.log_gain - c_j});
+    for (int d = first[j]; d < first[j + 1]; ++d) {
+      const Predicted& pc = predicted[detections[d].component];
+      // The prior mean: the misdetected copy at pc.index kept it, only its weight changed.
+      const Landmark prior_mean = active_[pc.index].mean;
+      active_.push_back(
+          {prior_mean + pc.gain * detections[d].innovation, pc.cov_post, detections[d].log_gain - c_j});
     }
   }
   if (!params.reference_omit_missed_detection_mass) result.log_likelihood -= missed_mass;
@@ -106,7 +113,6 @@ PhdUpdateResult GmPhdMap::Update(const Pose& pose, std::span<const Measurement> 
     result.ungated.resize(num_z);
     for (int j = 0; j < num_z; ++j) result.ungated[j] = j;
   }
-  active_ = std::move(updated);
   return result;
 }
 
@@ -185,28 +191,30 @@ void GmPhdMap::Reduce(const Pose& pose, const models::SensorModel& sensor,
   std::vector<GaussianComponent> merged = PruneAndMerge(std::move(active_), params);
   // 5. Active/passive split at the sampled pose with the enlarged FOV; 6. resulting order.
   const models::FovView fov(sensor, pose);
-  std::vector<GaussianComponent> next_active;
   std::vector<GaussianComponent> leaving;
-  next_active.reserve(merged.size());
-  for (GaussianComponent& c : merged) {
-    if (fov.InEnlargedFov(c.mean)) {
-      next_active.push_back(std::move(c));
-    } else if (c.log_weight > params.prune_log_weight) {
-      leaving.push_back(std::move(c));
+  std::size_t kept_active = 0;
+  for (std::size_t i = 0; i < merged.size(); ++i) {
+    if (fov.InEnlargedFov(merged[i].mean)) {
+      if (kept_active != i) merged[kept_active] = std::move(merged[i]);
+      ++kept_active;
+    } else if (merged[i].log_weight > params.prune_log_weight) {
+      leaving.push_back(std::move(merged[i]));
     }
   }
-  std::vector<GaussianComponent> next_passive;
-  next_passive.reserve(passive_.size() + leaving.size());
-  for (GaussianComponent& c : passive_) {
-    if (fov.InEnlargedFov(c.mean)) {
-      next_active.push_back(std::move(c));
+  merged.resize(kept_active);
+  // Passive components re-entering the enlarged FOV move back; the rest keep their order.
+  std::size_t kept_passive = 0;
+  for (std::size_t i = 0; i < passive_.size(); ++i) {
+    if (fov.InEnlargedFov(passive_[i].mean)) {
+      merged.push_back(std::move(passive_[i]));
     } else {
-      next_passive.push_back(std::move(c));
+      if (kept_passive != i) passive_[kept_passive] = std::move(passive_[i]);
+      ++kept_passive;
     }
   }
-  for (GaussianComponent& c : leaving) next_passive.push_back(std::move(c));
-  active_ = std::move(next_active);
-  passive_ = std::move(next_passive);
+  passive_.resize(kept_passive);
+  for (GaussianComponent& c : leaving) passive_.push_back(std::move(c));
+  active_ = std::move(merged);
 }
 
 std::vector<GaussianComponent> GmPhdMap::Estimate(double log_weight_threshold) const {
