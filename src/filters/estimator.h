@@ -4,6 +4,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "datasets/scenario.h"
@@ -56,6 +57,9 @@ class OnlineEstimator {
   virtual StepOutput Step(const datasets::StepData& step) = 0;
   /// The current map estimate.
   [[nodiscard]] virtual MapEstimate Map() const = 0;
+  /// Pose and log-weight of every particle after the last step, for particle filters that
+  /// expose them (particle traces); empty otherwise.
+  [[nodiscard]] virtual std::vector<std::pair<Pose, double>> ParticleStates() const { return {}; }
 };
 
 }  // namespace phdslam::filters

@@ -30,6 +30,7 @@ class RbPhdSlam final : public OnlineEstimator {
 
   StepOutput Step(const datasets::StepData& step) override;
   [[nodiscard]] MapEstimate Map() const override;
+  [[nodiscard]] std::vector<std::pair<Pose, double>> ParticleStates() const override;
 
   [[nodiscard]] const std::vector<PhdParticle>& particles() const { return particles_; }
   /// Index (before resampling) of the particle the last estimate came from.
