@@ -79,4 +79,51 @@ std::string ReadTextFile(const std::filesystem::path& path) {
   return content.str();
 }
 
+std::optional<std::size_t> CsvTable::FindColumn(std::string_view name) const {
+  for (std::size_t i = 0; i < header.size(); ++i) {
+    if (header[i] == name) return i;
+  }
+  return std::nullopt;
+}
+
+CsvTable ParseCsv(std::string_view text, const std::string& source) {
+  CsvTable table;
+  std::size_t line_number = 0;
+  std::size_t start = 0;
+  while (start < text.size()) {
+    std::size_t end = text.find('\n', start);
+    if (end == std::string_view::npos) end = text.size();
+    std::string_view line = text.substr(start, end - start);
+    start = end + 1;
+    ++line_number;
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    if (line.empty() && line_number > 1) continue;
+    std::vector<std::string> cells;
+    std::size_t cell_start = 0;
+    while (true) {
+      const std::size_t comma = line.find(',', cell_start);
+      cells.emplace_back(line.substr(cell_start, comma - cell_start));
+      if (comma == std::string_view::npos) break;
+      cell_start = comma + 1;
+    }
+    if (line_number == 1) {
+      table.header = std::move(cells);
+    } else if (cells.size() != table.header.size()) {
+      throw std::runtime_error(source + ":" + std::to_string(line_number) + ": " +
+                               std::to_string(cells.size()) + " cells, the header has " +
+                               std::to_string(table.header.size()));
+    } else {
+      table.rows.push_back(std::move(cells));
+    }
+  }
+  if (table.header.empty() || (table.header.size() == 1 && table.header[0].empty())) {
+    throw std::runtime_error(source + ": no header line");
+  }
+  return table;
+}
+
+CsvTable ReadCsvFile(const std::filesystem::path& path) {
+  return ParseCsv(ReadTextFile(path), path.string());
+}
+
 }  // namespace phdslam::validation

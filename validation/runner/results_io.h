@@ -37,4 +37,20 @@ void WriteFileAtomically(const std::filesystem::path& path,
 /// The whole content of a text file; throws std::runtime_error naming the file.
 std::string ReadTextFile(const std::filesystem::path& path);
 
+/// A CSV file as written by CsvRow: a header line and rows of plain cells.
+struct CsvTable {
+  std::vector<std::string> header;
+  std::vector<std::vector<std::string>> rows;
+
+  /// Index of the header cell `name`, or nullopt.
+  [[nodiscard]] std::optional<std::size_t> FindColumn(std::string_view name) const;
+};
+
+/// Parses CsvRow text (no quoting). Throws std::runtime_error naming `source` and the line when
+/// the text has no header or a row has another number of cells than the header.
+CsvTable ParseCsv(std::string_view text, const std::string& source);
+
+/// ParseCsv of a file's content.
+CsvTable ReadCsvFile(const std::filesystem::path& path);
+
 }  // namespace phdslam::validation

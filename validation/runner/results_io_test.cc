@@ -58,5 +58,26 @@ TEST(WriteFileAtomically, ReportsAMissingFolder) {
   EXPECT_THROW(ReadTextFile(dir / "missing.txt"), std::runtime_error);
 }
 
+TEST(ParseCsv, ReadsHeaderAndRowsAndFindsColumns) {
+  const CsvTable t = ParseCsv("a,b,c\n1,,3\r\n4,5,6\n\n", "t.csv");
+  EXPECT_EQ(t.header, std::vector<std::string>({"a", "b", "c"}));
+  ASSERT_EQ(t.rows.size(), 2u);
+  EXPECT_EQ(t.rows[0], std::vector<std::string>({"1", "", "3"}));
+  EXPECT_EQ(t.rows[1][2], "6");
+  EXPECT_EQ(t.FindColumn("c"), 2u);
+  EXPECT_FALSE(t.FindColumn("d").has_value());
+  EXPECT_EQ(ParseCsv("x\n", "t").rows.size(), 0u);
+}
+
+TEST(ParseCsv, RejectsRaggedRowsAndEmptyText) {
+  try {
+    ParseCsv("a,b\n1,2\n3\n", "t.csv");
+    FAIL() << "no exception";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("t.csv:3:"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(ParseCsv("", "t.csv"), std::runtime_error);
+}
+
 }  // namespace
 }  // namespace phdslam::validation

@@ -11,6 +11,7 @@ inline constexpr const char* kRunsFolder = "runs";
 inline constexpr const char* kStepsFile = "steps.csv";
 inline constexpr const char* kTrajectoryFile = "trajectory.tum";
 inline constexpr const char* kMapFile = "map.csv";
+inline constexpr const char* kParticlesFile = "particles.csv";  ///< only with --particles-trace
 inline constexpr const char* kMetricsFile = "metrics.json";  ///< written last: marks a finished run
 inline constexpr const char* kErrorFile = "error.json";      ///< a failed run's error
 inline constexpr const char* kSummaryFile = "summary.csv";
@@ -20,6 +21,9 @@ inline constexpr const char* kTimingFile = "timing.json";
 inline constexpr const char* kTruthMapFile = "truth_map.csv";
 inline constexpr const char* kTruthFolder = "truth";
 inline constexpr const char* kTruthTrajectoryFile = "truth.tum";
+inline constexpr const char* kSweepTableFile = "sweep.csv";  ///< at the root of a sweep
+inline constexpr const char* kSweepFile = "sweep.json";      ///< at the root of a sweep
+inline constexpr const char* kComparisonFile = "comparison.csv";
 
 /// <estimator>-N<particles>
 inline std::string GroupFolderName(const std::string& estimator, int particles) {

@@ -1,5 +1,6 @@
 #include "validation/runner/run_estimator.h"
 
+#include <algorithm>
 #include <chrono>
 #include <stdexcept>
 
@@ -14,7 +15,8 @@ double MillisecondsSince(Clock::time_point start) {
 
 void RunOnline(const EstimatorEntry& entry, const EstimatorRequest& request,
                const datasets::Scenario& scenario,
-               const std::function<void(std::size_t)>& on_steps_done, RunRecord& record) {
+               const std::function<void(std::size_t)>& on_steps_done, bool record_particles,
+               RunRecord& record) {
   if (!entry.make_online) {
     throw std::logic_error("estimator '" + entry.name + "' has no online factory");
   }
@@ -33,8 +35,13 @@ void RunOnline(const EstimatorEntry& entry, const EstimatorRequest& request,
     record.diagnostics.push_back(out.diag);
     record.step_ms.push_back(ms);
     record.total_ms += ms;
+    if (record_particles) record.particle_states.push_back(estimator->ParticleStates());
     if (on_steps_done) on_steps_done(1);
   }
+  const bool exposes_particles =
+      std::any_of(record.particle_states.begin(), record.particle_states.end(),
+                  [](const auto& states) { return !states.empty(); });
+  if (!exposes_particles) record.particle_states.clear();
   record.final_map = estimator->Map();
 }
 
@@ -70,7 +77,8 @@ void RunBatch(const EstimatorEntry& entry, const EstimatorRequest& request,
 
 RunRecord RunEstimator(const EstimatorEntry& entry, const EstimatorRequest& request,
                        const datasets::Scenario& scenario,
-                       const std::function<void(std::size_t)>& on_steps_done) {
+                       const std::function<void(std::size_t)>& on_steps_done,
+                       bool record_particles) {
   RunRecord record;
   record.estimator = entry.name;
   record.particles = request.particles;
@@ -87,7 +95,7 @@ RunRecord RunEstimator(const EstimatorEntry& entry, const EstimatorRequest& requ
   if (entry.batch) {
     RunBatch(entry, request, scenario, on_steps_done, record);
   } else {
-    RunOnline(entry, request, scenario, on_steps_done, record);
+    RunOnline(entry, request, scenario, on_steps_done, record_particles, record);
   }
   return record;
 }

@@ -15,9 +15,12 @@ namespace phdslam::validation {
 /// measured around each Step call only; a batch estimator solves the whole scenario once. Throws
 /// whatever the estimator throws, and std::runtime_error when a batch result has the wrong
 /// number of poses. `on_steps_done(n)`, when set, is called after every online step with n = 1
-/// and once after a batch solve with n = the number of steps (progress reporting).
+/// and once after a batch solve with n = the number of steps (progress reporting). With
+/// `record_particles`, an online estimator's ParticleStates() are kept after every step (outside
+/// the timed Step call); the record keeps none when the estimator exposes none.
 RunRecord RunEstimator(const EstimatorEntry& entry, const EstimatorRequest& request,
                        const datasets::Scenario& scenario,
-                       const std::function<void(std::size_t)>& on_steps_done = {});
+                       const std::function<void(std::size_t)>& on_steps_done = {},
+                       bool record_particles = false);
 
 }  // namespace phdslam::validation

@@ -7,6 +7,7 @@
 
 #include "datasets/map_io.h"
 #include "datasets/trajectory_io.h"
+#include "src/core/log_sum_exp.h"
 #include "validation/runner/results_io.h"
 #include "validation/runner/results_layout.h"
 
@@ -40,11 +41,11 @@ std::string StepsCsv(const RunRecord& record, const datasets::Scenario& scenario
                      const RunEvaluation& evaluation) {
   std::string text =
       CsvRow({"step", "t", "x", "y", "theta", "x_true", "y_true", "theta_true", "pos_err_m",
-              "heading_err_deg", "ess", "resampled", "hypotheses", "map_components", "ms"});
+              "heading_err_deg", "ess", "resampled", "hypotheses", "map_components", "ms", "nees"});
   const bool has_truth = scenario.truth.poses.size() == record.poses.size();
   const bool has_diag = record.diagnostics.size() == record.poses.size();
   const bool has_ms = record.step_ms.size() == record.poses.size();
-  std::vector<std::string> cells(15);
+  std::vector<std::string> cells(16);
   for (std::size_t k = 0; k < record.poses.size(); ++k) {
     const Pose& p = record.poses[k];
     cells[0] = FormatInteger(static_cast<std::int64_t>(k));
@@ -71,7 +72,27 @@ std::string StepsCsv(const RunRecord& record, const datasets::Scenario& scenario
       for (std::size_t c = 10; c < 14; ++c) cells[c].clear();
     }
     cells[14] = has_ms ? FormatNumber(record.step_ms[k]) : std::string();
+    cells[15] =
+        k < evaluation.pose_nees.size() ? FormatNumber(evaluation.pose_nees[k]) : std::string();
     text += CsvRow(cells);
+  }
+  return text;
+}
+
+std::string ParticlesCsv(const RunRecord& record) {
+  if (record.particle_states.empty()) return "";
+  std::string text = CsvRow({"step", "particle", "x", "y", "log_weight"});
+  std::vector<double> log_weights;
+  for (std::size_t k = 0; k < record.particle_states.size(); ++k) {
+    const auto& states = record.particle_states[k];
+    log_weights.clear();
+    for (const auto& [pose, log_weight] : states) log_weights.push_back(log_weight);
+    const double log_total = LogSumExp(log_weights);
+    for (std::size_t i = 0; i < states.size(); ++i) {
+      text += CsvRow({FormatInteger(static_cast<std::int64_t>(k)),
+                      FormatInteger(static_cast<std::int64_t>(i)), FormatNumber(states[i].first(0)),
+                      FormatNumber(states[i].first(1)), FormatNumber(log_weights[i] - log_total)});
+    }
   }
   return text;
 }
@@ -88,6 +109,11 @@ void WriteRunFiles(const std::filesystem::path& folder, const RunRecord& record,
     datasets::WriteMapCsv(temp, MapPoints(record.final_map));
   });
   std::error_code ignored;
+  if (record.particle_states.empty()) {
+    std::filesystem::remove(folder / kParticlesFile, ignored);
+  } else {
+    WriteFileAtomically(folder / kParticlesFile, ParticlesCsv(record));
+  }
   std::filesystem::remove(folder / kErrorFile, ignored);
   nlohmann::json metrics = identity;
   metrics.update(ToJson(evaluation.metrics));

@@ -16,11 +16,17 @@ namespace phdslam::validation {
 
 /// The steps.csv text: header
 /// step,t,x,y,theta,x_true,y_true,theta_true,pos_err_m,heading_err_deg,ess,resampled,hypotheses,
-/// map_components,ms and one row per step (cells empty where a value is unknown).
+/// map_components,ms,nees and one row per step (cells empty where a value is unknown).
 std::string StepsCsv(const RunRecord& record, const datasets::Scenario& scenario,
                      const RunEvaluation& evaluation);
 
-/// Writes steps.csv, trajectory.tum, map.csv and, last, metrics.json = `identity` (estimator,
+/// The particles.csv text: header step,particle,x,y,log_weight and one row per particle per
+/// step of record.particle_states; log_weight is normalised per step (log-sum-exp over the
+/// step's particles is 0). Empty when the record has no particle states.
+std::string ParticlesCsv(const RunRecord& record);
+
+/// Writes steps.csv, trajectory.tum, map.csv, particles.csv (when the record has particle
+/// states; a stale one is removed otherwise) and, last, metrics.json = `identity` (estimator,
 /// particles, seed, ...) merged with ToJson(evaluation.metrics) into `folder` (created if
 /// needed), and removes a stale error.json. Throws std::runtime_error naming the file on failure.
 void WriteRunFiles(const std::filesystem::path& folder, const RunRecord& record,

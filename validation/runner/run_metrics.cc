@@ -33,7 +33,8 @@ void EvaluateTrajectory(const RunRecord& record, const datasets::Scenario& scena
     for (std::size_t k = 0; k < n && k < record.pose_covs.size(); ++k) {
       if (!record.pose_covs[k] || !CholeskyLower<3>(*record.pose_covs[k])) continue;
       try {
-        ev.metrics.pose_nees.Add(PoseNees(truth.poses[k], record.poses[k], *record.pose_covs[k]));
+        ev.pose_nees[k] = PoseNees(truth.poses[k], record.poses[k], *record.pose_covs[k]);
+        ev.metrics.pose_nees.Add(ev.pose_nees[k]);
       } catch (const std::invalid_argument&) {
         // Not symmetric positive definite by PoseNees' test: this step has no NEES.
       }
@@ -112,6 +113,7 @@ RunEvaluation EvaluateRun(const RunRecord& record, const datasets::Scenario& sce
   ev.metrics.steps = n;
   ev.position_error_m.assign(n, kNaN);
   ev.heading_error_deg.assign(n, kNaN);
+  ev.pose_nees.assign(n, kNaN);
   EvaluateTrajectory(record, scenario, settings, ev);
   EvaluateMap(record, scenario, settings, ev.metrics);
   EvaluateDiagnostics(record, ev.metrics);

@@ -61,6 +61,10 @@ struct RunEvaluation {
   RunMetrics metrics;
   std::vector<double> position_error_m;   ///< per step; NaN where unknown
   std::vector<double> heading_error_deg;  ///< per step; NaN where unknown
+  /// Per step: pose NEES (e' P^-1 e, e = truth - estimate with the unwrapped heading
+  /// difference); NaN without true poses, without a covariance, or when the covariance is not
+  /// positive definite (zero or singular, e.g. at the first step of a particle filter).
+  std::vector<double> pose_nees;
 };
 
 /// Evaluates a run against its scenario's truth. Throws std::invalid_argument when the record

@@ -7,7 +7,9 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "validation/runner/results_io.h"
 #include "validation/runner/run_estimator.h"
+#include "validation/runner/run_files.h"
 
 namespace phdslam::validation {
 namespace {
@@ -94,6 +96,11 @@ TEST(EvaluateRun, ComputesEveryMetricAsByHand) {
   // Pose NEES only where the covariance is positive definite (step 1): 9 + 16 + 0.01.
   EXPECT_EQ(m.pose_nees.count, 1u);
   EXPECT_NEAR(*m.pose_nees.Mean(), 25.01, 1e-12);
+  // Per step: none without a covariance (step 0) or with a zero one (step 2).
+  ASSERT_EQ(ev.pose_nees.size(), 3u);
+  EXPECT_TRUE(std::isnan(ev.pose_nees[0]));
+  EXPECT_NEAR(ev.pose_nees[1], 25.01, 1e-12);
+  EXPECT_TRUE(std::isnan(ev.pose_nees[2]));
   EXPECT_DOUBLE_EQ(*m.step_ms.Mean(), 2.0);
   EXPECT_DOUBLE_EQ(m.total_ms, 6.0);
   EXPECT_FALSE(m.gps_matched_steps);
@@ -188,6 +195,68 @@ TEST(RunEstimator, RecordsBatchResultsAndChecksTheirLength) {
   EXPECT_EQ(ev.metrics.step_ms.count, 0u);
   poses = 2;
   EXPECT_THROW(RunEstimator(entry, request, s), std::runtime_error);
+}
+
+TEST(StepsCsv, HasANeesColumnEmptyWhereThereIsNone) {
+  const datasets::Scenario s = TruthScenario();
+  const RunRecord r = HandRecord();
+  const std::string csv = StepsCsv(r, s, EvaluateRun(r, s));
+  const CsvTable table = ParseCsv(csv, "steps.csv");
+  ASSERT_EQ(table.header.back(), "nees");
+  ASSERT_EQ(table.rows.size(), 3u);
+  EXPECT_EQ(table.rows[0].back(), "");
+  EXPECT_EQ(table.rows[1].back(), "25.01");
+  EXPECT_EQ(table.rows[2].back(), "");
+}
+
+TEST(ParticlesCsv, NormalisesTheLogWeightsOfEachStep) {
+  RunRecord r;
+  EXPECT_EQ(ParticlesCsv(r), "");
+  r.particle_states = {{{Pose(1.0, 2.0, 0.0), std::log(3.0)}, {Pose(3.0, 4.0, 0.0), std::log(1.0)}},
+                       {{Pose(5.0, 6.0, 0.0), -1000.0}}};
+  EXPECT_EQ(ParticlesCsv(r),
+            "step,particle,x,y,log_weight\n"
+            "0,0,1,2," +
+                FormatNumber(std::log(0.75)) +
+                "\n"
+                "0,1,3,4," +
+                FormatNumber(std::log(0.25)) +
+                "\n"
+                "1,0,5,6,0\n");
+}
+
+// An online estimator with two particles whose poses are the step count and its negative.
+class TwoParticles final : public filters::OnlineEstimator {
+ public:
+  filters::StepOutput Step(const datasets::StepData&) override {
+    ++steps_;
+    return {};
+  }
+  [[nodiscard]] filters::MapEstimate Map() const override { return {}; }
+  [[nodiscard]] std::vector<std::pair<Pose, double>> ParticleStates() const override {
+    return {{Pose(steps_, 0.0, 0.0), 0.0}, {Pose(-steps_, 0.0, 0.0), -1.0}};
+  }
+
+ private:
+  int steps_ = 0;
+};
+
+TEST(RunEstimator, RecordsParticlesOnlyWhenAsked) {
+  const datasets::Scenario s = TruthScenario();
+  EstimatorEntry entry;
+  entry.name = "two";
+  entry.make_online = [](const EstimatorRequest&) { return std::make_unique<TwoParticles>(); };
+  const EstimatorRequest request{"two", 2, 0, &s, {}};
+  EXPECT_TRUE(RunEstimator(entry, request, s).particle_states.empty());
+  const RunRecord r = RunEstimator(entry, request, s, {}, true);
+  ASSERT_EQ(r.particle_states.size(), 3u);
+  ASSERT_EQ(r.particle_states[2].size(), 2u);
+  EXPECT_EQ(r.particle_states[2][1].first(0), -3.0);
+  EXPECT_EQ(r.particle_states[2][1].second, -1.0);
+  // An estimator without particles records none.
+  EXPECT_TRUE(RunEstimator(FindEstimator("odometry"), EstimatorRequest{"odometry", 1, 0, &s, {}}, s,
+                           {}, true)
+                  .particle_states.empty());
 }
 
 TEST(RunEstimator, StepsAnOnlineEstimatorAndTimesEachStep) {

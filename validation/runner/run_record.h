@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "src/core/types.h"
@@ -30,6 +31,9 @@ struct RunRecord {
   double total_ms = 0.0;
   /// The map estimate after the last step.
   filters::MapEstimate final_map;
+  /// Per step, when particles were recorded and the estimator exposes them: (pose, log-weight)
+  /// of every particle after the step (OnlineEstimator::ParticleStates). Otherwise empty.
+  std::vector<std::vector<std::pair<Pose, double>>> particle_states;
 };
 
 }  // namespace phdslam::validation

@@ -3,13 +3,16 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <functional>
+#include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <tuple>
 #include <utility>
 
+#include "validation/metrics/nees.h"
 #include "validation/runner/results_io.h"
 #include "validation/runner/results_layout.h"
 
@@ -38,6 +41,32 @@ void ReadIdentity(const nlohmann::json& j, const std::filesystem::path& path, T&
                              "are required: " +
                              e.what());
   }
+}
+
+// The `nees` column of a steps.csv (NaN for empty cells); empty when the file or the column is
+// missing (results written before the column existed).
+std::vector<double> ReadStepNees(const std::filesystem::path& path) {
+  if (!std::filesystem::exists(path)) return {};
+  const CsvTable table = ReadCsvFile(path);
+  const std::optional<std::size_t> column = table.FindColumn("nees");
+  if (!column) return {};
+  std::vector<double> nees;
+  nees.reserve(table.rows.size());
+  for (std::size_t i = 0; i < table.rows.size(); ++i) {
+    const std::string& cell = table.rows[i][*column];
+    if (cell.empty()) {
+      nees.push_back(std::numeric_limits<double>::quiet_NaN());
+      continue;
+    }
+    char* end = nullptr;
+    const double value = std::strtod(cell.c_str(), &end);
+    if (end != cell.c_str() + cell.size()) {
+      throw std::runtime_error(path.string() + ":" + std::to_string(i + 2) + ": nees '" + cell +
+                               "' is not a number");
+    }
+    nees.push_back(value);
+  }
+  return nees;
 }
 
 std::optional<double> StepWeightedMean(const std::vector<const RunResult*>& runs,
@@ -115,6 +144,12 @@ const std::vector<Column<GroupSummary>>& SummaryColumns() {
       {"failed_runs", [](const G& g) { return Count(g.failed_runs); }},
       {"ms_per_step_std", [](const G& g) { return Num(g.step_ms.Std()); }},
       {"ms_run_mean", [](const G& g) { return Num(g.run_ms.Mean()); }},
+      {"nees_mean", [](const G& g) { return g.nees ? Num(g.nees->mean) : std::string(); }},
+      {"nees_lower_95", [](const G& g) { return g.nees ? Num(g.nees->lower) : std::string(); }},
+      {"nees_upper_95", [](const G& g) { return g.nees ? Num(g.nees->upper) : std::string(); }},
+      {"nees_fraction_inside",
+       [](const G& g) { return g.nees ? Num(g.nees->fraction_inside) : std::string(); }},
+      {"nees_steps", [](const G& g) { return g.nees ? Count(g.nees->steps) : std::string(); }},
   };
   return columns;
 }
@@ -182,6 +217,7 @@ ResultsInventory ReadResults(const std::filesystem::path& out) {
         RunResult r;
         ReadIdentity(j, metrics_path, r);
         r.metrics = RunMetricsFromJson(j, metrics_path.string());
+        if (r.metrics.pose_nees.count > 0) r.step_nees = ReadStepNees(run.path() / kStepsFile);
         inventory.runs.push_back(std::move(r));
       } else if (std::filesystem::exists(error_path)) {
         const nlohmann::json j = ReadJsonFile(error_path);
@@ -198,6 +234,41 @@ ResultsInventory ReadResults(const std::filesystem::path& out) {
   std::sort(inventory.failed.begin(), inventory.failed.end(),
             [&](const FailedRun& a, const FailedRun& b) { return key(a) < key(b); });
   return inventory;
+}
+
+std::optional<GroupNees> SummariseGroupNees(const std::vector<const std::vector<double>*>& runs) {
+  if (runs.empty()) return std::nullopt;
+  std::size_t steps = std::numeric_limits<std::size_t>::max();
+  for (const std::vector<double>* r : runs) steps = std::min(steps, r->size());
+  std::vector<double> averaged;
+  for (std::size_t k = 0; k < steps; ++k) {
+    double sum = 0.0;
+    bool complete = true;
+    for (const std::vector<double>* r : runs) {
+      const double v = (*r)[k];
+      if (!std::isfinite(v)) {
+        complete = false;
+        break;
+      }
+      sum += v;
+    }
+    if (complete) averaged.push_back(sum / static_cast<double>(runs.size()));
+  }
+  if (averaged.empty()) return std::nullopt;
+  const NeesBounds bounds = AveragedNeesBounds(3, static_cast<int>(runs.size()), 0.05);
+  GroupNees g;
+  g.lower = bounds.lower;
+  g.upper = bounds.upper;
+  g.steps = averaged.size();
+  std::size_t inside = 0;
+  double total = 0.0;
+  for (double a : averaged) {
+    total += a;
+    if (a >= bounds.lower && a <= bounds.upper) ++inside;
+  }
+  g.mean = total / static_cast<double>(averaged.size());
+  g.fraction_inside = static_cast<double>(inside) / static_cast<double>(averaged.size());
+  return g;
 }
 
 std::vector<GroupSummary> SummariseGroups(const ResultsInventory& inventory) {
@@ -240,6 +311,11 @@ std::vector<GroupSummary> SummariseGroups(const ResultsInventory& inventory) {
     g.resampling_pct = StepWeightedMean(runs, &RunMetrics::resampling_pct);
     g.hypotheses_mean = StepWeightedMean(runs, &RunMetrics::hypotheses_mean);
     g.map_components_mean = StepWeightedMean(runs, &RunMetrics::map_components_mean);
+    if (g.pose_nees.count > 0) {
+      std::vector<const std::vector<double>*> nees;
+      for (const RunResult* r : runs) nees.push_back(&r->step_nees);
+      g.nees = SummariseGroupNees(nees);
+    }
     groups.push_back(std::move(g));
   }
   return groups;

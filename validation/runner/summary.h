@@ -19,6 +19,21 @@ struct RunResult {
   int particles = 1;
   std::uint64_t seed = 0;
   RunMetrics metrics;
+  /// Per-step pose NEES (the `nees` column of steps.csv; NaN where empty), read only for runs
+  /// with pose NEES values (metrics.pose_nees.count > 0); empty otherwise.
+  std::vector<double> step_nees;
+};
+
+/// Consistency of a group's pose estimates over the steps where every run has a pose NEES:
+/// at each such step the NEES averaged over the runs, compared with the two-sided 95 % bounds
+/// AveragedNeesBounds(3, runs). Steps where a run's covariance is absent, zero or singular are
+/// left out.
+struct GroupNees {
+  double mean = 0.0;             ///< mean over the used steps of the run-averaged NEES
+  double lower = 0.0;            ///< chi-square_{3 runs}(0.025) / runs
+  double upper = 0.0;            ///< chi-square_{3 runs}(0.975) / runs
+  double fraction_inside = 0.0;  ///< used steps with lower <= run-averaged NEES <= upper
+  std::size_t steps = 0;         ///< steps used
 };
 
 struct FailedRun {
@@ -57,12 +72,19 @@ struct GroupSummary {
   ErrorMoments pose_nees;
   ErrorMoments landmark_nees;
   ErrorMoments step_ms;
-  ErrorMoments run_ms;  ///< total wall time per run
+  ErrorMoments run_ms;            ///< total wall time per run
+  std::optional<GroupNees> nees;  ///< nullopt when no step has a NEES in every run
 };
 
-/// Reads <out>/runs/<estimator>-N<particles>/seed-<seed>/{metrics.json,error.json}. Folders
-/// without either file (runs in progress or never started) are ignored. Throws
-/// std::runtime_error naming the file when one cannot be parsed.
+/// GroupNees of runs' per-step NEES series (NaN = no NEES at that step); steps beyond the
+/// shortest series are not used. nullopt when no runs are given or no step has a finite NEES in
+/// every run.
+std::optional<GroupNees> SummariseGroupNees(const std::vector<const std::vector<double>*>& runs);
+
+/// Reads <out>/runs/<estimator>-N<particles>/seed-<seed>/{metrics.json,error.json}, and the
+/// `nees` column of steps.csv for runs with pose NEES values. Folders without either JSON file
+/// (runs in progress or never started) are ignored. Throws std::runtime_error naming the file
+/// when one cannot be parsed.
 ResultsInventory ReadResults(const std::filesystem::path& out);
 
 /// Groups the runs (and failures) by (estimator, particles), sorted by estimator then particles.

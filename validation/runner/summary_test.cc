@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <string>
@@ -227,6 +228,66 @@ TEST_F(SummaryTest, ReportsACorruptFile) {
   }
   WriteJson(out_, "a", 1, 3, kMetricsFile, "not json");
   EXPECT_THROW(ReadResults(out_), std::runtime_error);
+}
+
+TEST(SummariseGroupNees, AveragesOverRunsAtStepsWhereEveryRunHasANees) {
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  // Steps 0 and 2 lack a NEES in some run; step 5 exists in the first run only.
+  const std::vector<double> r1 = {kNaN, 3.0, 6.0, 1.0, 20.0, 4.0};
+  const std::vector<double> r2 = {kNaN, 3.0, kNaN, 2.0, 20.0};
+  const std::optional<GroupNees> g = SummariseGroupNees({&r1, &r2});
+  ASSERT_TRUE(g.has_value());
+  EXPECT_EQ(g->steps, 3u);  // steps 1, 3, 4: run averages 3, 1.5, 20
+  EXPECT_DOUBLE_EQ(g->mean, (3.0 + 1.5 + 20.0) / 3.0);
+  // chi-square_6 quantiles 0.025 and 0.975, divided by 2 runs (scipy.stats.chi2.ppf).
+  EXPECT_NEAR(g->lower, 0.6186721228956014, 1e-9);
+  EXPECT_NEAR(g->upper, 7.22468766772396, 1e-9);
+  EXPECT_DOUBLE_EQ(g->fraction_inside, 2.0 / 3.0);
+
+  const std::vector<double> none = {kNaN, kNaN};
+  EXPECT_FALSE(SummariseGroupNees({&r1, &none}).has_value());
+  EXPECT_FALSE(SummariseGroupNees({}).has_value());
+  const std::vector<double> empty;
+  EXPECT_FALSE(SummariseGroupNees({&r1, &empty}).has_value());
+}
+
+TEST(Summary, NeesColumnsComeFromTheStepsFiles) {
+  const auto out = datasets::testing::FreshTestDir();
+  // Two runs of "p" N=5, three steps; the first step has no covariance. NEES: run 1 {4, 2},
+  // run 2 {2, 2}.
+  const char* steps[] = {"step,x,nees\n0,0,\n1,0,4\n2,0,2\n", "step,x,nees\n0,0,\n1,0,2\n2,0,2\n"};
+  for (std::uint64_t seed : {1, 2}) {
+    RunMetrics m;
+    m.steps = 3;
+    m.pose_nees.Add(seed == 1 ? 4.0 : 2.0);
+    m.pose_nees.Add(2.0);
+    nlohmann::json j = Identity("p", 5, seed);
+    j.update(ToJson(m));
+    WriteJson(out, "p", 5, seed, kMetricsFile, j.dump());
+    WriteJson(out, "p", 5, seed, kStepsFile, steps[seed - 1]);
+  }
+  const ResultsInventory inventory = ReadResults(out);
+  ASSERT_EQ(inventory.runs.size(), 2u);
+  ASSERT_EQ(inventory.runs[0].step_nees.size(), 3u);
+  EXPECT_TRUE(std::isnan(inventory.runs[0].step_nees[0]));
+  EXPECT_EQ(inventory.runs[0].step_nees[1], 4.0);
+  WriteSummaryFiles(out);
+  auto row = Row(ReadTextFile(out / kSummaryFile), 0);
+  EXPECT_EQ(row["pose_nees_mean"], "2.5");
+  EXPECT_EQ(row["nees_mean"], "2.5");  // run averages 3 and 2
+  EXPECT_NEAR(std::stod(row["nees_lower_95"]), 0.6186721228956014, 1e-8);
+  EXPECT_NEAR(std::stod(row["nees_upper_95"]), 7.22468766772396, 1e-8);
+  EXPECT_EQ(row["nees_fraction_inside"], "1");
+  EXPECT_EQ(row["nees_steps"], "2");
+}
+
+TEST_F(SummaryTest, NeesColumnsAreEmptyWithoutStepNees) {
+  WriteSummaryFiles(out_);
+  auto a = Row(ReadTextFile(out_ / kSummaryFile), 0);
+  EXPECT_EQ(a["pose_nees_mean"], FormatNumber(11.0 / 3.0));
+  ASSERT_TRUE(a.contains("nees_mean"));
+  EXPECT_EQ(a["nees_mean"], "");
+  EXPECT_EQ(a["nees_fraction_inside"], "");
 }
 
 TEST(Summary, EmptyFolderGivesHeaderOnly) {

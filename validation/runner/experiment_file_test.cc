@@ -1,0 +1,173 @@
+#include "validation/runner/experiment_file.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+
+#include "datasets/test_temp_dir.h"
+#include "validation/runner/results_io.h"
+
+namespace phdslam::validation {
+namespace {
+
+// The message of the std::invalid_argument `parse` throws ("" when it throws nothing).
+template <typename F>
+std::string ErrorOf(F parse) {
+  try {
+    parse();
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "";
+}
+
+std::string ParseError(const std::string& text) {
+  return ErrorOf([&] { ParseExperimentYaml(text, "exp.yaml", "exp"); });
+}
+
+TEST(ExperimentFile, ReadsEveryKey) {
+  const Experiment x = ParseExperimentYaml(R"(
+name: table2-check
+scenario: paper-synthetic
+estimators:
+  - phd3
+  - {name: phd1, set: {resampling: false, map: {merge_threshold: 10}}}
+  - name: odometry
+    particles: [1]
+particles: [1, 10, 100]
+seeds: 1-5
+steps: 300
+scenario_options: {pd: 0.8, clutter_rate: 2}
+jobs: 2
+)",
+                                           "exp.yaml", "exp");
+  EXPECT_EQ(x.name, "table2-check");
+  EXPECT_EQ(x.scenario, "paper-synthetic");
+  ASSERT_EQ(x.estimators.size(), 3u);
+  EXPECT_EQ(x.estimators[0].name, "phd3");
+  EXPECT_EQ(x.estimators[0].overrides, nlohmann::json::object());
+  EXPECT_TRUE(x.estimators[0].particles.empty());
+  EXPECT_EQ(x.estimators[1].name, "phd1");
+  EXPECT_EQ(x.estimators[1].overrides,
+            (nlohmann::json{{"resampling", false}, {"map", {{"merge_threshold", 10}}}}));
+  EXPECT_EQ(x.estimators[2].particles, std::vector<int>({1}));
+  EXPECT_EQ(x.particles, std::vector<int>({1, 10, 100}));
+  EXPECT_EQ(x.seeds, std::vector<std::uint64_t>({1, 2, 3, 4, 5}));
+  EXPECT_EQ(x.steps, 300);
+  EXPECT_EQ(x.pd, 0.8);
+  EXPECT_EQ(x.clutter_rate, 2.0);
+  EXPECT_EQ(x.jobs, 2);
+  EXPECT_FALSE(x.sweep.has_value());
+  EXPECT_FALSE(x.data_dir.has_value());
+  EXPECT_EQ(x.source.at("path"), "exp.yaml");
+  EXPECT_EQ(x.source.at("values").at("particles"), nlohmann::json({1, 10, 100}));
+  EXPECT_NE(x.source.at("text").get<std::string>().find("table2-check"), std::string::npos);
+}
+
+TEST(ExperimentFile, DefaultsAndSeedForms) {
+  const Experiment x = ParseExperimentYaml(
+      "scenario: generated\nestimators: [odometry]\nseeds: [1, 3, 10-12]\n", "f.yaml", "stem");
+  EXPECT_EQ(x.name, "stem");
+  EXPECT_EQ(x.particles, std::vector<int>({1}));
+  EXPECT_EQ(x.seeds, std::vector<std::uint64_t>({1, 3, 10, 11, 12}));
+  EXPECT_EQ(x.steps, 0);
+  EXPECT_FALSE(x.pd.has_value());
+  EXPECT_FALSE(x.jobs.has_value());
+  EXPECT_EQ(ParseExperimentYaml("scenario: s\nestimators: [a]\nseeds: 7\n", "f", "n").seeds,
+            std::vector<std::uint64_t>({7}));
+}
+
+TEST(ExperimentFile, SetValuesAreTypedLikeCommandLineValues) {
+  const Experiment x = ParseExperimentYaml(R"(
+scenario: s
+seeds: 1
+estimators:
+  - name: e
+    set: {i: 3, d: 0.5, b: true, s: text, q: "12", n: ~, l: [1, 2], e: 1e-3}
+)",
+                                           "f", "n");
+  const nlohmann::json& o = x.estimators[0].overrides;
+  EXPECT_TRUE(o.at("i").is_number_integer());
+  EXPECT_EQ(o.at("d"), 0.5);
+  EXPECT_EQ(o.at("b"), true);
+  EXPECT_EQ(o.at("s"), "text");
+  EXPECT_EQ(o.at("q"), "12");  // quoted: a string
+  EXPECT_TRUE(o.at("n").is_null());
+  EXPECT_EQ(o.at("l"), nlohmann::json({1, 2}));
+  EXPECT_EQ(o.at("e"), 1e-3);
+}
+
+TEST(ExperimentFile, ReadsASweep) {
+  const Experiment x = ParseExperimentYaml(
+      "scenario: s\nestimators: [e]\nseeds: 1-2\nsweep: {parameter: clutter_rate, values: [0, "
+      "2.5, 10]}\n",
+      "f", "n");
+  ASSERT_TRUE(x.sweep.has_value());
+  EXPECT_EQ(x.sweep->parameter, "clutter_rate");
+  EXPECT_EQ(x.sweep->values, std::vector<double>({0.0, 2.5, 10.0}));
+}
+
+TEST(ExperimentFile, UnknownKeysNameTheFileLineAndKey) {
+  const std::string base = "scenario: s\nestimators: [e]\nseeds: 1\n";
+  std::string e = ParseError(base + "partcles: [1]\n");
+  EXPECT_NE(e.find("exp.yaml:4:"), std::string::npos) << e;
+  EXPECT_NE(e.find("unknown key 'partcles'"), std::string::npos) << e;
+  EXPECT_NE(e.find("particles"), std::string::npos) << e;  // the known keys are listed
+  e = ParseError(base + "scenario_options: {pd: 0.9, clutter: 3}\n");
+  EXPECT_NE(e.find("unknown key 'clutter'"), std::string::npos) << e;
+  e = ParseError("scenario: s\nseeds: 1\nestimators:\n  - {name: e, sett: {a: 1}}\n");
+  EXPECT_NE(e.find("exp.yaml:4:"), std::string::npos) << e;
+  EXPECT_NE(e.find("unknown key 'sett'"), std::string::npos) << e;
+  e = ParseError(base + "sweep: {parameter: pd, values: [0.5], step: 1}\n");
+  EXPECT_NE(e.find("unknown key 'step'"), std::string::npos) << e;
+}
+
+TEST(ExperimentFile, RejectsBadValues) {
+  const std::string base = "scenario: s\nestimators: [e]\n";
+  const auto expect_error = [](const std::string& text, const std::string& part) {
+    const std::string e = ParseError(text);
+    EXPECT_NE(e.find(part), std::string::npos) << "text: " << text << "\nerror: " << e;
+    EXPECT_EQ(e.rfind("exp.yaml", 0), 0u) << e;
+  };
+  expect_error("scenario: s\nseeds: 1\n", "'estimators' is required");
+  expect_error(base, "'seeds' is required");
+  expect_error(base + "seeds: 5-2\n", "reversed");
+  expect_error(base + "seeds: 1\nparticles: [1, 0]\n", "< 1");
+  expect_error(base + "seeds: 1\nparticles: [10, 10]\n", "listed twice");
+  expect_error(base + "seeds: 1\nparticles: [1.5]\n", "not an integer");
+  expect_error(base + "seeds: 1\nsteps: -3\n", "'steps'");
+  expect_error(base + "seeds: 1\nsteps: many\n", "not an integer");
+  expect_error(base + "seeds: 1\nscenario_options: {pd: high}\n", "not a number");
+  expect_error(base + "seeds: 1\njobs: -1\n", "'jobs'");
+  expect_error(base + "seeds: 1\nsweep: {parameter: speed, values: [1]}\n",
+               "not one of: pd, clutter_rate");
+  expect_error(base + "seeds: 1\nsweep: {parameter: pd, values: []}\n", "non-empty list");
+  expect_error(base + "seeds: 1\nsweep: {parameter: pd, values: [0.5, 0.5]}\n", "listed twice");
+  expect_error(base + "seeds: 1\nsweep: {parameter: pd}\n", "needs 'parameter'");
+  expect_error(base +
+                   "seeds: 1\nscenario_options: {pd: 0.5}\nsweep: {parameter: pd, values: "
+                   "[0.4]}\n",
+               "is swept");
+  expect_error("scenario: s\nseeds: 1\nestimators: [e, e]\n", "listed twice");
+  expect_error("scenario: s\nseeds: 1\nestimators: []\n", "'estimators'");
+  expect_error("scenario: s\nseeds: 1\nestimators: [{set: {a: 1}}]\n", "no 'name'");
+  expect_error("scenario: s\nseeds: 1\nestimators: [{name: e, set: 3}]\n", "expected a mapping");
+  expect_error("scenario: [a, b]\nseeds: 1\nestimators: [e]\n", "'scenario'");
+  expect_error("- a\n- b\n", "expected a mapping");
+  expect_error("scenario: s\n  bad indent: [\n", "YAML syntax error");
+}
+
+TEST(ExperimentFile, ReadsAFileWithItsStemAsDefaultName) {
+  const std::filesystem::path dir = datasets::testing::FreshTestDir();
+  WriteFileAtomically(dir / "my_experiment.yaml",
+                      "# a comment\nscenario: generated\nestimators: [odometry]\nseeds: 1-2\n");
+  const Experiment x = ReadExperimentFile(dir / "my_experiment.yaml");
+  EXPECT_EQ(x.name, "my_experiment");
+  EXPECT_EQ(x.source.at("path"), (dir / "my_experiment.yaml").string());
+  EXPECT_THROW(ReadExperimentFile(dir / "missing.yaml"), std::runtime_error);
+}
+
+}  // namespace
+}  // namespace phdslam::validation

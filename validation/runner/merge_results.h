@@ -1,0 +1,32 @@
+// Merging results folders (shards of one experiment, or runs of one experiment made on different
+// machines) into one folder whose summary.csv and runs.csv equal those of a single-machine run.
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <vector>
+
+namespace phdslam::validation {
+
+struct MergeReport {
+  std::size_t runs_copied = 0;           ///< finished runs copied (or hard-linked) into the output
+  std::size_t runs_already_present = 0;  ///< finished runs the output (or an earlier input) had
+  std::size_t failed_runs_copied = 0;    ///< error.json of runs no input finished
+  std::size_t folders = 0;               ///< results folders written (one, or one per sweep value)
+};
+
+/// Merges `inputs` into `out` (created if needed; results it already holds are kept). Each input
+/// is a results folder (with config.json) or the root of a sweep (with sweep.json), not a mix of
+/// both kinds. Before anything is copied it throws std::invalid_argument when an input is
+/// missing, is `out`, or was made with settings that conflict with the others' (experiment,
+/// scenario, scenario options, metric settings or resolved parameters, as for resuming), or when
+/// a run present in two places has different metrics.json (timing keys aside), and
+/// std::runtime_error when a file cannot be read. Finished runs are hard-linked when possible and
+/// copied otherwise (metrics.json last); a failed run's error.json is copied only when no input
+/// finished that run; truth files are copied when absent. Ends by writing config.json (the union
+/// of the configs), summary.csv, runs.csv and timing.json ({"merged_from", counts, host, time});
+/// for sweeps, every sweep folder and then sweep.csv and sweep.json.
+MergeReport MergeResults(const std::filesystem::path& out,
+                         const std::vector<std::filesystem::path>& inputs);
+
+}  // namespace phdslam::validation
