@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # End-to-end checks of the phdslam program: help, list, exit codes of usage errors, a short
-# Monte Carlo run with its files, resume, and evaluate.
+# Monte Carlo run with its files, resume, evaluate, experiment files, sweeps, shards and their
+# merge, particle traces and paired comparisons.
 #   cli_test.sh <phdslam binary> <data dir> <scratch dir>
 set -u
 phdslam="$1"
@@ -33,13 +34,17 @@ mkdir -p "$scratch"
 out="$scratch/results"
 
 expect_exit 0 "$phdslam" --help
-expect_in "$scratch/out" "run"
-expect_in "$scratch/out" "evaluate"
+for command in run merge compare evaluate list; do
+  expect_in "$scratch/out" "$command"
+done
 expect_exit 0 "$phdslam" run --help
 for option in --scenario --estimator --particles --seeds --out --data-dir --steps --jobs \
-    --experiment-name --pd --clutter-rate --set --quiet; do
+    --experiment-name --pd --clutter-rate --set --quiet --experiment --shard --particles-trace; do
   expect_in "$scratch/out" "$option"
 done
+expect_exit 0 "$phdslam" merge --help
+expect_exit 0 "$phdslam" compare --help
+expect_in "$scratch/out" "--metric"
 expect_exit 0 "$phdslam" evaluate --help
 expect_in "$scratch/out" "--truth-trajectory"
 expect_in "$scratch/out" "--time-tolerance"
@@ -61,6 +66,10 @@ expect_exit 2 "$phdslam" run "${common[@]}" --estimator odometry --seeds 1 --pd 
 expect_exit 2 "$phdslam" run --scenario nosuch --estimator odometry --seeds 1 --out "$out"
 expect_exit 2 "$phdslam" run "${common[@]}" --estimator odometry --seeds 1 --bogus
 expect_exit 2 "$phdslam" evaluate --map "$scratch/out"
+expect_exit 2 "$phdslam" run --estimator odometry --seeds 1 --out "$out"
+expect_in "$scratch/err" "--scenario is required"
+expect_exit 2 "$phdslam" run "${common[@]}" --estimator odometry --seeds 1 --shard 3/2
+expect_in "$scratch/err" "--shard '3/2'"
 [ -e "$out/runs" ] && fail "a usage error left runs behind"
 
 # A short run.
@@ -101,6 +110,99 @@ expect_exit 0 "$phdslam" evaluate --truth-trajectory "$out/truth/seed-1/truth.tu
   --trajectory "$out/truth/seed-1/truth.tum"
 expect_in "$scratch/out" '"pos_rmse_m": 0.0'
 expect_exit 1 "$phdslam" evaluate --truth-map "$run1/trajectory.tum" --map "$run1/map.csv"
+
+# Files of a results folder with the timing columns (ms, ms_*) dropped.
+without_timing() {
+  awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) drop[i] = ($i == "ms" || $i ~ /^ms_/) }
+           { line = ""
+             for (i = 1; i <= NF; i++) if (!drop[i]) line = line $i ","
+             print line }' "$1"
+}
+expect_same_results() {  # expect_same_results <folder a> <folder b>
+  local a="$1" b="$2" f
+  for f in summary.csv runs.csv; do
+    cmp -s <(without_timing "$a/$f") <(without_timing "$b/$f") || fail "$f differs: $a $b"
+  done
+  [ "$(cd "$a" && find runs -type f | sort)" = "$(cd "$b" && find runs -type f | sort)" ] ||
+    fail "run files differ: $a $b"
+  for f in $(cd "$a" && find runs -name steps.csv); do
+    cmp -s <(without_timing "$a/$f") <(without_timing "$b/$f") || fail "$f differs: $a $b"
+  done
+  for f in $(cd "$a" && find runs -name map.csv -o -name trajectory.tum); do
+    cmp -s "$a/$f" "$b/$f" || fail "$f differs: $a $b"
+  done
+}
+
+# Experiment files: errors name the file, line and key.
+exp="$scratch/small.yaml"
+cat >"$exp" <<YAML
+scenario: paper-synthetic
+estimators:
+  - phd3
+  - name: odometry
+    particles: [1]
+particles: [1, 3]
+seeds: 1-3
+steps: 30
+jobs: 2
+YAML
+printf 'scenario: paper-synthetic\nestimators: [odometry]\nseeds: 1\npartcles: [1]\n' \
+  >"$scratch/typo.yaml"
+expect_exit 2 "$phdslam" run --experiment "$scratch/typo.yaml" --out "$scratch/typo" --quiet
+expect_in "$scratch/err" "typo.yaml:4: unknown key 'partcles'"
+printf 'scenario: paper-synthetic\nestimators: [phd3, nosuch]\nseeds: 1\n' >"$scratch/bad.yaml"
+expect_exit 2 "$phdslam" run --experiment "$scratch/bad.yaml" --out "$scratch/bad" --quiet
+expect_in "$scratch/err" "bad.yaml: unknown estimator 'nosuch'"
+expect_exit 2 "$phdslam" run --experiment "$scratch/missing.yaml" --out "$scratch/bad" --quiet
+[ -e "$scratch/typo" ] || [ -e "$scratch/bad" ] && fail "a bad experiment file left results"
+
+# The whole experiment, then two shards merged: the same results.
+whole="$scratch/whole"
+expect_exit 0 "$phdslam" run --experiment "$exp" --data-dir "$data_dir" --out "$whole" \
+  --particles-trace
+expect_in "$scratch/out" "runs: 9 planned"
+expect_in "$whole/config.json" '"experiment": "small"'
+expect_in "$whole/config.json" '"experiment_file"'
+expect_in "$whole/runs/phd3-N3/seed-1/steps.csv" "map_components,ms,nees"
+expect_in "$whole/summary.csv" ",nees_mean,nees_lower_95,nees_upper_95,nees_fraction_inside,"
+expect_in "$whole/runs/phd3-N3/seed-2/particles.csv" "step,particle,x,y,log_weight"
+[ -e "$whole/runs/odometry-N1/seed-1/particles.csv" ] && fail "odometry wrote particles.csv"
+for i in 1 2; do
+  expect_exit 0 "$phdslam" run --experiment "$exp" --data-dir "$data_dir" \
+    --out "$scratch/shard$i" --shard "$i/2" --quiet --particles-trace
+done
+expect_in "$scratch/shard1/timing.json" '"shard": "1/2"'
+expect_exit 0 "$phdslam" merge --out "$scratch/merged" "$scratch/shard1" "$scratch/shard2"
+expect_in "$scratch/out" "9 runs copied"
+expect_same_results "$whole" "$scratch/merged"
+# Command-line options override the file's values; other settings are refused by merge.
+expect_exit 0 "$phdslam" run --experiment "$exp" --data-dir "$data_dir" --out "$scratch/longer" \
+  --steps 40 --seeds 4 --estimator odometry --quiet
+[ "$(wc -l <"$scratch/longer/runs.csv")" -eq 2 ] || fail "--seeds/--estimator did not override"
+expect_in "$scratch/longer/config.json" '"--steps"'
+expect_exit 2 "$phdslam" merge --out "$scratch/merged2" "$whole" "$scratch/longer"
+expect_in "$scratch/err" "other settings"
+
+# Paired comparisons.
+expect_exit 0 "$phdslam" compare --out "$whole" --metric gospa_m,pos_rmse_m,heading_rmse_deg
+expect_in "$whole/comparison.csv" "metric,estimator_a,particles_a,estimator_b,particles_b,n,"
+expect_in "$whole/comparison.csv" "gospa_m,odometry,1,phd3,1,3,3,"
+expect_exit 2 "$phdslam" compare --out "$whole" --metric nosuch
+expect_in "$scratch/err" "no metric column 'nosuch'"
+
+# A sweep: one folder per value and sweep.csv.
+sweep="$scratch/sweep.yaml"
+printf 'scenario: paper-synthetic\nestimators: [odometry]\nseeds: 1-2\nsteps: 20\n' >"$sweep"
+printf 'sweep: {parameter: pd, values: [0.8, 0.9]}\n' >>"$sweep"
+expect_exit 0 "$phdslam" run --experiment "$sweep" --data-dir "$data_dir" --out "$scratch/swept" \
+  --quiet
+expect_in "$scratch/out" "sweep: $scratch/swept/sweep.csv"
+expect_in "$scratch/swept/sweep.csv" "pd,estimator,particles,runs,"
+expect_in "$scratch/swept/sweep.csv" "0.9,odometry,1,2,20,"
+expect_in "$scratch/swept/sweep-pd-0.8/config.json" '"detection_probability": 0.8'
+expect_exit 2 "$phdslam" run --experiment "$sweep" --data-dir "$data_dir" --out "$scratch/sw2" \
+  --pd 0.5 --quiet
+expect_in "$scratch/err" "is swept"
 
 if [ "$failures" -ne 0 ]; then
   echo "$failures check(s) failed" >&2

@@ -1,10 +1,15 @@
 // phdslam: the command line of the PHD-SLAM 3.0 reproduction and validation suite.
 //
-//   phdslam run       Monte Carlo runs of estimators on a scenario, into a results folder
+//   phdslam run       Monte Carlo runs of estimators on a scenario (or of an experiment file),
+//                     into a results folder
+//   phdslam merge     join the results folders of shards into one
+//   phdslam compare   paired Wilcoxon signed-rank tests between the groups of a results folder
 //   phdslam evaluate  GOSPA/OSPA of a map file, RMSE of a trajectory file
 //   phdslam list      the known scenarios and estimators
 //
-// Exit codes: 0 success, 1 a run or evaluation failed, 2 a usage error, 130 interrupted (Ctrl-C).
+// Exit codes: 0 success, 1 a run or evaluation failed (or a file could not be read), 2 a usage
+// error (bad option, experiment file or list; unknown name; conflicting results folders),
+// 130 interrupted (Ctrl-C).
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <filesystem>
@@ -19,13 +24,19 @@
 #include "datasets/map_io.h"
 #include "datasets/trajectory_io.h"
 #include "validation/runner/estimator_registry.h"
+#include "validation/runner/experiment_file.h"
+#include "validation/runner/experiment_runner.h"
 #include "validation/runner/interrupt_flag.h"
 #include "validation/runner/list_arguments.h"
+#include "validation/runner/merge_results.h"
 #include "validation/runner/monte_carlo.h"
 #include "validation/runner/offline_evaluation.h"
+#include "validation/runner/paired_comparison.h"
 #include "validation/runner/parameter_overrides.h"
+#include "validation/runner/results_config.h"
 #include "validation/runner/results_layout.h"
 #include "validation/runner/scenario_registry.h"
+#include "validation/runner/shard.h"
 #include "validation/runner/summary.h"
 
 namespace phdslam::apps {
@@ -38,6 +49,7 @@ constexpr int kExitUsage = 2;
 constexpr int kExitInterrupted = 130;
 
 struct RunArguments {
+  std::string experiment_file;
   std::string scenario;
   std::string estimators;
   std::string particles = "1";
@@ -50,10 +62,31 @@ struct RunArguments {
   double detection_probability = 0.0;
   double clutter_rate = 0.0;
   std::vector<std::string> assignments;
+  std::string shard;
+  bool particles_trace = false;
   bool quiet = false;
+  // Options whose presence matters (command-line values override an experiment file's).
+  CLI::Option* experiment_file_option = nullptr;
+  CLI::Option* scenario_option = nullptr;
+  CLI::Option* estimator_option = nullptr;
+  CLI::Option* particles_option = nullptr;
+  CLI::Option* seeds_option = nullptr;
+  CLI::Option* steps_option = nullptr;
+  CLI::Option* jobs_option = nullptr;
+  CLI::Option* experiment_name_option = nullptr;
   CLI::Option* data_dir_option = nullptr;
   CLI::Option* pd_option = nullptr;
   CLI::Option* clutter_option = nullptr;
+};
+
+struct MergeArguments {
+  std::string out;
+  std::vector<std::string> inputs;
+};
+
+struct CompareArguments {
+  std::string out;
+  std::string metrics = "gospa_m,pos_rmse_m";
 };
 
 struct EvaluateArguments {
@@ -69,34 +102,45 @@ struct EvaluateArguments {
 void AddRunCommand(CLI::App& app, RunArguments& a) {
   CLI::App* run = app.add_subcommand(
       "run",
-      "Monte Carlo runs of one or more estimators on a scenario. Each finished run is written to "
-      "<out>/runs/<estimator>-N<particles>/seed-<seed>/; rerunning with the same --out skips "
-      "finished runs. Ends with <out>/summary.csv, runs.csv, config.json and timing.json "
-      "(layout: validation/README.md).");
-  run->add_option("--scenario", a.scenario, "Scenario name (see `phdslam list`)")->required();
-  run->add_option("--estimator", a.estimators,
-                  "Estimator name, or a comma list of names (see `phdslam list`)")
-      ->required();
-  run->add_option("--particles", a.particles, "Particle count, or a comma list such as 1,10,100")
-      ->capture_default_str();
-  run->add_option("--seeds", a.seeds,
-                  "Monte Carlo seeds: a range a-b (inclusive), a single seed, or a comma list "
-                  "such as 1,3,10-12")
-      ->required();
+      "Monte Carlo runs of one or more estimators on a scenario, given by options or by an "
+      "experiment file (--experiment; options given with it override the file's values). Each "
+      "finished run is written to <out>/runs/<estimator>-N<particles>/seed-<seed>/; rerunning "
+      "with the same --out skips finished runs. Ends with <out>/summary.csv, runs.csv, "
+      "config.json and timing.json; a sweep writes one such folder per value, "
+      "<out>/sweep-<parameter>-<value>/, and <out>/sweep.csv (layout: validation/README.md).");
+  a.experiment_file_option =
+      run->add_option("--experiment", a.experiment_file,
+                      "Experiment file (YAML, e.g. validation/experiments/quick.yaml); "
+                      "--scenario, --estimator and --seeds are then optional")
+          ->check(CLI::ExistingFile);
+  a.scenario_option =
+      run->add_option("--scenario", a.scenario, "Scenario name (see `phdslam list`)");
+  a.estimator_option = run->add_option(
+      "--estimator", a.estimators, "Estimator name, or a comma list of names (see `phdslam list`)");
+  a.particles_option = run->add_option("--particles", a.particles,
+                                       "Particle count, or a comma list such as 1,10,100")
+                           ->capture_default_str();
+  a.seeds_option = run->add_option("--seeds", a.seeds,
+                                   "Monte Carlo seeds: a range a-b (inclusive), a single seed, or "
+                                   "a comma list such as 1,3,10-12");
   run->add_option("--out", a.out, "Results folder (created if needed)")->required();
   a.data_dir_option =
       run->add_option("--data-dir", a.data_dir,
                       "Data sets folder (default: $PHDSLAM_DATA, else the folder compiled in)");
-  run->add_option("--steps", a.steps, "Use only the first N filter steps of each run (0 = all)")
-      ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
-  run->add_option("--jobs", a.jobs,
-                  "Worker threads (0 = one per hardware thread); results do not depend on it")
-      ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
-  run->add_option("--experiment-name", a.experiment,
-                  "Experiment name, part of every estimator's random stream seed")
-      ->capture_default_str();
+  a.steps_option =
+      run->add_option("--steps", a.steps, "Use only the first N filter steps of each run (0 = all)")
+          ->capture_default_str()
+          ->check(CLI::NonNegativeNumber);
+  a.jobs_option = run->add_option("--jobs", a.jobs,
+                                  "Worker threads (0 = one per hardware thread); results do not "
+                                  "depend on it")
+                      ->capture_default_str()
+                      ->check(CLI::NonNegativeNumber);
+  a.experiment_name_option =
+      run->add_option("--experiment-name", a.experiment,
+                      "Experiment name, part of every estimator's random stream seed (default: "
+                      "the experiment file's name, else 'default')")
+          ->capture_default_str();
   a.pd_option = run->add_option("--pd", a.detection_probability,
                                 "Override the scenario's detection probability (0, 1]");
   a.clutter_option = run->add_option("--clutter-rate", a.clutter_rate,
@@ -104,7 +148,39 @@ void AddRunCommand(CLI::App& app, RunArguments& a) {
   run->add_option("--set", a.assignments,
                   "Estimator parameter override [estimator:]key=value (repeatable; dotted keys "
                   "reach nested parameters; the value is JSON when it parses, else a string)");
+  run->add_option("--shard", a.shard,
+                  "Run only shard i of n: the jobs whose index in the experiment's job order is "
+                  "i-1 modulo n (join the shards' folders with `phdslam merge`)");
+  run->add_flag("--particles-trace", a.particles_trace,
+                "Also write particles.csv (step,particle,x,y,log_weight) per run, for estimators "
+                "that expose their particles");
   run->add_flag("--quiet", a.quiet, "No progress line and no summary table");
+}
+
+void AddMergeCommand(CLI::App& app, MergeArguments& a) {
+  CLI::App* merge = app.add_subcommand(
+      "merge",
+      "Join results folders (the shards of one experiment, or runs of one experiment made "
+      "elsewhere) into --out: finished runs are hard-linked or copied, folders made with "
+      "conflicting settings are refused, and summary.csv/runs.csv are written as a single run "
+      "would write them. Sweep roots are merged value by value.");
+  merge->add_option("--out", a.out, "Merged results folder (created if needed)")->required();
+  merge->add_option("folders", a.inputs, "Results folders to merge (e.g. the shards' --out)")
+      ->required()
+      ->check(CLI::ExistingDirectory);
+}
+
+void AddCompareCommand(CLI::App& app, CompareArguments& a) {
+  CLI::App* compare = app.add_subcommand(
+      "compare",
+      "Paired comparisons: for every metric and every pair of (estimator, particles) groups of "
+      "<out>/runs.csv, the two-sided Wilcoxon signed-rank test over their common seeds, written "
+      "to <out>/comparison.csv (for a sweep, in every sweep folder).");
+  compare->add_option("--out", a.out, "Results folder holding runs.csv")
+      ->required()
+      ->check(CLI::ExistingDirectory);
+  compare->add_option("--metric", a.metrics, "runs.csv column(s) to compare, a comma list")
+      ->capture_default_str();
 }
 
 void AddEvaluateCommand(CLI::App& app, EvaluateArguments& a) {
@@ -127,62 +203,112 @@ void AddEvaluateCommand(CLI::App& app, EvaluateArguments& a) {
       ->capture_default_str();
 }
 
-// Per-estimator overrides from the --set arguments.
-std::map<std::string, nlohmann::json> CollectOverrides(const std::vector<std::string>& names,
-                                                       const std::vector<std::string>& sets) {
-  std::map<std::string, nlohmann::json> overrides;
-  for (const std::string& name : names) overrides[name] = nlohmann::json::object();
+// Applies the --set arguments to the experiment's estimators.
+void ApplyAssignments(const std::vector<std::string>& sets, v::Experiment& x) {
   for (const std::string& text : sets) {
     const v::ParameterAssignment assignment = v::ParseParameterAssignment(text);
-    if (!assignment.estimator.empty() && !overrides.contains(assignment.estimator)) {
-      throw std::invalid_argument("--set '" + text + "': estimator '" + assignment.estimator +
-                                  "' is not among --estimator");
+    bool matched = assignment.estimator.empty();
+    for (v::ExperimentEstimator& e : x.estimators) {
+      if (assignment.estimator.empty() || assignment.estimator == e.name) {
+        v::MergeJsonObjects(e.overrides, assignment.overrides);
+        matched = true;
+      }
     }
-    for (auto& [name, json] : overrides) {
-      if (assignment.estimator.empty() || assignment.estimator == name) {
-        v::MergeJsonObjects(json, assignment.overrides);
+    if (!matched) {
+      throw std::invalid_argument("--set '" + text + "': estimator '" + assignment.estimator +
+                                  "' is not among the experiment's estimators");
+    }
+  }
+}
+
+// The experiment of a `run` command: the experiment file, if any, with every option given on
+// the command line taking precedence over the file's value.
+v::Experiment ResolveExperiment(const RunArguments& a) {
+  const bool from_file = a.experiment_file_option->count() > 0;
+  v::Experiment x;
+  if (from_file) {
+    x = v::ReadExperimentFile(a.experiment_file);
+  } else {
+    for (const CLI::Option* o : {a.scenario_option, a.estimator_option, a.seeds_option}) {
+      if (o->count() == 0) {
+        throw std::invalid_argument("run: " + o->get_name() +
+                                    " is required (or give --experiment)");
       }
     }
   }
-  return overrides;
+  std::vector<std::string> overridden;
+  const auto given = [&](const CLI::Option* o) {
+    if (o->count() == 0) return false;
+    overridden.push_back(o->get_name());
+    return true;
+  };
+  if (given(a.scenario_option)) x.scenario = a.scenario;
+  if (given(a.estimator_option)) {
+    std::vector<v::ExperimentEstimator> selected;
+    for (const std::string& name : v::ParseNameList(a.estimators, "estimator")) {
+      v::ExperimentEstimator e{name};
+      for (const v::ExperimentEstimator& in_file : x.estimators) {
+        if (in_file.name == name) e = in_file;  // keeps the file's `set` and `particles`
+      }
+      selected.push_back(std::move(e));
+    }
+    x.estimators = std::move(selected);
+  }
+  if (given(a.particles_option)) x.particles = v::ParseParticleList(a.particles);
+  if (given(a.seeds_option)) x.seeds = v::ParseSeedList(a.seeds);
+  if (given(a.steps_option)) x.steps = a.steps;
+  if (given(a.jobs_option)) x.jobs = a.jobs;
+  if (given(a.experiment_name_option) || !from_file) x.name = a.experiment;
+  if (given(a.pd_option)) x.pd = a.detection_probability;
+  if (given(a.clutter_option)) x.clutter_rate = a.clutter_rate;
+  if (a.data_dir_option->count() > 0) x.data_dir = a.data_dir;  // a machine setting
+  if (!a.assignments.empty()) overridden.push_back("--set");
+  ApplyAssignments(a.assignments, x);
+  if (from_file) x.source["command_line"] = overridden;
+  return x;
+}
+
+void PrintRunReport(const v::ExperimentPart& part, const v::MonteCarloReport& report,
+                    const std::string& sweep_parameter, bool quiet) {
+  if (!quiet) {
+    if (part.sweep_value) {
+      std::cout << sweep_parameter << " = " << *part.sweep_value << ":\n";
+    }
+    std::cout << v::FormatSummaryTable(v::SummariseGroups(v::ReadResults(part.out)));
+    std::cout << "runs: " << report.planned << " planned, " << report.skipped
+              << " already finished, " << report.finished << " computed, " << report.failures.size()
+              << " failed";
+    if (report.outside_shard > 0) std::cout << ", " << report.outside_shard << " in other shards";
+    std::cout << "; " << report.jobs << " jobs, " << report.wall_seconds << " s\n";
+  }
+  std::cout << "summary: " << (part.out / v::kSummaryFile).string() << "\n";
 }
 
 int Run(const RunArguments& a) {
-  const std::vector<std::string> names = v::ParseNameList(a.estimators, "estimator");
-  v::MonteCarloPlan plan;
-  plan.experiment = a.experiment;
-  plan.particles = v::ParseParticleList(a.particles);
-  plan.seeds = v::ParseSeedList(a.seeds);
-  const std::map<std::string, nlohmann::json> overrides = CollectOverrides(names, a.assignments);
-  for (const std::string& name : names) {
-    plan.estimators.push_back({v::FindEstimator(name), overrides.at(name)});
-  }
-  v::ScenarioOptions options;
-  if (a.data_dir_option->count() > 0) options.data_dir = a.data_dir;
-  options.steps = a.steps;
-  if (a.pd_option->count() > 0) options.detection_probability = a.detection_probability;
-  if (a.clutter_option->count() > 0) options.clutter_rate = a.clutter_rate;
-  plan.scenario = v::MakeScenarioSource(a.scenario, options);
-
+  const v::Experiment experiment = ResolveExperiment(a);
   const v::InterruptFlag interrupt;
-  v::MonteCarloSettings settings;
+  v::ExperimentSettings settings;
   settings.out = a.out;
-  settings.jobs = a.jobs;
   settings.show_progress = !a.quiet;
   settings.stop = &interrupt.flag();
-  const v::MonteCarloReport report = v::RunMonteCarlo(plan, settings);
+  settings.particles_trace = a.particles_trace;
+  if (!a.shard.empty()) settings.shard = v::ParseShard(a.shard);
+  const v::ExperimentReport report = v::RunExperiment(experiment, settings);
 
-  const std::filesystem::path out(a.out);
-  if (!a.quiet) {
-    std::cout << v::FormatSummaryTable(v::SummariseGroups(v::ReadResults(out)));
-    std::cout << "runs: " << report.planned << " planned, " << report.skipped
-              << " already finished, " << report.finished << " computed, " << report.failures.size()
-              << " failed; " << report.jobs << " jobs, " << report.wall_seconds << " s\n";
+  std::size_t failures = 0;
+  std::size_t attempted = 0;
+  const std::string parameter = experiment.sweep ? experiment.sweep->parameter : "";
+  for (std::size_t i = 0; i < report.reports.size(); ++i) {
+    PrintRunReport(report.parts[i], report.reports[i], parameter, a.quiet);
+    failures += report.reports[i].failures.size();
+    attempted += report.reports[i].planned - report.reports[i].skipped;
   }
-  std::cout << "summary: " << (out / v::kSummaryFile).string() << "\n";
+  if (experiment.sweep) {
+    std::cout << "sweep: " << (std::filesystem::path(a.out) / v::kSweepTableFile).string() << "\n";
+  }
   // Each failure was reported on stderr as it happened; its error is kept in its error.json.
-  if (!report.failures.empty()) {
-    std::cerr << "phdslam: " << report.failures.size() << " of " << report.planned - report.skipped
+  if (failures > 0) {
+    std::cerr << "phdslam: " << failures << " of " << attempted
               << " runs failed (their folders hold error.json; rerun to retry them)\n";
   }
   if (report.interrupted) {
@@ -190,7 +316,47 @@ int Run(const RunArguments& a) {
                  "resume\n";
     return kExitInterrupted;
   }
-  return report.failures.empty() ? 0 : kExitRunFailed;
+  return failures == 0 ? 0 : kExitRunFailed;
+}
+
+int Merge(const MergeArguments& a) {
+  std::vector<std::filesystem::path> inputs(a.inputs.begin(), a.inputs.end());
+  const v::MergeReport report = v::MergeResults(a.out, inputs);
+  std::cout << "merged " << inputs.size() << " folders: " << report.runs_copied << " runs copied, "
+            << report.runs_already_present << " already present, " << report.failed_runs_copied
+            << " failed runs copied\n";
+  const std::filesystem::path out(a.out);
+  if (std::filesystem::exists(out / v::kSweepTableFile)) {
+    std::cout << "sweep: " << (out / v::kSweepTableFile).string() << "\n";
+  } else {
+    std::cout << "summary: " << (out / v::kSummaryFile).string() << "\n";
+  }
+  return 0;
+}
+
+int Compare(const CompareArguments& a) {
+  const std::vector<std::string> metrics = v::ParseNameList(a.metrics, "metric");
+  const std::filesystem::path out(a.out);
+  std::vector<std::filesystem::path> folders;
+  if (std::filesystem::exists(out / v::kSweepFile)) {
+    const nlohmann::json sweep = v::ReadJsonObject(out / v::kSweepFile);
+    for (const auto& folder : sweep.at("folders")) {
+      const std::filesystem::path path = out / folder.get<std::string>();
+      if (std::filesystem::exists(path / v::kRunsTableFile)) folders.push_back(path);
+    }
+  } else {
+    folders.push_back(out);
+  }
+  for (const std::filesystem::path& folder : folders) {
+    const std::vector<v::PairedComparison> rows = v::WriteComparison(folder, metrics);
+    std::size_t significant = 0;
+    for (const v::PairedComparison& c : rows) {
+      if (c.test.p_value && *c.test.p_value < 0.05) ++significant;
+    }
+    std::cout << "comparison: " << (folder / v::kComparisonFile).string() << " (" << rows.size()
+              << " comparisons, " << significant << " with p < 0.05)\n";
+  }
+  return 0;
 }
 
 int Evaluate(const EvaluateArguments& a) {
@@ -242,8 +408,12 @@ int Main(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_version_flag("--version", v::ProgramVersion());
   RunArguments run_arguments;
+  MergeArguments merge_arguments;
+  CompareArguments compare_arguments;
   EvaluateArguments evaluate_arguments;
   AddRunCommand(app, run_arguments);
+  AddMergeCommand(app, merge_arguments);
+  AddCompareCommand(app, compare_arguments);
   AddEvaluateCommand(app, evaluate_arguments);
   app.add_subcommand("list", "List the known scenarios and estimators");
   try {
@@ -255,6 +425,8 @@ int Main(int argc, char** argv) {
   }
   try {
     if (app.got_subcommand("run")) return Run(run_arguments);
+    if (app.got_subcommand("merge")) return Merge(merge_arguments);
+    if (app.got_subcommand("compare")) return Compare(compare_arguments);
     if (app.got_subcommand("evaluate")) return Evaluate(evaluate_arguments);
     return List();
   } catch (const std::invalid_argument& e) {
