@@ -308,29 +308,32 @@ std::vector<Pose> DeadReckoning(const datasets::Scenario& scenario,
   return poses;
 }
 
-BatchSmoother::BatchSmoother(SmootherOptions options) : options_(std::move(options)) {
+void SmootherOptions::Validate() const {
   const auto require = [](bool ok, const std::string& what) {
     if (!ok) throw std::invalid_argument("SmootherOptions." + what);
   };
-  require(options_.max_iterations > 0, "max_iterations: expected > 0");
-  require(options_.function_tolerance > 0.0, "function_tolerance: expected > 0");
-  require(options_.intermediate_function_tolerance > 0.0,
-          "intermediate_function_tolerance: expected > 0");
-  require(options_.num_threads > 0, "num_threads: expected > 0");
-  require(options_.reassociation_rounds >= 0, "reassociation_rounds: expected >= 0");
-  require(options_.initial_pass_solve_steps >= 0, "initial_pass_solve_steps: expected >= 0");
-  require(options_.gate_chi2 > 0.0, "gate_chi2: expected > 0");
-  require(options_.min_observations >= 1, "min_observations: expected >= 1");
-  require(options_.merge_position_std >= 0.0, "merge_position_std: expected >= 0");
-  require(options_.min_detection_ratio >= 0.0 && options_.min_detection_ratio <= 1.0,
+  require(max_iterations > 0, "max_iterations: expected > 0");
+  require(function_tolerance > 0.0, "function_tolerance: expected > 0");
+  require(intermediate_function_tolerance > 0.0, "intermediate_function_tolerance: expected > 0");
+  require(num_threads > 0, "num_threads: expected > 0");
+  require(reassociation_rounds >= 0, "reassociation_rounds: expected >= 0");
+  require(initial_pass_solve_steps >= 0, "initial_pass_solve_steps: expected >= 0");
+  require(gate_chi2 > 0.0, "gate_chi2: expected > 0");
+  require(min_observations >= 1, "min_observations: expected >= 1");
+  require(merge_position_std >= 0.0, "merge_position_std: expected >= 0");
+  require(min_detection_ratio >= 0.0 && min_detection_ratio <= 1.0,
           "min_detection_ratio: expected in [0, 1]");
-  require(options_.robust_scale > 0.0, "robust_scale: expected > 0");
-  require(options_.odometry_floor.position_std > 0.0 && options_.odometry_floor.heading_std > 0.0,
+  require(robust_scale > 0.0, "robust_scale: expected > 0");
+  require(filter_label_distance > 0.0, "filter_label_distance: expected > 0");
+  require(odometry_floor.position_std > 0.0 && odometry_floor.heading_std > 0.0,
           "odometry_floor: expected positive standard deviations");
-  require(
-      options_.warm_start_floor.position_std > 0.0 && options_.warm_start_floor.heading_std > 0.0,
-      "warm_start_floor: expected positive standard deviations");
-  MakeLoss(options_.robust_loss, options_.robust_scale);  // validates the name
+  require(warm_start_floor.position_std > 0.0 && warm_start_floor.heading_std > 0.0,
+          "warm_start_floor: expected positive standard deviations");
+  MakeLoss(robust_loss, robust_scale);  // validates the name
+}
+
+BatchSmoother::BatchSmoother(SmootherOptions options) : options_(std::move(options)) {
+  options_.Validate();
 }
 
 filters::BatchResult BatchSmoother::Solve(const datasets::Scenario& scenario) {
@@ -354,6 +357,14 @@ filters::BatchResult BatchSmoother::Solve(const datasets::Scenario& scenario) {
       &loose_increments, warm_start ? options_.warm_start_floor : options_.odometry_floor,
       control_space};
   std::vector<Pose> poses = DeadReckoning(scenario, increments);
+  if (!options_.initial_poses.empty()) {
+    if (options_.initial_poses.size() != scenario.steps.size()) {
+      throw std::invalid_argument("SmootherOptions.initial_poses: expected " +
+                                  std::to_string(scenario.steps.size()) + " poses, got " +
+                                  std::to_string(options_.initial_poses.size()));
+    }
+    poses = options_.initial_poses;
+  }
   std::vector<Landmark> landmarks;
   const std::unique_ptr<ceres::LossFunction> robust =
       MakeLoss(options_.robust_loss, options_.robust_scale);
@@ -387,7 +398,21 @@ filters::BatchResult BatchSmoother::Solve(const datasets::Scenario& scenario) {
     }
     case AssociationMode::kFilter: {
       CheckLabelShape(scenario, options_.filter_association, "SmootherOptions.filter_association");
-      CompactLabels(options_.filter_association, &association_, &labels_);
+      // Labels with fewer than min_observations detections are taken as clutter, as a filter's
+      // map estimate leaves out its weak (clutter-born) components.
+      std::map<int, int> counts;
+      for (const auto& step : options_.filter_association) {
+        for (int l : step) {
+          if (l >= 0) ++counts[l];
+        }
+      }
+      std::vector<std::vector<int>> kept = options_.filter_association;
+      for (auto& step : kept) {
+        for (int& l : step) {
+          if (l >= 0 && counts[l] < options_.min_observations) l = -1;
+        }
+      }
+      CompactLabels(kept, &association_, &labels_);
       landmarks = InitialLandmarks(scenario, poses, association_, labels_.size());
       final_loss = robust.get();
       break;
@@ -446,6 +471,32 @@ filters::BatchResult BatchSmoother::Solve(const datasets::Scenario& scenario) {
 
   if (warm_start && options_.association != AssociationMode::kUnknown) {
     optimise(loose_odometry, final_loss, options_.intermediate_function_tolerance);
+  }
+  if (options_.association == AssociationMode::kFilter && options_.min_detection_ratio > 0.0) {
+    // The filter's landmarks pass the unknown mode's detection-ratio test too, at the
+    // warm-started trajectory: a clutter-born component the filter kept re-associating is seen
+    // in only a few of the scans that cover it.
+    AssociationOptions ao;
+    ao.min_observations = options_.min_observations;
+    ao.min_detection_ratio = options_.min_detection_ratio;
+    ao.sensor = scenario.sensor;
+    const std::vector<bool> keep = SupportedLandmarks(association_, landmarks, poses, ao);
+    std::vector<int> new_index(landmarks.size(), kUnassociated);
+    std::vector<Landmark> kept_landmarks;
+    std::vector<int> kept_labels;
+    for (std::size_t i = 0; i < landmarks.size(); ++i) {
+      if (!keep[i]) continue;
+      new_index[i] = static_cast<int>(kept_landmarks.size());
+      kept_landmarks.push_back(landmarks[i]);
+      kept_labels.push_back(labels_[i]);
+    }
+    for (auto& step : association_) {
+      for (int& a : step) {
+        if (a != kUnassociated) a = new_index[static_cast<std::size_t>(a)];
+      }
+    }
+    landmarks = std::move(kept_landmarks);
+    labels_ = std::move(kept_labels);
   }
   const std::unique_ptr<FactorGraph> graph =
       optimise(final_odometry, final_loss, options_.function_tolerance);

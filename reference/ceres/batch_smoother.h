@@ -67,7 +67,8 @@ struct SmootherOptions {
   int reassociation_rounds = 5;  ///< maximum solve/re-associate rounds
   /// Gate for associating a measurement and for merging landmarks: chi2 with 2 dof at 0.999.
   double gate_chi2 = 13.8;
-  /// Landmarks (created from unassociated measurements) seen fewer times are dropped. 3 keeps
+  /// Landmarks (created from unassociated measurements, or filter-mode labels) seen fewer times
+  /// are dropped. 3 keeps
   /// every real landmark of the synthetic scenario (hundreds of detections each) and removes
   /// almost all clutter, which lands twice in the same gate with probability ~1e-3 per point.
   int min_observations = 3;
@@ -81,9 +82,20 @@ struct SmootherOptions {
   std::string robust_loss = "cauchy";
   double robust_scale = 1.0;
 
+  /// Initial trajectory, one pose per step; empty: dead reckoning. Known and filter modes only
+  /// (the unknown mode starts from its own sequential pass).
+  std::vector<Pose> initial_poses;
+
   // Filter mode: per step, per measurement, the landmark id of a filter's association (any
-  // non-negative label; -1 = clutter). Solved once with the robust loss above.
+  // non-negative label; -1 = clutter). Labels with fewer than min_observations detections are
+  // treated as clutter; the rest is solved as given, with the robust loss above.
   std::vector<std::vector<int>> filter_association;
+  /// FilterThenSmooth (filter_association.h): associated landmark means of consecutive scans
+  /// closer than this (m) are the same landmark.
+  double filter_label_distance = 2.0;
+
+  /// Throws std::invalid_argument naming the field when an option is out of range.
+  void Validate() const;
 };
 
 /// What a Solve did, for logs and reports.

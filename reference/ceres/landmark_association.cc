@@ -234,17 +234,12 @@ Mat2 CovarianceFromInformation(const Mat2& info) {
 void DropUnsupportedLandmarks(const AssociationOptions& options, const std::vector<Pose>& poses,
                               AssociatedMap* map) {
   const std::vector<int> counts = CountObservations(map->association, map->landmarks.size());
+  const std::vector<bool> keep =
+      SupportedLandmarks(map->association, map->landmarks, poses, options);
   std::vector<int> new_index(map->landmarks.size(), kUnassociated);
   std::vector<Landmark> kept;
   for (std::size_t i = 0; i < map->landmarks.size(); ++i) {
-    bool keep = counts[i] >= options.min_observations;
-    if (keep && options.min_detection_ratio > 0.0) {
-      double expected = 0.0;
-      for (const Pose& x : poses)
-        expected += options.sensor.DetectionProbability(x, map->landmarks[i]);
-      keep = counts[i] >= options.min_detection_ratio * expected;
-    }
-    if (keep) {
+    if (keep[i]) {
       new_index[i] = static_cast<int>(kept.size());
       kept.push_back(map->landmarks[i]);
     } else if (counts[i] > 0) {
@@ -268,6 +263,23 @@ void CheckSizes(const datasets::Scenario& scenario, std::size_t poses, const cha
 }
 
 }  // namespace
+
+std::vector<bool> SupportedLandmarks(const Association& association,
+                                     const std::vector<Landmark>& landmarks,
+                                     const std::vector<Pose>& poses,
+                                     const AssociationOptions& options) {
+  const std::vector<int> counts = CountObservations(association, landmarks.size());
+  std::vector<bool> keep(landmarks.size(), false);
+  for (std::size_t i = 0; i < landmarks.size(); ++i) {
+    keep[i] = counts[i] >= options.min_observations;
+    if (keep[i] && options.min_detection_ratio > 0.0) {
+      double expected = 0.0;
+      for (const Pose& x : poses) expected += options.sensor.DetectionProbability(x, landmarks[i]);
+      keep[i] = counts[i] >= options.min_detection_ratio * expected;
+    }
+  }
+  return keep;
+}
 
 std::vector<int> CountObservations(const Association& association, std::size_t landmark_count) {
   std::vector<int> counts(landmark_count, 0);

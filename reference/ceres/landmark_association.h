@@ -102,6 +102,13 @@ AssociatedMap Reassociate(const datasets::Scenario& scenario, const std::vector<
                           const std::vector<Landmark>& landmarks, const Association& previous,
                           const AssociationOptions& options);
 
+/// For each landmark, whether it has support along `poses`: at least min_observations
+/// detections and at least min_detection_ratio times sum_k pD(poses[k], landmark).
+std::vector<bool> SupportedLandmarks(const Association& association,
+                                     const std::vector<Landmark>& landmarks,
+                                     const std::vector<Pose>& poses,
+                                     const AssociationOptions& options);
+
 /// Number of measurements associated with each of `landmark_count` landmarks.
 std::vector<int> CountObservations(const Association& association, std::size_t landmark_count);
 
