@@ -12,7 +12,6 @@
 #include "validation/runner/parameter_overrides.h"
 
 namespace phdslam::validation {
-namespace {
 
 const datasets::Scenario& RequireScenario(const EstimatorRequest& request) {
   if (request.scenario == nullptr) {
@@ -28,6 +27,12 @@ void RequireSingleParticle(const EstimatorRequest& request) {
                                 std::to_string(request.particles));
   }
 }
+
+const std::string& RequestScenarioName(const EstimatorRequest& request) {
+  return request.scenario != nullptr ? request.scenario->name : request.scenario_name;
+}
+
+namespace {
 
 EstimatorEntry OdometryEntry() {
   EstimatorEntry e;
@@ -157,6 +162,8 @@ std::vector<EstimatorEntry> BuildTable() {
   }
   table.push_back(ScPhdSlamEntry());
   table.push_back(OracleEntry());
+  for (EstimatorEntry& e : MrptEstimators()) table.push_back(std::move(e));
+  for (EstimatorEntry& e : CeresEstimators()) table.push_back(std::move(e));
   return table;
 }
 

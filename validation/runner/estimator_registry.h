@@ -58,4 +58,16 @@ const EstimatorEntry& FindEstimator(const std::vector<EstimatorEntry>& table,
 std::uint64_t RunStreamSeed(std::string_view experiment, std::uint64_t seed,
                             std::string_view estimator, int particles);
 
+/// The request's scenario; throws naming the estimator when it has none.
+const datasets::Scenario& RequireScenario(const EstimatorRequest& request);
+/// Throws naming the estimator unless the request asks for exactly one particle.
+void RequireSingleParticle(const EstimatorRequest& request);
+/// The name of the request's scenario (from the scenario when given, else scenario_name).
+const std::string& RequestScenarioName(const EstimatorRequest& request);
+
+/// Entries of the optional external baselines; each list is empty when its library was not
+/// built (the build picks the source file: reference_estimators_*.cc).
+std::vector<EstimatorEntry> MrptEstimators();
+std::vector<EstimatorEntry> CeresEstimators();
+
 }  // namespace phdslam::validation

@@ -1,0 +1,92 @@
+// Registry entries of the MRPT baselines (built only when phdslam_reference_mrpt exists).
+#include <memory>
+#include <stdexcept>
+
+#include "reference/mrpt/fastslam.h"
+#include "reference/mrpt/mrpt_baseline_params_json.h"
+#include "reference/mrpt/mrpt_ekf_slam.h"
+#include "validation/runner/estimator_registry.h"
+
+namespace phdslam::validation {
+namespace {
+
+// Track deletion is on by default here: stock MRPT (prune_after_steps = 0) keeps every clutter
+// point as a landmark and cannot run 4000 cluttered scans (reference/mrpt/README.md).
+reference::MrptEkfSlamOptions ResolveMrptEkf(const EstimatorRequest& r) {
+  RequireSingleParticle(r);
+  reference::MrptEkfSlamOptions o;
+  o.prune_after_steps = 5;
+  try {
+    reference::ApplyJson(r.overrides, o);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument("estimator '" + r.name + "': " + e.what());
+  }
+  return o;
+}
+
+EstimatorEntry MrptEkfEntry() {
+  EstimatorEntry e;
+  e.name = "mrpt-ekf";
+  e.description =
+      "MRPT CRangeBearingKFSLAM2D EKF-SLAM, unknown association (JCBB, Mahalanobis, chi2 0.999) "
+      "with track deletion and covariance symmetrisation added; raw map; one particle";
+  e.resolved_parameters = [](const EstimatorRequest& r) {
+    return reference::ToJson(ResolveMrptEkf(r));
+  };
+  e.make_online = [](const EstimatorRequest& r) -> std::unique_ptr<filters::OnlineEstimator> {
+    return std::make_unique<reference::MrptEkfSlam>(
+        filters::EstimatorContext::FromScenario(RequireScenario(r)), ResolveMrptEkf(r));
+  };
+  return e;
+}
+
+reference::FastSlamOptions ResolveFastSlam(const EstimatorRequest& r,
+                                           reference::FastSlamProposal proposal) {
+  if (r.particles < 1) {
+    throw std::invalid_argument("estimator '" + r.name + "': --particles must be >= 1");
+  }
+  reference::FastSlamOptions o;
+  o.proposal = proposal;
+  try {
+    reference::ApplyJson(r.overrides, o);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument("estimator '" + r.name + "': " + e.what());
+  }
+  if (o.proposal != proposal) {
+    throw std::invalid_argument("estimator '" + r.name + "': 'proposal' is fixed by the name");
+  }
+  return o;
+}
+
+EstimatorEntry FastSlamEntry(const std::string& name, reference::FastSlamProposal proposal,
+                             const std::string& description) {
+  EstimatorEntry e;
+  e.name = name;
+  e.description = description;
+  e.resolved_parameters = [proposal](const EstimatorRequest& r) {
+    nlohmann::json j = reference::ToJson(ResolveFastSlam(r, proposal));
+    j["particles"] = r.particles;
+    return j;
+  };
+  e.make_online = [proposal](
+                      const EstimatorRequest& r) -> std::unique_ptr<filters::OnlineEstimator> {
+    return std::make_unique<reference::FastSlam>(
+        filters::EstimatorContext::FromScenario(RequireScenario(r)), r.particles, r.stream_seed,
+        ResolveFastSlam(r, proposal));
+  };
+  return e;
+}
+
+}  // namespace
+
+std::vector<EstimatorEntry> MrptEstimators() {
+  return {MrptEkfEntry(),
+          FastSlamEntry("fastslam1", reference::FastSlamProposal::kMotionModel,
+                        "FastSLAM 1.0 built on MRPT's particle filter: motion-model proposal, "
+                        "per-particle ML association, landmark existence counter"),
+          FastSlamEntry("fastslam2", reference::FastSlamProposal::kMeasurementConditioned,
+                        "FastSLAM 2.0 built on MRPT's particle filter: EKF-conditioned pose "
+                        "proposal, per-particle ML association, landmark existence counter")};
+}
+
+}  // namespace phdslam::validation
