@@ -9,6 +9,8 @@
 
 #include "src/core/gaussian.h"
 #include "src/core/log_sum_exp.h"
+#include "src/filters/json_fields.h"
+#include "src/filters/map_params_json.h"
 #include "src/filters/resampling.h"
 #include "src/models/sensor_model.h"
 
@@ -17,30 +19,6 @@ namespace {
 
 constexpr const char* kControlNoiseName = "control-noise";
 constexpr const char* kLinearisedGaussianName = "linearised-gaussian";
-
-double NumberAt(const nlohmann::json& v, const std::string& key) {
-  if (!v.is_number()) throw std::invalid_argument("parameter '" + key + "': expected a number");
-  const double d = v.get<double>();
-  if (!std::isfinite(d)) throw std::invalid_argument("parameter '" + key + "': not finite");
-  return d;
-}
-
-int IntAt(const nlohmann::json& v, const std::string& key) {
-  const double d = NumberAt(v, key);
-  if (d != std::floor(d) || std::abs(d) > 1e9) {
-    throw std::invalid_argument("parameter '" + key + "': expected an integer");
-  }
-  return static_cast<int>(d);
-}
-
-bool BoolAt(const nlohmann::json& v, const std::string& key) {
-  if (!v.is_boolean()) throw std::invalid_argument("parameter '" + key + "': expected true/false");
-  return v.get<bool>();
-}
-
-void Require(bool ok, const std::string& key, const std::string& what) {
-  if (!ok) throw std::invalid_argument("parameter '" + key + "': " + what);
-}
 
 /// A factor L with L L^T = Q for a symmetric positive semi-definite Q (eigen-decomposition, so a
 /// singular Q such as zero noise is allowed). Throws naming `what` otherwise.
@@ -80,16 +58,7 @@ nlohmann::json ToJson(const ScPhdSlamParams& p) {
   nlohmann::json j;
   j["particles"] = p.particles;
   j["shotgun"] = p.shotgun;
-  j["birth_log_weight"] = p.map.birth_log_weight;
-  j["gate_threshold"] = p.map.gate_threshold;
-  j["prune_log_weight"] = p.map.prune_log_weight;
-  j["merge_threshold"] = p.map.merge_threshold;
-  j["spread_kill_log_weight"] = p.map.spread_kill_log_weight;
-  j["reference_merge_leading_covariance"] = p.map.reference_merge_leading_covariance;
-  j["reference_merge_double_membership"] = p.map.reference_merge_double_membership;
-  j["reference_spread_kill"] = p.map.reference_spread_kill;
-  j["reference_births_from_ungated_only"] = p.map.reference_births_from_ungated_only;
-  j["reference_omit_missed_detection_mass"] = p.map.reference_omit_missed_detection_mass;
+  WriteMapParams(p.map, j);
   j["pose_regularisation"] = {p.pose_regularisation(0, 0), p.pose_regularisation(1, 1),
                               p.pose_regularisation(2, 2)};
   j["prediction"] = p.prediction == ScPredictionSampling::kControlNoise ? kControlNoiseName
@@ -107,28 +76,8 @@ void ApplyJson(const nlohmann::json& overrides, ScPhdSlamParams& p) {
     } else if (key == "shotgun") {
       p.shotgun = IntAt(v, key);
       Require(p.shotgun >= 1, key, "must be >= 1");
-    } else if (key == "birth_log_weight") {
-      p.map.birth_log_weight = NumberAt(v, key);
-    } else if (key == "gate_threshold") {
-      p.map.gate_threshold = NumberAt(v, key);
-      Require(p.map.gate_threshold > 0, key, "must be > 0");
-    } else if (key == "prune_log_weight") {
-      p.map.prune_log_weight = NumberAt(v, key);
-    } else if (key == "merge_threshold") {
-      p.map.merge_threshold = NumberAt(v, key);
-      Require(p.map.merge_threshold >= 0, key, "must be >= 0");
-    } else if (key == "spread_kill_log_weight") {
-      p.map.spread_kill_log_weight = NumberAt(v, key);
-    } else if (key == "reference_merge_leading_covariance") {
-      p.map.reference_merge_leading_covariance = BoolAt(v, key);
-    } else if (key == "reference_merge_double_membership") {
-      p.map.reference_merge_double_membership = BoolAt(v, key);
-    } else if (key == "reference_spread_kill") {
-      p.map.reference_spread_kill = BoolAt(v, key);
-    } else if (key == "reference_births_from_ungated_only") {
-      p.map.reference_births_from_ungated_only = BoolAt(v, key);
-    } else if (key == "reference_omit_missed_detection_mass") {
-      p.map.reference_omit_missed_detection_mass = BoolAt(v, key);
+    } else if (ApplyMapParam(key, v, p.map)) {
+      // a GM-PHD map parameter
     } else if (key == "pose_regularisation") {
       Require(v.is_array() && v.size() == 3, key, "expected [qx, qy, qtheta]");
       for (int i = 0; i < 3; ++i) {
