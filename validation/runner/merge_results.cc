@@ -104,11 +104,13 @@ void CopyTruthFiles(const fs::path& input, const fs::path& out) {
   const fs::path truth = input / kTruthFolder;
   if (!fs::is_directory(truth)) return;
   for (const auto& seed : fs::directory_iterator(truth)) {
-    const fs::path file = seed.path() / kTruthTrajectoryFile;
-    const fs::path target = out / kTruthFolder / seed.path().filename() / kTruthTrajectoryFile;
-    if (!fs::exists(file) || fs::exists(target)) continue;
-    fs::create_directories(target.parent_path());
-    LinkOrCopy(file, target);
+    for (const char* name : {kTruthTrajectoryFile, kTruthMapFile}) {
+      const fs::path file = seed.path() / name;
+      const fs::path target = out / kTruthFolder / seed.path().filename() / name;
+      if (!fs::exists(file) || fs::exists(target)) continue;
+      fs::create_directories(target.parent_path());
+      LinkOrCopy(file, target);
+    }
   }
 }
 

@@ -252,6 +252,11 @@ MonteCarloReport RunMonteCarlo(const MonteCarloPlan& plan, const MonteCarloSetti
   MonteCarloReport report = prepared.report;
   std::filesystem::create_directories(settings.out);
   WriteFileAtomically(settings.out / kConfigFile, prepared.config.dump(2) + "\n");
+  if (!todo.empty() && !plan.seeds.empty() &&
+      !std::filesystem::exists(settings.out / kTruthMapFile)) {
+    WriteRootTruthMap(settings.out,
+                      plan.scenario.make(*std::min_element(plan.seeds.begin(), plan.seeds.end())));
+  }
 
   ProgressLine progress(todo.size(), settings.show_progress);
   std::atomic<std::size_t> next{0};

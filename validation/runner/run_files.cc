@@ -129,18 +129,32 @@ void WriteRunError(const std::filesystem::path& folder, const nlohmann::json& id
                       j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
 }
 
+namespace {
+
+void WriteTruthMap(const std::filesystem::path& file, const datasets::Scenario& scenario,
+                   std::string_view tag) {
+  std::vector<datasets::MapPoint> points;
+  points.reserve(scenario.truth.landmarks.size());
+  for (const Landmark& m : scenario.truth.landmarks) points.push_back({m, 1.0, std::nullopt});
+  WriteFileAtomically(
+      file, [&](const std::filesystem::path& temp) { datasets::WriteMapCsv(temp, points); }, tag);
+}
+
+}  // namespace
+
+void WriteRootTruthMap(const std::filesystem::path& out, const datasets::Scenario& scenario) {
+  if (scenario.truth.landmarks.empty()) return;
+  WriteTruthMap(out / kTruthMapFile, scenario, "root");
+}
+
 void WriteTruthFiles(const std::filesystem::path& out, const datasets::Scenario& scenario,
                      std::string_view tag) {
-  if (!scenario.truth.landmarks.empty() && !std::filesystem::exists(out / kTruthMapFile)) {
-    std::vector<datasets::MapPoint> points;
-    points.reserve(scenario.truth.landmarks.size());
-    for (const Landmark& m : scenario.truth.landmarks) points.push_back({m, 1.0, std::nullopt});
-    WriteFileAtomically(
-        out / kTruthMapFile,
-        [&](const std::filesystem::path& temp) { datasets::WriteMapCsv(temp, points); }, tag);
+  const std::filesystem::path folder = TruthFolder(out, scenario.seed);
+  if (!scenario.truth.landmarks.empty() && !std::filesystem::exists(folder / kTruthMapFile)) {
+    std::filesystem::create_directories(folder);
+    WriteTruthMap(folder / kTruthMapFile, scenario, tag);
   }
   if (!scenario.truth.poses.empty() && scenario.truth.poses.size() == scenario.steps.size()) {
-    const std::filesystem::path folder = TruthFolder(out, scenario.seed);
     if (std::filesystem::exists(folder / kTruthTrajectoryFile)) return;
     std::filesystem::create_directories(folder);
     std::vector<double> times;

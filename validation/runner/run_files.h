@@ -37,10 +37,16 @@ void WriteRunFiles(const std::filesystem::path& folder, const RunRecord& record,
 void WriteRunError(const std::filesystem::path& folder, const nlohmann::json& identity,
                    const std::string& message);
 
-/// Writes <out>/truth_map.csv (true landmarks, weight 1) and <out>/truth/seed-<seed>/truth.tum
-/// (true poses at the step times) when the scenario has them and the files do not exist yet.
-/// `tag` distinguishes concurrent writers (temporary file names).
+/// Writes <out>/truth/seed-<seed>/truth.tum (true poses at the step times) and
+/// <out>/truth/seed-<seed>/truth_map.csv (true landmarks, weight 1) when the scenario has them
+/// and the files do not exist yet. `tag` distinguishes concurrent writers (temporary names).
 void WriteTruthFiles(const std::filesystem::path& out, const datasets::Scenario& scenario,
                      std::string_view tag);
+
+/// Writes <out>/truth_map.csv, the true map of `scenario`, when it has one. The runner calls it
+/// with the plan's lowest seed before any run starts, so the file does not depend on which run
+/// finishes first, nor on sharding (the map is the same for every seed of paper-synthetic; for
+/// a generated scenario the per-seed maps are in truth/seed-<s>/).
+void WriteRootTruthMap(const std::filesystem::path& out, const datasets::Scenario& scenario);
 
 }  // namespace phdslam::validation
