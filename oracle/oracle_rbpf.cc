@@ -10,6 +10,7 @@
 
 #include "src/core/angles.h"
 #include "src/core/gaussian.h"
+#include "src/filters/pose_prediction.h"
 #include "src/filters/ipl.h"
 #include "src/filters/resampling.h"
 #include "src/models/range_bearing_model.h"
@@ -109,16 +110,7 @@ std::unique_ptr<OracleRbpf> OracleRbpf::FromScenario(const datasets::Scenario& s
 }
 
 void OracleRbpf::Predict(OracleParticle& particle, const datasets::StepData& step) const {
-  if (step.times.size() < 2) return;
-  particle.cov += params_.pose_regularisation;
-  for (std::size_t i = 0; i + 1 < step.times.size(); ++i) {
-    const double dt = step.times[i + 1] - step.times[i];
-    const auto j = context_.motion->Jacobians(particle.pose, step.controls[i], dt);
-    particle.pose = context_.motion->Predict(particle.pose, step.controls[i], dt);
-    particle.cov = j.fx * particle.cov * j.fx.transpose() +
-                   j.fu * context_.control_noise_cov * j.fu.transpose();
-    Symmetrize(particle.cov);
-  }
+  PredictPoseGaussian(context_, step, params_.pose_regularisation, particle.pose, particle.cov);
 }
 
 filters::StepOutput OracleRbpf::Step(const datasets::StepData& step) {

@@ -2,7 +2,7 @@
 
 #include <utility>
 
-#include "src/core/gaussian.h"
+#include "src/filters/pose_prediction.h"
 #include "src/models/range_bearing_model.h"
 
 namespace phdslam::filters {
@@ -11,13 +11,7 @@ OdometryEstimator::OdometryEstimator(EstimatorContext context)
     : context_(std::move(context)), pose_(context_.initial_pose) {}
 
 StepOutput OdometryEstimator::Step(const datasets::StepData& step) {
-  for (std::size_t i = 0; i + 1 < step.times.size(); ++i) {
-    const double dt = step.times[i + 1] - step.times[i];
-    const auto j = context_.motion->Jacobians(pose_, step.controls[i], dt);
-    pose_ = context_.motion->Predict(pose_, step.controls[i], dt);
-    cov_ = j.fx * cov_ * j.fx.transpose() + j.fu * context_.control_noise_cov * j.fu.transpose();
-    Symmetrize(cov_);
-  }
+  PredictPoseGaussian(context_, step, Mat3::Zero(), pose_, cov_);
   map_ = MapEstimate{};
   for (const Measurement& z : step.measurements) {
     map_.means.push_back(models::InverseMeasurement(pose_, z));

@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "src/core/gaussian.h"
+#include "src/filters/pose_prediction.h"
 #include "src/filters/resampling.h"
 
 namespace phdslam::filters {
@@ -39,16 +40,7 @@ void RbPhdSlam::Predict(PhdParticle& particle, const datasets::StepData& step) c
                            params_.map);
     particle.births.clear();
   }
-  if (step.times.size() < 2) return;
-  particle.cov += params_.pose_regularisation;
-  for (std::size_t i = 0; i + 1 < step.times.size(); ++i) {
-    const double dt = step.times[i + 1] - step.times[i];
-    const auto j = context_.motion->Jacobians(particle.pose, step.controls[i], dt);
-    particle.pose = context_.motion->Predict(particle.pose, step.controls[i], dt);
-    particle.cov = j.fx * particle.cov * j.fx.transpose() +
-                   j.fu * context_.control_noise_cov * j.fu.transpose();
-    Symmetrize(particle.cov);
-  }
+  PredictPoseGaussian(context_, step, params_.pose_regularisation, particle.pose, particle.cov);
 }
 
 StepOutput RbPhdSlam::Step(const datasets::StepData& step) {
