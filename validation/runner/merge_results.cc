@@ -104,7 +104,7 @@ void CopyTruthFiles(const fs::path& input, const fs::path& out) {
   const fs::path truth = input / kTruthFolder;
   if (!fs::is_directory(truth)) return;
   for (const auto& seed : fs::directory_iterator(truth)) {
-    for (const char* name : {kTruthTrajectoryFile, kTruthMapFile}) {
+    for (const char* name : {kTruthTrajectoryFile, kTruthMapFile, kTruthGpsFile}) {
       const fs::path file = seed.path() / name;
       const fs::path target = out / kTruthFolder / seed.path().filename() / name;
       if (!fs::exists(file) || fs::exists(target)) continue;

@@ -21,6 +21,7 @@ inline constexpr const char* kTimingFile = "timing.json";
 inline constexpr const char* kTruthMapFile = "truth_map.csv";
 inline constexpr const char* kTruthFolder = "truth";
 inline constexpr const char* kTruthTrajectoryFile = "truth.tum";
+inline constexpr const char* kTruthGpsFile = "gps.csv";
 inline constexpr const char* kSweepTableFile = "sweep.csv";  ///< at the root of a sweep
 inline constexpr const char* kSweepFile = "sweep.json";      ///< at the root of a sweep
 inline constexpr const char* kComparisonFile = "comparison.csv";

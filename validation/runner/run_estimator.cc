@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <stdexcept>
+#include <utility>
 
 namespace phdslam::validation {
 namespace {
@@ -25,6 +26,7 @@ void RunOnline(const EstimatorEntry& entry, const EstimatorRequest& request,
   record.poses.reserve(n);
   record.pose_covs.reserve(n);
   record.diagnostics.reserve(n);
+  record.associations.reserve(n);
   record.step_ms.reserve(n);
   for (std::size_t k = 0; k < n; ++k) {
     const Clock::time_point start = Clock::now();
@@ -33,6 +35,7 @@ void RunOnline(const EstimatorEntry& entry, const EstimatorRequest& request,
     record.poses.push_back(out.pose);
     record.pose_covs.push_back(out.pose_cov);
     record.diagnostics.push_back(out.diag);
+    record.associations.push_back(std::move(out.association));
     record.step_ms.push_back(ms);
     record.total_ms += ms;
     if (record_particles) record.particle_states.push_back(estimator->ParticleStates());

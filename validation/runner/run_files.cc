@@ -154,6 +154,15 @@ void WriteTruthFiles(const std::filesystem::path& out, const datasets::Scenario&
     std::filesystem::create_directories(folder);
     WriteTruthMap(folder / kTruthMapFile, scenario, tag);
   }
+  if (!scenario.truth.gps.empty() && !std::filesystem::exists(folder / kTruthGpsFile)) {
+    std::filesystem::create_directories(folder);
+    std::string text = "t,x,y\n";
+    for (const datasets::GpsFix& fix : scenario.truth.gps) {
+      text += FormatNumber(fix.t) + "," + FormatNumber(fix.position.x()) + "," +
+              FormatNumber(fix.position.y()) + "\n";
+    }
+    WriteFileAtomically(folder / kTruthGpsFile, text, tag);
+  }
   if (!scenario.truth.poses.empty() && scenario.truth.poses.size() == scenario.steps.size()) {
     if (std::filesystem::exists(folder / kTruthTrajectoryFile)) return;
     std::filesystem::create_directories(folder);

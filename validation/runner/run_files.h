@@ -37,9 +37,10 @@ void WriteRunFiles(const std::filesystem::path& folder, const RunRecord& record,
 void WriteRunError(const std::filesystem::path& folder, const nlohmann::json& identity,
                    const std::string& message);
 
-/// Writes <out>/truth/seed-<seed>/truth.tum (true poses at the step times) and
-/// <out>/truth/seed-<seed>/truth_map.csv (true landmarks, weight 1) when the scenario has them
-/// and the files do not exist yet. `tag` distinguishes concurrent writers (temporary names).
+/// Writes <out>/truth/seed-<seed>/truth.tum (true poses at the step times),
+/// <out>/truth/seed-<seed>/truth_map.csv (true landmarks, weight 1) and
+/// <out>/truth/seed-<seed>/gps.csv (GPS fixes: t,x,y) when the scenario has them and the files
+/// do not exist yet. `tag` distinguishes concurrent writers (temporary names).
 void WriteTruthFiles(const std::filesystem::path& out, const datasets::Scenario& scenario,
                      std::string_view tag);
 

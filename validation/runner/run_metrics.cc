@@ -98,6 +98,34 @@ void EvaluateDiagnostics(const RunRecord& record, RunMetrics& m) {
   m.map_components_mean = components / steps;
 }
 
+// Scores the reported associations against the hidden origin labels, when the scenario has them
+// for every measurement and a true map.
+void EvaluateAssociation(const RunRecord& record, const datasets::Scenario& scenario,
+                         RunMetrics& m) {
+  const std::size_t n = scenario.steps.size();
+  if (record.associations.size() != n || scenario.truth.landmarks.empty()) return;
+  for (const datasets::ScenarioStep& step : scenario.steps) {
+    if (step.origin.size() != step.data.measurements.size()) return;
+    for (int o : step.origin) {
+      if (o < datasets::kClutter) return;
+    }
+  }
+  AssociationCounts counts;
+  std::vector<bool> seen_before;
+  for (std::size_t k = 0; k < n; ++k) {
+    try {
+      AccumulateAssociation(scenario.steps[k].origin, record.associations[k],
+                            scenario.truth.landmarks, seen_before,
+                            std::numeric_limits<double>::infinity(), counts);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument("run of '" + record.estimator + "' seed " +
+                                  std::to_string(record.seed) + ", step " + std::to_string(k) +
+                                  ": association: " + e.what());
+    }
+  }
+  m.association = counts;
+}
+
 }  // namespace
 
 RunEvaluation EvaluateRun(const RunRecord& record, const datasets::Scenario& scenario,
@@ -117,6 +145,7 @@ RunEvaluation EvaluateRun(const RunRecord& record, const datasets::Scenario& sce
   EvaluateTrajectory(record, scenario, settings, ev);
   EvaluateMap(record, scenario, settings, ev.metrics);
   EvaluateDiagnostics(record, ev.metrics);
+  EvaluateAssociation(record, scenario, ev.metrics);
   for (double ms : record.step_ms) ev.metrics.step_ms.Add(ms);
   ev.metrics.total_ms = record.total_ms;
   return ev;

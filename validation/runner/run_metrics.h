@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "datasets/scenario.h"
+#include "validation/metrics/association_accuracy.h"
 #include "validation/runner/error_moments.h"
 #include "validation/runner/run_record.h"
 
@@ -51,6 +52,11 @@ struct RunMetrics {
   ErrorMoments pose_nees;
   /// Landmark NEES of the final map over the GOSPA-matched pairs (maps with covariances).
   ErrorMoments landmark_nees;
+  /// Data-association confusion counts over every step (metrics/association_accuracy.h, the
+  /// landmark identity alone: no distance limit). nullopt for batch estimators and for scenarios
+  /// without origin labels and a true map (real data). An online estimator that never reports an
+  /// association has every measurement in `unreported` and NaN rates.
+  std::optional<AssociationCounts> association;
   std::optional<std::size_t> gps_matched_steps;  ///< data with GPS only
   ErrorMoments step_ms;                          ///< wall time per step (online estimators)
   double total_ms = 0.0;

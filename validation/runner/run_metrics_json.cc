@@ -2,6 +2,8 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "validation/runner/run_metrics.h"
 
@@ -75,6 +77,20 @@ class JsonReader {
   const std::string& source_;
 };
 
+// metrics.json keys of the association counts; all null when the run was not scored.
+const std::vector<std::pair<std::string, long AssociationCounts::*>>& AssociationFields() {
+  static const std::vector<std::pair<std::string, long AssociationCounts::*>> fields = {
+      {"da_tp", &AssociationCounts::tp},
+      {"da_fn", &AssociationCounts::fn},
+      {"da_tn", &AssociationCounts::tn},
+      {"da_fp", &AssociationCounts::fp},
+      {"da_first_sightings", &AssociationCounts::first_sightings},
+      {"da_first_sightings_associated", &AssociationCounts::first_sightings_associated},
+      {"da_unreported", &AssociationCounts::unreported},
+  };
+  return fields;
+}
+
 }  // namespace
 
 nlohmann::json ToJson(const RunMetrics& m) {
@@ -109,6 +125,13 @@ nlohmann::json ToJson(const RunMetrics& m) {
   j["landmark_nees_mean"] = OrNull(m.landmark_nees.Mean());
   j["landmark_nees_count"] = m.landmark_nees.count;
   j["landmark_nees_sum"] = m.landmark_nees.sum;
+  const std::optional<AssociationCounts>& da = m.association;
+  const auto da_count = [&](long AssociationCounts::*member) {
+    return da ? nlohmann::json((*da).*member) : nlohmann::json(nullptr);
+  };
+  for (const auto& [key, member] : AssociationFields()) j[key] = da_count(member);
+  j["da_tpr"] = OrNull(da ? std::optional<double>(da->tpr()) : std::nullopt);
+  j["da_tnr"] = OrNull(da ? std::optional<double>(da->tnr()) : std::nullopt);
   j["gps_matched_steps"] = OrNull(m.gps_matched_steps);
   j["ms_per_step_mean"] = OrNull(m.step_ms.Mean());
   j["ms_per_step_std"] = OrNull(m.step_ms.Std());
@@ -147,6 +170,14 @@ RunMetrics RunMetricsFromJson(const nlohmann::json& j, const std::string& source
   m.pose_nees.sum = r.Number("pose_nees_sum");
   m.landmark_nees.count = r.Count("landmark_nees_count");
   m.landmark_nees.sum = r.Number("landmark_nees_sum");
+  // Association counts: absent in folders written before they existed, null when not scored.
+  if (j.contains("da_tp") && !j.at("da_tp").is_null()) {
+    AssociationCounts da;
+    for (const auto& [key, member] : AssociationFields()) {
+      da.*member = static_cast<long>(r.Count(key));
+    }
+    m.association = da;
+  }
   m.gps_matched_steps = r.OptionalCount("gps_matched_steps");
   m.step_ms.count = r.Count("ms_count");
   m.step_ms.sum = r.Number("ms_sum");

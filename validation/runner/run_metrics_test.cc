@@ -15,6 +15,7 @@ namespace phdslam::validation {
 namespace {
 
 constexpr double kDeg = 180.0 / std::numbers::pi;
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // Three steps at t = 0, 1, 2 with true poses along the x axis and two true landmarks.
 datasets::Scenario TruthScenario() {
@@ -127,6 +128,65 @@ TEST(EvaluateRun, GpsOnlyScenarioScoresAgainstGps) {
   EXPECT_EQ(ev.metrics.pose_nees.count, 0u);
 }
 
+// Measurements with origin labels at steps 1 and 2: landmark 0 twice (first sighting, then a
+// re-observation), clutter twice, landmark 1 once (first sighting).
+datasets::Scenario LabelledScenario() {
+  datasets::Scenario s = TruthScenario();
+  s.steps[1].data.measurements = {Measurement(1.0, 0.0), Measurement(5.0, 1.0)};
+  s.steps[1].origin = {0, datasets::kClutter};
+  s.steps[2].data.measurements = {Measurement(2.0, 0.0), Measurement(8.0, 0.0),
+                                  Measurement(7.0, -1.0)};
+  s.steps[2].origin = {0, 1, datasets::kClutter};
+  return s;
+}
+
+TEST(EvaluateRun, ScoresTheReportedAssociationAgainstTheOriginLabels) {
+  const Landmark none(kNaN, kNaN);
+  RunRecord r = HandRecord();
+  // Step 1: landmark 0 is new (a first sighting), the clutter is left alone (TN). Step 2:
+  // landmark 0 associated with a component near it (TP), landmark 1 new, the clutter explained
+  // by landmark 1's component (FP).
+  r.associations = {{}, {none, none}, {Landmark(0.5, 0.0), none, Landmark(9.0, 0.0)}};
+  const RunMetrics m = EvaluateRun(r, LabelledScenario()).metrics;
+  ASSERT_TRUE(m.association);
+  EXPECT_EQ(m.association->tp, 1);
+  EXPECT_EQ(m.association->fn, 0);
+  EXPECT_EQ(m.association->tn, 1);
+  EXPECT_EQ(m.association->fp, 1);
+  EXPECT_EQ(m.association->first_sightings, 2);
+  EXPECT_DOUBLE_EQ(m.association->tpr(), 1.0);
+  EXPECT_DOUBLE_EQ(m.association->tnr(), 0.5);
+
+  // The component nearest to landmark 1 counts as a wrong association for landmark 0: FN.
+  r.associations[2][0] = Landmark(9.5, 0.0);
+  EXPECT_EQ(EvaluateRun(r, LabelledScenario()).metrics.association->fn, 1);
+
+  // An association vector of the wrong length names the step.
+  r.associations[2].pop_back();
+  try {
+    (void)EvaluateRun(r, LabelledScenario());
+    FAIL() << "expected std::invalid_argument";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("step 2"), std::string::npos) << e.what();
+  }
+}
+
+TEST(EvaluateRun, LeavesTheAssociationUnscoredWithoutLabelsOrAssociations) {
+  // Batch estimators record no associations.
+  EXPECT_FALSE(EvaluateRun(HandRecord(), LabelledScenario()).metrics.association);
+  // Real data: measurements of unknown origin.
+  RunRecord r = HandRecord();
+  r.associations = {{}, {}, {}};
+  datasets::Scenario s = LabelledScenario();
+  s.steps[2].origin[2] = datasets::kUnknownOrigin;
+  EXPECT_FALSE(EvaluateRun(r, s).metrics.association);
+  // An estimator that never associates: scored, every measurement unreported, no rates.
+  const RunMetrics m = EvaluateRun(r, LabelledScenario()).metrics;
+  ASSERT_TRUE(m.association);
+  EXPECT_EQ(m.association->unreported, 5);
+  EXPECT_TRUE(std::isnan(m.association->tpr()));
+}
+
 TEST(EvaluateRun, RejectsARecordOfTheWrongLength) {
   RunRecord r = HandRecord();
   r.poses.pop_back();
@@ -149,6 +209,28 @@ TEST(RunMetricsJson, RoundTripsTheSufficientStatistics) {
   EXPECT_EQ(back.pose_nees.sum, m.pose_nees.sum);
   EXPECT_EQ(back.step_ms.sum_sq, m.step_ms.sum_sq);
   EXPECT_EQ(ToJson(back), j);
+  EXPECT_TRUE(j.at("da_tpr").is_null());
+  EXPECT_TRUE(j.at("da_tp").is_null());
+  EXPECT_FALSE(back.association);
+
+  // Association counts round-trip; files written before they existed read as unscored.
+  RunRecord labelled = HandRecord();
+  labelled.associations = {{},
+                           {Landmark(kNaN, kNaN), Landmark(kNaN, kNaN)},
+                           {Landmark(0.0, 0.0), Landmark(kNaN, kNaN), Landmark(kNaN, kNaN)}};
+  const nlohmann::json da = ToJson(EvaluateRun(labelled, LabelledScenario()).metrics);
+  EXPECT_EQ(da.at("da_tp").get<long>(), 1);
+  EXPECT_DOUBLE_EQ(da.at("da_tnr").get<double>(), 1.0);
+  const RunMetrics da_back = RunMetricsFromJson(nlohmann::json::parse(da.dump()), "test");
+  ASSERT_TRUE(da_back.association);
+  EXPECT_EQ(da_back.association->tn, 2);
+  EXPECT_EQ(ToJson(da_back), da);
+  nlohmann::json old = j;
+  for (const char* key : {"da_tp", "da_fn", "da_tn", "da_fp", "da_first_sightings",
+                          "da_first_sightings_associated", "da_unreported", "da_tpr", "da_tnr"}) {
+    old.erase(key);
+  }
+  EXPECT_FALSE(RunMetricsFromJson(old, "test").association);
 
   nlohmann::json missing = j;
   missing.erase("pos_err_count");

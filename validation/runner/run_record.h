@@ -25,6 +25,10 @@ struct RunRecord {
   std::vector<std::optional<Mat3>> pose_covs;
   /// Per step for online estimators; empty for batch estimators.
   std::vector<filters::StepDiagnostics> diagnostics;
+  /// Per step for online estimators: StepOutput::association (per measurement the associated
+  /// landmark mean or NaN; empty when the estimator reported no association). Empty for batch
+  /// estimators.
+  std::vector<std::vector<Landmark>> associations;
   /// Wall time of each Step call (ms, steady_clock); empty for batch estimators.
   std::vector<double> step_ms;
   /// Wall time of the whole estimation (ms): the sum of step_ms, or the batch solve.

@@ -112,6 +112,12 @@ std::string RenderCsv(const std::vector<Column<Row>>& columns, const std::vector
 std::string Num(const std::optional<double>& v) { return FormatNumber(v); }
 std::string Count(std::size_t v) { return FormatInteger(static_cast<std::int64_t>(v)); }
 
+// A rate of association counts; empty when not scored or not defined (NaN).
+std::string DaRate(const std::optional<AssociationCounts>& counts,
+                   double (AssociationCounts::*rate)() const) {
+  return counts ? Num(((*counts).*rate)()) : std::string();
+}
+
 const std::vector<Column<GroupSummary>>& SummaryColumns() {
   using G = GroupSummary;
   static const std::vector<Column<G>> columns = {
@@ -150,6 +156,20 @@ const std::vector<Column<GroupSummary>>& SummaryColumns() {
       {"nees_fraction_inside",
        [](const G& g) { return g.nees ? Num(g.nees->fraction_inside) : std::string(); }},
       {"nees_steps", [](const G& g) { return g.nees ? Count(g.nees->steps) : std::string(); }},
+      {"da_tpr", [](const G& g) { return DaRate(g.association, &AssociationCounts::tpr); }},
+      {"da_tnr", [](const G& g) { return DaRate(g.association, &AssociationCounts::tnr); }},
+      {"da_positives",
+       [](const G& g) {
+         return g.association
+                    ? Count(static_cast<std::size_t>(g.association->tp + g.association->fn))
+                    : std::string();
+       }},
+      {"da_negatives",
+       [](const G& g) {
+         return g.association
+                    ? Count(static_cast<std::size_t>(g.association->tn + g.association->fp))
+                    : std::string();
+       }},
   };
   return columns;
 }
@@ -196,6 +216,8 @@ const std::vector<Column<RunResult>>& RunColumns() {
       {"pos_err_count", [](const R& r) { return Count(r.metrics.position_m.count); }},
       {"ms_per_step_std", [](const R& r) { return Num(r.metrics.step_ms.Std()); }},
       {"ms_run", [](const R& r) { return Num(r.metrics.total_ms); }},
+      {"da_tpr", [](const R& r) { return DaRate(r.metrics.association, &AssociationCounts::tpr); }},
+      {"da_tnr", [](const R& r) { return DaRate(r.metrics.association, &AssociationCounts::tnr); }},
   };
   return columns;
 }
@@ -303,6 +325,10 @@ std::vector<GroupSummary> SummariseGroups(const ResultsInventory& inventory) {
       g.map_size.Add(static_cast<double>(m.map_size));
       g.pose_nees.Merge(m.pose_nees);
       g.landmark_nees.Merge(m.landmark_nees);
+      if (m.association) {
+        if (!g.association) g.association = AssociationCounts{};
+        *g.association += *m.association;
+      }
       g.step_ms.Merge(m.step_ms);
       g.run_ms.Add(m.total_ms);
     }

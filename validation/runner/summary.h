@@ -71,6 +71,8 @@ struct GroupSummary {
   std::optional<double> map_components_mean;  ///< step-weighted over the runs
   ErrorMoments pose_nees;
   ErrorMoments landmark_nees;
+  /// Association counts summed over the runs that were scored; nullopt when none was.
+  std::optional<AssociationCounts> association;
   ErrorMoments step_ms;
   ErrorMoments run_ms;            ///< total wall time per run
   std::optional<GroupNees> nees;  ///< nullopt when no step has a NEES in every run

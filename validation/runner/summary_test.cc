@@ -70,6 +70,12 @@ RunMetrics SecondRun() {
   m.pose_nees.Add(5.0);
   m.step_ms.Add(2.5);
   m.total_ms = 2.5;
+  AssociationCounts da;
+  da.tp = 9;
+  da.fn = 1;
+  da.tn = 3;
+  da.fp = 1;
+  m.association = da;
   return m;
 }
 
@@ -191,7 +197,14 @@ TEST_F(SummaryTest, WritesSummaryAndRunsCsv) {
   EXPECT_EQ(a["map_size_mean"], "10");
   EXPECT_EQ(a["failed_runs"], "0");
   EXPECT_EQ(a["ms_per_step_mean"], "1.75");
+  // Association rates pool the counts of the scored runs (the hand-written run has none).
+  EXPECT_EQ(a["da_tpr"], "0.9");
+  EXPECT_EQ(a["da_tnr"], "0.75");
+  EXPECT_EQ(a["da_positives"], "10");
+  EXPECT_EQ(a["da_negatives"], "4");
   auto b = Row(summary, 1);
+  EXPECT_EQ(b["da_tpr"], "");
+  EXPECT_EQ(b["da_positives"], "");
   EXPECT_EQ(b["estimator"], "b");
   EXPECT_EQ(b["failed_runs"], "1");
   EXPECT_EQ(b["gospa_mean_m"], "");
@@ -208,6 +221,8 @@ TEST_F(SummaryTest, WritesSummaryAndRunsCsv) {
   EXPECT_EQ(r1["gospa_m"], "30");
   EXPECT_EQ(r1["n_false"], "1");
   EXPECT_EQ(r1["gospa_localisation_mp"], "300");
+  EXPECT_EQ(r1["da_tpr"], "");
+  EXPECT_EQ(Row(runs, 1)["da_tnr"], "0.75");
   auto r3 = Row(runs, 2);
   EXPECT_EQ(r3["estimator"], "b");
   EXPECT_EQ(r3["gospa_m"], "");
