@@ -6,6 +6,7 @@
 //   phdslam compare   paired Wilcoxon signed-rank tests between the groups of a results folder
 //   phdslam evaluate  GOSPA/OSPA of a map file, RMSE of a trajectory file
 //   phdslam list      the known scenarios and estimators
+//   phdslam parent-weights  single-cluster vs RB-PHD-SLAM parent weights after one scan
 //
 // Exit codes: 0 success, 1 a run or evaluation failed (or a file could not be read), 2 a usage
 // error (bad option, experiment file or list; unknown name; conflicting results folders),
@@ -23,6 +24,7 @@
 
 #include "datasets/map_io.h"
 #include "datasets/trajectory_io.h"
+#include "src/core/random.h"
 #include "validation/runner/estimator_registry.h"
 #include "validation/runner/experiment_file.h"
 #include "validation/runner/experiment_runner.h"
@@ -33,7 +35,9 @@
 #include "validation/runner/offline_evaluation.h"
 #include "validation/runner/paired_comparison.h"
 #include "validation/runner/parameter_overrides.h"
+#include "validation/runner/parent_weights.h"
 #include "validation/runner/results_config.h"
+#include "validation/runner/results_io.h"
 #include "validation/runner/results_layout.h"
 #include "validation/runner/scenario_registry.h"
 #include "validation/runner/shard.h"
@@ -87,6 +91,16 @@ struct MergeArguments {
 struct CompareArguments {
   std::string out;
   std::string metrics = "gospa_m,pos_rmse_m";
+};
+
+struct ParentWeightsArguments {
+  std::string scenario = "paper-synthetic";
+  std::uint64_t seed = 1;
+  std::size_t step = 100;
+  int parents = 300;
+  double spread = 10.0;
+  std::string out;
+  std::string data_dir;
 };
 
 struct EvaluateArguments {
@@ -201,6 +215,33 @@ void AddEvaluateCommand(CLI::App& app, EvaluateArguments& a) {
       ->add_option("--time-tolerance", a.time_tolerance,
                    "Largest time difference (s) between matched poses; 0 = equal stamps")
       ->capture_default_str();
+}
+
+void AddParentWeightsCommand(CLI::App& app, ParentWeightsArguments& a) {
+  CLI::App* pw = app.add_subcommand(
+      "parent-weights",
+      "The parent weighting figure of single-cluster PHD SLAM (Lee, Clark & Salvi 2012, Fig. 4): "
+      "runs scphd with one parent up to --step, draws --parents poses from its predicted pose "
+      "Gaussian (standard deviations scaled by --spread), updates the same predicted map with the "
+      "scan of --step, and writes the "
+      "normalised weights under the single-cluster likelihood (with exp(-sum pD w)) and under "
+      "the RB-PHD-SLAM weighting (46) to OUT/parent_weights.csv "
+      "(parent,x,y,theta,sc_weight,rb_weight) and OUT/parent_weights.json (step, predicted "
+      "Gaussian, true pose, ESS of each weighting). The report draws it when OUT is a results "
+      "folder.");
+  pw->add_option("--scenario", a.scenario, "Scenario")->capture_default_str();
+  pw->add_option("--seed", a.seed, "Monte Carlo seed of the scenario and of the draws")
+      ->capture_default_str();
+  pw->add_option("--step", a.step, "0-based step whose scan is compared (needs measurements)")
+      ->capture_default_str();
+  pw->add_option("--parents", a.parents, "Parent poses drawn (at least 2)")->capture_default_str();
+  pw->add_option("--spread", a.spread,
+                 "Scale of the draws' standard deviations relative to the one-step prediction "
+                 "(wider parents differ in which map components they see)")
+      ->capture_default_str();
+  pw->add_option("--out", a.out, "Output folder (created if needed)")->required();
+  pw->add_option("--data-dir", a.data_dir,
+                 "Data sets folder (default: $PHDSLAM_DATA, then the compiled default)");
 }
 
 // Applies the --set arguments to the experiment's estimators.
@@ -387,6 +428,29 @@ int Evaluate(const EvaluateArguments& a) {
   return 0;
 }
 
+int ParentWeights(const ParentWeightsArguments& a) {
+  v::ScenarioOptions options;
+  if (!a.data_dir.empty()) options.data_dir = a.data_dir;
+  const datasets::Scenario scenario = v::MakeScenario(a.scenario, a.seed, options);
+  v::ParentWeightsSettings settings;
+  settings.step = a.step;
+  settings.parents = a.parents;
+  settings.spread = a.spread;
+  settings.stream_seed = DeriveSeed(HashName("parent-weights"), a.seed);
+  const v::ParentWeights w = v::CompareParentWeightingAtStep(scenario, settings);
+  const std::filesystem::path out(a.out);
+  std::filesystem::create_directories(out);
+  nlohmann::json meta = v::ParentWeightsJson(w);
+  meta["scenario"] = a.scenario;
+  meta["seed"] = a.seed;
+  v::WriteFileAtomically(out / "parent_weights.csv", v::ParentWeightsCsv(w));
+  v::WriteFileAtomically(out / "parent_weights.json", meta.dump(2) + "\n");
+  std::cout << "parent weights: " << (out / "parent_weights.csv").string() << " (ESS "
+            << meta.at("ess_single_cluster").get<double>() << " single-cluster, "
+            << meta.at("ess_rb_phd").get<double>() << " RB-PHD of " << w.poses.size() << ")\n";
+  return 0;
+}
+
 int List() {
   std::size_t width = 0;
   for (const auto& s : v::ScenarioTable()) width = std::max(width, s.name.size());
@@ -411,10 +475,12 @@ int Main(int argc, char** argv) {
   MergeArguments merge_arguments;
   CompareArguments compare_arguments;
   EvaluateArguments evaluate_arguments;
+  ParentWeightsArguments parent_weights_arguments;
   AddRunCommand(app, run_arguments);
   AddMergeCommand(app, merge_arguments);
   AddCompareCommand(app, compare_arguments);
   AddEvaluateCommand(app, evaluate_arguments);
+  AddParentWeightsCommand(app, parent_weights_arguments);
   app.add_subcommand("list", "List the known scenarios and estimators");
   try {
     app.parse(argc, argv);
@@ -428,6 +494,7 @@ int Main(int argc, char** argv) {
     if (app.got_subcommand("merge")) return Merge(merge_arguments);
     if (app.got_subcommand("compare")) return Compare(compare_arguments);
     if (app.got_subcommand("evaluate")) return Evaluate(evaluate_arguments);
+    if (app.got_subcommand("parent-weights")) return ParentWeights(parent_weights_arguments);
     return List();
   } catch (const std::invalid_argument& e) {
     // Bad lists, unknown names and out-of-range options: usage errors.

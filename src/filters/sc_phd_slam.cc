@@ -140,10 +140,11 @@ std::vector<phd::GaussianComponent> CardinalityMapEstimate(const phd::GmPhdMap& 
   return all;
 }
 
-std::vector<std::pair<double, double>> CompareParentWeights(
-    std::span<const Pose> parent_poses, const phd::GmPhdMap& predicted_map,
-    std::span<const Measurement> measurements, const models::SensorModel& sensor,
-    const phd::MapParams& params) {
+std::vector<ParentWeighting> CompareParentWeights(std::span<const Pose> parent_poses,
+                                                  const phd::GmPhdMap& predicted_map,
+                                                  std::span<const Measurement> measurements,
+                                                  const models::SensorModel& sensor,
+                                                  const phd::MapParams& params) {
   phd::MapParams single_cluster = params;
   single_cluster.reference_omit_missed_detection_mass = false;
   phd::MapParams rb_phd = params;
@@ -158,9 +159,8 @@ std::vector<std::pair<double, double>> CompareParentWeights(
   }
   const std::vector<double> w_sc = NormalisedWeights(log_sc);
   const std::vector<double> w_rb = NormalisedWeights(log_rb);
-  std::vector<std::pair<double, double>> out;
-  out.reserve(w_sc.size());
-  for (std::size_t i = 0; i < w_sc.size(); ++i) out.emplace_back(w_sc[i], w_rb[i]);
+  std::vector<ParentWeighting> out(w_sc.size());
+  for (std::size_t i = 0; i < w_sc.size(); ++i) out[i] = {w_sc[i], w_rb[i], log_sc[i], log_rb[i]};
   return out;
 }
 

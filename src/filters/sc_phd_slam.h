@@ -110,15 +110,26 @@ double UpdateDaughterMap(phd::GmPhdMap& map, const Pose& pose,
 /// active and passive lists, highest log-weight first (stable on ties, active before passive).
 std::vector<phd::GaussianComponent> CardinalityMapEstimate(const phd::GmPhdMap& map);
 
+/// One parent under the two weightings of CompareParentWeights.
+struct ParentWeighting {
+  double single_cluster = 0.0;  ///< normalised weight, single-cluster likelihood
+  double rb_phd = 0.0;          ///< normalised weight, RB-PHD-SLAM weighting (46)
+  /// The log-likelihood increments themselves (unnormalised); log_rb_phd - log_single_cluster is
+  /// the parent's missed-detection mass sum pD w.
+  double log_single_cluster = 0.0;
+  double log_rb_phd = 0.0;
+};
+
 /// For the report's weighting figure: parents with the same predicted map at the poses
-/// `parent_poses` and equal prior weights, updated with one scan. Returns, per parent, the
-/// normalised weight under (first) the single-cluster likelihood, with the missed-detection term
-/// exp(-sum pD w), and (second) the RB-PHD-SLAM weighting (46), sum_j log(lambda_c + ...) alone.
+/// `parent_poses` and equal prior weights, updated with one scan. Returns, per parent, its
+/// weight under the single-cluster likelihood, with the missed-detection term exp(-sum pD w),
+/// and under the RB-PHD-SLAM weighting (46), sum_j log(lambda_c + ...) alone.
 /// `params` supplies the gate; its two reference_* likelihood options are overridden.
-std::vector<std::pair<double, double>> CompareParentWeights(
-    std::span<const Pose> parent_poses, const phd::GmPhdMap& predicted_map,
-    std::span<const Measurement> measurements, const models::SensorModel& sensor,
-    const phd::MapParams& params);
+std::vector<ParentWeighting> CompareParentWeights(std::span<const Pose> parent_poses,
+                                                  const phd::GmPhdMap& predicted_map,
+                                                  std::span<const Measurement> measurements,
+                                                  const models::SensorModel& sensor,
+                                                  const phd::MapParams& params);
 
 class ScPhdSlam final : public OnlineEstimator {
  public:

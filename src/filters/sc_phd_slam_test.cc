@@ -248,16 +248,22 @@ TEST(CompareParentWeights, DiffersFromRbPhdByTheMissedDetectionTerm) {
   double sum_sc = 0.0;
   double sum_rb = 0.0;
   for (std::size_t i = 0; i < poses.size(); ++i) {
-    EXPECT_NEAR(w[i].first, sc_w[i], 1e-9) << i;
-    EXPECT_NEAR(w[i].second, rb_w[i], 1e-9) << i;
-    sum_sc += w[i].first;
-    sum_rb += w[i].second;
+    EXPECT_NEAR(w[i].single_cluster, sc_w[i], 1e-9) << i;
+    EXPECT_NEAR(w[i].rb_phd, rb_w[i], 1e-9) << i;
+    EXPECT_NEAR(w[i].log_single_cluster, sc[i], 1e-9) << i;
+    EXPECT_NEAR(w[i].log_rb_phd, rb[i], 1e-9) << i;
+    sum_sc += w[i].single_cluster;
+    sum_rb += w[i].rb_phd;
   }
   EXPECT_NEAR(sum_sc, 1.0, 1e-12);
   EXPECT_NEAR(sum_rb, 1.0, 1e-12);
   // The ratio of parents 0 and 1 changes by exp(-(missed mass 0 - missed mass 1)).
-  EXPECT_NEAR(std::log(w[0].first / w[1].first) - std::log(w[0].second / w[1].second),
-              -(0.95 * 1.4 - 0.95 * 0.9), 1e-9);
+  EXPECT_NEAR(
+      std::log(w[0].single_cluster / w[1].single_cluster) - std::log(w[0].rb_phd / w[1].rb_phd),
+      -(0.95 * 1.4 - 0.95 * 0.9), 1e-9);
+  // The missed-detection mass of each parent: 0.95 times the weight it has in view.
+  EXPECT_NEAR(w[0].log_rb_phd - w[0].log_single_cluster, 0.95 * 1.4, 1e-9);
+  EXPECT_NEAR(w[1].log_rb_phd - w[1].log_single_cluster, 0.95 * 0.9, 1e-9);
 }
 
 TEST(CardinalityMapEstimate, TakesTheRoundedExpectedNumberOfBestComponents) {
