@@ -44,8 +44,11 @@ struct PhdSlamParams {
   /// with no effect on results).
   bool reuse_parent_proposal = true;
 
-  /// Paper defaults for a named scenario ("paper-synthetic", "generated", "victoria-park").
-  static PhdSlamParams ForScenario(const std::string& scenario);
+  /// Paper defaults for a named scenario ("paper-synthetic", "generated", "victoria-park") and,
+  /// where they differ between the filters, a variant of the family ("phd1", "phd2a", "phd2b",
+  /// "phd3"; empty: PHD-SLAM 3.0's). Victoria Park resamples when ESS <= 1 for 2.0b and 3.0
+  /// (notes 17) and when ESS <= 2.5 for 1.0 and 2.0a (see phd_slam_params.cc).
+  static PhdSlamParams ForScenario(const std::string& scenario, const std::string& variant = "");
 };
 
 }  // namespace phdslam::filters

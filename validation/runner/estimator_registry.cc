@@ -56,7 +56,7 @@ EstimatorEntry OdometryEntry() {
 filters::PhdSlamParams ResolvePhdSlamParams(const EstimatorRequest& request) {
   const std::string& scenario =
       request.scenario != nullptr ? request.scenario->name : request.scenario_name;
-  filters::PhdSlamParams params = filters::PhdSlamParams::ForScenario(scenario);
+  filters::PhdSlamParams params = filters::PhdSlamParams::ForScenario(scenario, request.name);
   try {
     filters::ApplyJson(request.overrides, params);
   } catch (const std::invalid_argument& e) {
@@ -115,8 +115,8 @@ EstimatorEntry OracleEntry() {
     return oracle::ToJson(ResolveOracleParams(request));
   };
   e.make_online = [](const EstimatorRequest& request) -> std::unique_ptr<filters::OnlineEstimator> {
-    return oracle::OracleRbpf::FromScenario(RequireScenario(request),
-                                            ResolveOracleParams(request), request.stream_seed);
+    return oracle::OracleRbpf::FromScenario(RequireScenario(request), ResolveOracleParams(request),
+                                            request.stream_seed);
   };
   return e;
 }

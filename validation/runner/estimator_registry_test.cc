@@ -84,6 +84,26 @@ TEST(OdometryEntry, RejectsParticlesAndParameters) {
   EXPECT_THROW(entry.make_online(request), std::invalid_argument);
 }
 
+TEST(PhdSlamEntries, VictoriaParkResamplingThresholdDependsOnTheVariant) {
+  EstimatorRequest request;
+  request.scenario_name = "victoria-park";
+  request.particles = 5;
+  const auto threshold = [&](const std::string& name) {
+    request.name = name;
+    const nlohmann::json p = FindEstimator(name).resolved_parameters(request);
+    EXPECT_EQ(p.at("ess_threshold_kind"), "absolute") << name;
+    return p.at("ess_threshold").get<double>();
+  };
+  EXPECT_EQ(threshold("phd1"), 2.5);
+  EXPECT_EQ(threshold("phd2a"), 2.5);
+  EXPECT_EQ(threshold("phd2b"), 1.0);
+  EXPECT_EQ(threshold("phd3"), 1.0);
+  // The synthetic scenario: 0.2 N for every variant.
+  request.scenario_name = "paper-synthetic";
+  request.name = "phd1";
+  EXPECT_EQ(FindEstimator("phd1").resolved_parameters(request).at("ess_threshold"), 0.2);
+}
+
 TEST(RunStreamSeed, FollowsTheDocumentedDerivation) {
   EXPECT_EQ(RunStreamSeed("exp", 7, "phd3", 10),
             DeriveSeed(HashName("exp"), 7, DeriveSeed(HashName("phd3"), 10)));
