@@ -33,9 +33,11 @@ def parse_arguments(argv: list[str] | None = None) -> argparse.Namespace:
             "DIR). Sections: summary beside the paper's values with Monte Carlo standard errors "
             "and 15 %% flags; Tables I/II/III when the configuration matches; Fig. 1 (trajectory "
             "and map), Fig. 2 (metrics over time), Fig. 3 (particle paths, from particles.csv), "
-            "NEES (from a 'nees' column of steps.csv), scaling (scaling.csv) and Fig. 5 "
-            "(sensitivity, across folders with different pD / clutter rate). A section whose "
-            "data are missing is skipped with a short note."),
+            "NEES (from a 'nees' column of steps.csv), scaling (scaling.csv), the single-cluster "
+            "vs RB-PHD parent weighting (parent_weights.csv from 'phdslam parent-weights') and "
+            "Fig. 5 (sensitivity, across folders with different pD / clutter rate). For GPS-only "
+            "data (Victoria Park) Fig. 1 draws the GPS fixes of truth/seed-<s>/gps.csv. A "
+            "section whose data are missing is skipped with a short note."),
         epilog="Exit codes: 0 report written; 1 a results file is missing or malformed (the "
                "message names the file and column); 2 usage error.",
     )

@@ -30,6 +30,7 @@ class CsvTable:
     numeric: dict[str, np.ndarray] = field(default_factory=dict)
     text: dict[str, list[str]] = field(default_factory=dict)
     rows: int = 0
+    line_numbers: list[int] = field(default_factory=list)  # the file line of each row (1-based)
 
     def has(self, column: str) -> bool:
         """True when the file's header names ``column``."""
@@ -46,6 +47,10 @@ class CsvTable:
         if column not in self.text:
             raise ResultsFormatError(f"{self.path}: column '{column}' is missing or not text")
         return self.text[column]
+
+    def line(self, row: int) -> int:
+        """The 1-based file line of the 0-based data row ``row`` (comments and blanks skipped)."""
+        return self.line_numbers[row] if row < len(self.line_numbers) else row + 2
 
     def records(self) -> list[dict[str, object]]:
         """One dict per row, text and numeric columns together."""
@@ -126,7 +131,7 @@ def read_csv(
     text_set = set(text_columns)
     numbers = [number for number, _ in lines[1:]]
     data = [content for _, content in lines[1:]]
-    table = CsvTable(path=path, header=header, rows=len(data))
+    table = CsvTable(path=path, header=header, rows=len(data), line_numbers=numbers)
     numeric_names = [h for h in header if h not in text_set]
 
     if not text_set.intersection(header):

@@ -13,6 +13,7 @@ from .comparison import Comparison, compare, format_relative, format_value, seco
 from .csv_table import ResultsFormatError
 from .figures.metrics_over_time import collect_series, plot_metrics_over_time
 from .figures.nees import nees_series, plot_nees
+from .figures.parent_weights import parent_weights_data, plot_parent_weights, pose_error
 from .figures.particle_paths import MAX_PANELS, ParticlePanel, plot_particle_paths
 from .figures.scaling import plot_scaling, scaling_fits
 from .figures.sensitivity import (
@@ -23,15 +24,31 @@ from .figures.sensitivity import (
     plot_sensitivity,
     points_from_table,
 )
-from .figures.trajectory_map import TrajectoryPanel, plot_trajectory_maps
+from .figures.trajectory_map import (
+    TrajectoryPanel,
+    gps_in_span,
+    has_true_trajectory,
+    plot_trajectory_maps,
+)
 from .html_page import Section, escape, figure_html, note_html, render_page, table_html
 from .paper import PaperValues
-from .results import SCALING_COLUMNS, SCALING_FILE, SWEEP_FILE, Group, ResultsFolder
+from .results import (
+    GPS_FILE,
+    PARENT_WEIGHTS_FILE,
+    PARENT_WEIGHTS_META_FILE,
+    SCALING_COLUMNS,
+    SCALING_FILE,
+    SWEEP_FILE,
+    TRUTH_FOLDER,
+    Group,
+    ResultsFolder,
+)
 from .stats import relative_difference, standard_error_of_values
 from .style import save_figure
 from .tables_shared import matched_paper_tables, ours_with_se, paper_table_rows
 
-FOLDER_SECTIONS = ("summary", "paper-tables", "fig1", "fig2", "fig3", "nees", "scaling")
+FOLDER_SECTIONS = ("summary", "paper-tables", "fig1", "fig2", "fig3", "nees", "scaling",
+                   "parent-weights")
 """Section ids of each results folder (prefixed by ``d<index>-`` when there are several)."""
 
 
@@ -172,29 +189,57 @@ class ReportBuilder:
                 parts.append(f"<p class=\"meta\">{escape(table.notes)}</p>")
         return Section(sid, title, body="\n".join(parts))
 
-    def trajectory_section(self, sid: str, prefix: str, folder: ResultsFolder) -> Section:
-        """Fig. 1 analogue: one run per estimator (its largest N, its first seed)."""
-        title = "Fig. 1 analogue: trajectory and map"
+    def trajectory_panels(self, folder: ResultsFolder) -> list[TrajectoryPanel]:
+        """Fig. 1 panels: one run per estimator (its largest N, its first seed).
+
+        A run without a true trajectory gets its seed's GPS fixes (truth/seed-<s>/gps.csv) when
+        the folder has them (real data with GPS: the paper's Fig. 4).
+        """
         chosen: dict[str, tuple[Group, int]] = {}
         for group in folder.groups():
             seeds = folder.seeds(group)
             if seeds and (group.estimator not in chosen
                           or group.particles > chosen[group.estimator][0].particles):
                 chosen[group.estimator] = (group, seeds[0])
-        if not chosen:
+        panels = []
+        for g, seed in chosen.values():
+            steps = folder.steps(g, seed)
+            panels.append(TrajectoryPanel(
+                title=f"{self._name(g.estimator)}, N = {g.particles}, seed {seed}",
+                estimator=g.estimator, steps=steps, estimated_map=folder.run_map(g, seed),
+                truth_map=folder.truth_map,
+                gps=None if has_true_trajectory(steps) else folder.gps(seed)))
+        return panels
+
+    def trajectory_section(self, sid: str, prefix: str, folder: ResultsFolder) -> Section:
+        """Fig. 1 analogue: one run per estimator (its largest N, its first seed)."""
+        title = "Fig. 1 analogue: trajectory and map"
+        panels = self.trajectory_panels(folder)
+        if not panels:
             return Section(sid, title, skipped_note="no run folder with steps.csv")
-        panels = [
-            TrajectoryPanel(title=f"{self._name(g.estimator)}, N = {g.particles}, seed {seed}",
-                            estimator=g.estimator, steps=folder.steps(g, seed),
-                            estimated_map=folder.run_map(g, seed), truth_map=folder.truth_map)
-            for g, seed in chosen.values()
-        ]
-        fig = plot_trajectory_maps(panels, list(chosen), self._name)
+        notes = []
+        for panel in panels:
+            if panel.gps is not None:
+                drawn = gps_in_span(panel.gps, panel.steps.num("t"))[0].size
+                notes.append(f"{panel.title}: {drawn} of the {panel.gps.rows} GPS fixes in "
+                             f"{TRUTH_FOLDER}/{panel.gps.path.parent.name}/{GPS_FILE} lie in "
+                             "the run's time span and are drawn.")
+            elif not has_true_trajectory(panel.steps):
+                notes.append(f"{panel.title}: no true trajectory and no {TRUTH_FOLDER}/seed-*/"
+                             f"{GPS_FILE} for this seed: only the estimate is drawn.")
+        fig = plot_trajectory_maps(panels, [p.estimator for p in panels], self._name)
         folder.forget_steps()
-        body = self._figure(fig, f"{prefix}fig1-trajectory-map.png",
-                            "True trajectory (black), estimate (dashed), true landmarks (+) and "
-                            "the final estimated map (circles, 3\u03c3 ellipses) of one run per "
-                            "estimator.")
+        if any(p.gps is not None for p in panels):
+            caption = ("GPS fixes (grey dots; the data have no true poses and no true map, as "
+                       "in the paper's Fig. 4), estimate (dashed), true trajectory (black) where "
+                       "known, and the final estimated map (circles, 3σ ellipses) of one run "
+                       "per estimator.")
+        else:
+            caption = ("True trajectory (black), estimate (dashed), true landmarks (+) and the "
+                       "final estimated map (circles, 3σ ellipses) of one run per "
+                       "estimator.")
+        body = self._figure(fig, f"{prefix}fig1-trajectory-map.png", caption)
+        body += "".join(f"<p class=\"meta\">{escape(n)}</p>" for n in notes)
         if folder.truth_map is None:
             body += note_html("No truth_map.csv: true landmarks are not shown.")
         return Section(sid, title, body=body)
@@ -295,6 +340,63 @@ class ReportBuilder:
                                "least-squares fit a \u00b7 n^b."))
         return Section(sid, title, body=body)
 
+    def parent_weights_section(self, sid: str, prefix: str, folder: ResultsFolder) -> Section:
+        """Lee, Clark & Salvi (2012) Fig. 4 analogue, from parent_weights.csv/.json."""
+        title = ("Single-cluster vs RB-PHD parent weighting (Lee, Clark & Salvi 2012, "
+                 "Fig. 4)")
+        table = folder.parent_weights
+        if table is None:
+            return Section(sid, title, skipped_note=(
+                f"no {PARENT_WEIGHTS_FILE} in the results folder (written by phdslam "
+                "parent-weights --out DIR)"))
+        meta = folder.parent_weights_meta
+        data = parent_weights_data(table, meta)
+        parts = []
+        if meta is not None:
+            where = "".join(f"{k} {meta[k]}, " for k in ("scenario", "seed") if k in meta)
+            where += f"step {meta['step']}"
+            parts.append(
+                f"<p>{escape(where[:1].upper() + where[1:])}: "
+                f"{data.parents} parent poses drawn from the predicted pose Gaussian, "
+                f"{meta['measurements']} measurements, a predicted map of "
+                f"{meta['map_components']} components.</p>")
+        else:
+            parts.append(note_html(
+                f"No {PARENT_WEIGHTS_META_FILE}: the predicted mean, the previous pose and the "
+                "true pose are not shown."))
+
+        def pose_cells(pose: tuple[float, float, float]) -> list[tuple[str, str]]:
+            cells = [(f"{pose[0]:.3f}", ""), (f"{pose[1]:.3f}", ""),
+                     (f"{math.degrees(pose[2]):.2f}", "")]
+            if data.true_pose is None:
+                return cells + [("\u2014", ""), ("\u2014", "")]
+            distance, heading = pose_error(pose, data.true_pose)
+            return cells + [(f"{distance:.3f}", ""), (f"{heading:.2f}", "")]
+
+        rows = [[(w.title, "name"), (f"{w.ess:.1f} of {data.parents}", ""),
+                 (f"{float(np.max(w.weights)):.3g}", "")] + pose_cells(w.mean)
+                for w in data.weightings]
+        if data.predicted_mean is not None:
+            rows.append([("predicted mean (before the scan)", "name"), ("\u2014", ""),
+                         ("\u2014", "")] + pose_cells(data.predicted_mean))
+        parts.append(table_html(
+            ["Weighting", "ESS = 1/\u03a3w\u00b2", "largest weight", "weighted mean x (m)",
+             "y (m)", "\u03b8 (deg)", "distance to true pose (m)", "heading error (deg)"],
+            rows))
+        if data.true_pose is None:
+            parts.append(note_html("No true pose (real data): distances are not available."))
+        caption = (
+            "The same predicted state and map, one scan: parent poses drawn from the predicted "
+            "pose Gaussian, point area and colour = normalised weight (one colour scale for "
+            "both panels); \u00d7 predicted mean, \u25c7 weighted mean of each weighting, \u2605 "
+            "true pose (when known). "
+            "The single-cluster likelihood keeps the missed-detection term exp(\u2212\u03a3 pD w), "
+            "which penalises poses that put map mass in the field of view without detections; "
+            "the RB-PHD-SLAM weighting (46) lacks it.")
+        parts.append(self._figure(plot_parent_weights(data), f"{prefix}parent-weights.png",
+                                  caption))
+        return Section(sid, title, body="\n".join(parts))
+
     # --- sections across folders --------------------------------------------------------------
 
     def sweep_points(self) -> tuple[list[SweepPoint], list[str]]:
@@ -386,6 +488,7 @@ class ReportBuilder:
                 self.particles_section(f"{prefix}fig3", prefix, folder),
                 self.nees_section(f"{prefix}nees", prefix, folder),
                 self.scaling_section(f"{prefix}scaling", prefix, folder),
+                self.parent_weights_section(f"{prefix}parent-weights", prefix, folder),
             ]
             for s in built:
                 s.level = level

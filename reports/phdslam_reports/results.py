@@ -7,11 +7,14 @@ the file (and, for CSV files, the line and column).
 from __future__ import annotations
 
 import json
+import math
 import re
 from dataclasses import dataclass
 from functools import cached_property
 from pathlib import Path
 from typing import Any
+
+import numpy as np
 
 from .csv_table import CsvTable, ResultsFormatError, read_csv
 
@@ -25,6 +28,10 @@ MAP_FILE = "map.csv"
 PARTICLES_FILE = "particles.csv"
 SCALING_FILE = "scaling.csv"
 SWEEP_FILE = "sweep.csv"
+TRUTH_FOLDER = "truth"
+GPS_FILE = "gps.csv"
+PARENT_WEIGHTS_FILE = "parent_weights.csv"
+PARENT_WEIGHTS_META_FILE = "parent_weights.json"
 
 SUMMARY_COLUMNS = (
     "estimator", "particles", "runs", "steps", "pos_rmse_m", "heading_rmse_deg", "gospa_mean_m",
@@ -41,6 +48,11 @@ STEPS_COLUMNS = (
 MAP_COLUMNS = ("x", "y")
 PARTICLES_COLUMNS = ("step", "particle", "x", "y", "weight")
 SCALING_COLUMNS = ("estimator", "landmarks_in_fov", "us_per_call")
+GPS_COLUMNS = ("t", "x", "y")
+PARENT_WEIGHTS_COLUMNS = ("parent", "x", "y", "theta", "sc_weight", "rb_weight")
+PARENT_WEIGHT_COLUMNS = ("sc_weight", "rb_weight")
+WEIGHT_SUM_TOLERANCE = 1e-6
+"""|sum of a weight column - 1| allowed in parent_weights.csv (cells are printed with %.10g)."""
 
 _GROUP_FOLDER = re.compile(r"^(?P<estimator>.+)-N(?P<particles>\d+)$")
 _SEED_FOLDER = re.compile(r"^seed-(?P<seed>\d+)$")
@@ -65,6 +77,82 @@ def _as_int(value: float, path: Path, column: str, row: int) -> int:
     return int(value)
 
 
+def _validate_parent_weights(table: CsvTable) -> CsvTable:
+    """Every cell of parent_weights.csv present; weights >= 0 and each column summing to 1."""
+    path = table.path
+    if table.rows == 0:
+        raise ResultsFormatError(f"{path}: no parent rows (expected one row per parent pose)")
+    for column in PARENT_WEIGHTS_COLUMNS:
+        values = table.num(column)
+        for row, value in enumerate(values):
+            if value != value:
+                raise ResultsFormatError(
+                    f"{path}, line {table.line(row)}, column '{column}': empty cell (every "
+                    "parent needs a value)")
+            if not math.isfinite(value):
+                raise ResultsFormatError(
+                    f"{path}, line {table.line(row)}, column '{column}': '{value:g}' is not a "
+                    "finite number")
+            if column == "parent" and value != int(value):
+                raise ResultsFormatError(
+                    f"{path}, line {table.line(row)}, column 'parent': '{value:g}' is not an "
+                    "integer")
+            if column in PARENT_WEIGHT_COLUMNS and value < 0:
+                raise ResultsFormatError(
+                    f"{path}, line {table.line(row)}, column '{column}': negative weight "
+                    f"{value:g}")
+    for column in PARENT_WEIGHT_COLUMNS:
+        total = float(np.sum(table.num(column)))
+        if not abs(total - 1.0) <= WEIGHT_SUM_TOLERANCE:
+            raise ResultsFormatError(
+                f"{path}, lines {table.line(0)}-{table.line(table.rows - 1)}, column "
+                f"'{column}': the weights sum to {total:.10g}, expected 1 within "
+                f"{WEIGHT_SUM_TOLERANCE:g} (normalised weights)")
+    return table
+
+
+def _json_number(value: object) -> bool:
+    return (isinstance(value, (int, float)) and not isinstance(value, bool)
+            and math.isfinite(value))
+
+
+def _validate_parent_weights_meta(data: object, path: Path, parents: int) -> dict[str, Any]:
+    """The keys of parent_weights.json that the report uses, with their types."""
+    if not isinstance(data, dict):
+        raise ResultsFormatError(f"{path}: expected a JSON object at the top level")
+
+    def fail(key: str, expected: str) -> None:
+        shown = json.dumps(data[key]) if key in data else "missing"
+        raise ResultsFormatError(f"{path}: key '{key}': expected {expected}, got {shown}")
+
+    for key in ("step", "parents", "measurements", "map_components"):
+        value = data.get(key)
+        if not _json_number(value) or value != int(value) or value < 0:
+            fail(key, "a non-negative integer")
+    for key in ("ess_single_cluster", "ess_rb_phd"):
+        if not _json_number(data.get(key)):
+            fail(key, "a number")
+    for key in ("previous_pose", "predicted_mean", "true_pose"):
+        value = data.get(key)
+        if key == "true_pose" and key in data and value is None:
+            continue
+        if not (isinstance(value, list) and len(value) == 3 and all(map(_json_number, value))):
+            fail(key, "[x, y, theta]" + (" or null" if key == "true_pose" else ""))
+    cov = data.get("predicted_cov")
+    if not (isinstance(cov, list) and len(cov) == 3 and all(
+            isinstance(r, list) and len(r) == 3 and all(map(_json_number, r)) for r in cov)):
+        fail("predicted_cov", "a 3x3 nested list of numbers")
+    if "scenario" in data and not isinstance(data["scenario"], str):
+        fail("scenario", "a string")
+    if "seed" in data and not _json_number(data["seed"]):
+        fail("seed", "a number")
+    if int(data["parents"]) != parents:
+        raise ResultsFormatError(
+            f"{path}: key 'parents' is {data['parents']}, but {PARENT_WEIGHTS_FILE} has "
+            f"{parents} parent rows")
+    return data
+
+
 class ResultsFolder:
     """Read access to the files of one ``phdslam run --out DIR`` folder."""
 
@@ -72,9 +160,11 @@ class ResultsFolder:
         self.path = Path(path)
         if not self.path.is_dir():
             raise ResultsFormatError(f"{self.path}: not a folder")
-        if not (self.path / SUMMARY_FILE).is_file() and not (self.path / RUNS_FOLDER).is_dir():
+        if (not (self.path / SUMMARY_FILE).is_file() and not (self.path / RUNS_FOLDER).is_dir()
+                and not (self.path / PARENT_WEIGHTS_FILE).is_file()):
             raise ResultsFormatError(
-                f"{self.path}: not a results folder (neither {SUMMARY_FILE} nor {RUNS_FOLDER}/)"
+                f"{self.path}: not a results folder (neither {SUMMARY_FILE}, {RUNS_FOLDER}/ nor "
+                f"{PARENT_WEIGHTS_FILE})"
             )
         self._steps_cache: dict[tuple[Group, int], CsvTable] = {}
 
@@ -118,6 +208,32 @@ class ResultsFolder:
         """truth_map.csv, or None when the scenario has no true map."""
         path = self.path / TRUTH_MAP_FILE
         return read_csv(path, MAP_COLUMNS) if path.is_file() else None
+
+    def gps(self, seed: int) -> CsvTable | None:
+        """``truth/seed-<seed>/gps.csv`` (t, x, y: GPS fixes of real data), or None when absent."""
+        path = self.path / TRUTH_FOLDER / f"seed-{seed}" / GPS_FILE
+        return read_csv(path, GPS_COLUMNS) if path.is_file() else None
+
+    @cached_property
+    def parent_weights(self) -> CsvTable | None:
+        """parent_weights.csv (``phdslam parent-weights``), validated, or None when absent."""
+        path = self.path / PARENT_WEIGHTS_FILE
+        if not path.is_file():
+            return None
+        return _validate_parent_weights(read_csv(path, PARENT_WEIGHTS_COLUMNS))
+
+    @cached_property
+    def parent_weights_meta(self) -> dict[str, Any] | None:
+        """parent_weights.json, validated against parent_weights.csv, or None when absent."""
+        path = self.path / PARENT_WEIGHTS_META_FILE
+        table = self.parent_weights
+        if table is None or not path.is_file():
+            return None
+        try:
+            data = json.loads(path.read_text(encoding="utf-8"))
+        except (OSError, UnicodeDecodeError, json.JSONDecodeError) as error:
+            raise ResultsFormatError(f"{path}: not valid JSON: {error}") from error
+        return _validate_parent_weights_meta(data, path, table.rows)
 
     def optional_table(self, name: str, required: tuple[str, ...]) -> CsvTable | None:
         """A CSV file at the folder's top level (scaling.csv, sweep.csv), or None."""

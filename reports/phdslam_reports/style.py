@@ -23,6 +23,7 @@ ESTIMATOR_COLOURS = {
 _SPARE_COLOURS = ("#8c564b", "#e377c2", "#bcbd22", "#17becf", "#393b79", "#637939")
 LINE_STYLES = ("-", "--", ":", "-.")
 TRUTH_COLOUR = "#000000"
+GPS_COLOUR = "#a6a6a6"  # lighter than the odometry grey, drawn as dots
 FIGURE_DPI = 110
 
 

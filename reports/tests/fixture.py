@@ -46,6 +46,8 @@ class FixtureSpec:
     scaling: bool = False
     resampling: bool = True
     landmarks: int = 24
+    gps_only: bool = False  # real data with GPS: empty truth columns, truth/seed-<s>/gps.csv
+    parent_weights: bool = False  # parent_weights.csv/.json at the root
     error_scale: dict[str, float] = field(default_factory=lambda: {"odometry": 4.0})
 
 
@@ -68,6 +70,64 @@ def truth_landmarks(count: int) -> np.ndarray:
     return np.column_stack([100 + radii * np.cos(angles), 100 + radii * np.sin(angles)])
 
 
+GPS_EXTRA_SECONDS = 15.0
+"""The fixture's GPS fixes go on this long after the last step (outside the run's time span)."""
+
+
+def circle_position(t: np.ndarray, steps: int) -> tuple[np.ndarray, np.ndarray]:
+    """The fixture's true position at time t (one step per second, one lap per run)."""
+    phase = 2 * np.pi * np.asarray(t, dtype=float) / max(steps, 1)
+    return 100 + 100 * np.cos(phase), 100 + 100 * np.sin(phase)
+
+
+def write_gps(path: Path, steps: int, rng: np.random.Generator) -> None:
+    """GPS fixes ``t,x,y`` every 0.5 s from 0.25 s to GPS_EXTRA_SECONDS after the last step, with
+    an outage over the second quarter of the run."""
+    t = np.arange(0.25, steps - 1 + GPS_EXTRA_SECONDS, 0.5)
+    t = t[(t < 0.25 * steps) | (t > 0.5 * steps)]
+    x, y = circle_position(t, steps)
+    x, y = x + rng.normal(0, 0.5, t.size), y + rng.normal(0, 0.5, t.size)
+    _write_csv(path, ["t", "x", "y"], [[float(a), float(b), float(c)] for a, b, c in zip(t, x, y)])
+
+
+def write_parent_weights(root: Path, parents: int = 40, true_pose: bool = True,
+                         meta: bool = True) -> Path:
+    """parent_weights.csv (and .json) as ``phdslam parent-weights --out root`` writes them.
+
+    The parents are drawn around a predicted mean; the single-cluster weights fall off faster with
+    the distance to the true pose than the RB-PHD ones.
+    """
+    root = Path(root)
+    root.mkdir(parents=True, exist_ok=True)
+    rng = np.random.default_rng(2012)
+    mean = np.array([100.0, 50.0, 0.3])
+    cov = np.array([[4.0, 0.8, 0.01], [0.8, 3.0, 0.0], [0.01, 0.0, 0.01]])
+    truth = np.array([101.5, 50.8, 0.32])
+    poses = mean + rng.standard_normal((parents, 3)) @ np.linalg.cholesky(cov).T
+    d2 = np.sum((poses[:, :2] - truth[:2]) ** 2, axis=1)
+    weights = []
+    for sigma in (1.0, 3.0):  # single-cluster, RB-PHD
+        log_w = -0.5 * d2 / sigma ** 2
+        w = np.exp(log_w - log_w.max())
+        weights.append(w / w.sum())
+    _write_csv(root / "parent_weights.csv",
+               ["parent", "x", "y", "theta", "sc_weight", "rb_weight"],
+               [[i, float(poses[i, 0]), float(poses[i, 1]), float(poses[i, 2]),
+                 float(weights[0][i]), float(weights[1][i])] for i in range(parents)])
+    if meta:
+        data = {
+            "step": 100, "parents": parents, "measurements": 7, "map_components": 12,
+            "previous_pose": [99.0, 49.5, 0.29], "predicted_mean": mean.tolist(),
+            "predicted_cov": cov.tolist(), "true_pose": truth.tolist() if true_pose else None,
+            "ess_single_cluster": float(1 / np.sum(weights[0] ** 2)),
+            "ess_rb_phd": float(1 / np.sum(weights[1] ** 2)),
+            "scenario": "paper-synthetic", "seed": 1,
+        }
+        (root / "parent_weights.json").write_text(json.dumps(data, indent=2) + "\n",
+                                                  encoding="utf-8")
+    return root
+
+
 def make_results_folder(root: Path, spec: FixtureSpec | None = None) -> Path:
     """Writes a results folder under ``root`` and returns its path."""
     spec = spec or FixtureSpec()
@@ -75,13 +135,13 @@ def make_results_folder(root: Path, spec: FixtureSpec | None = None) -> Path:
     root.mkdir(parents=True, exist_ok=True)
     rng = np.random.default_rng(12345)
     landmarks = truth_landmarks(spec.landmarks)
-    _write_csv(root / "truth_map.csv", ["x", "y", "weight", "pxx", "pxy", "pyy"],
-               [[float(x), float(y), 1.0, "", "", ""] for x, y in landmarks])
+    if not spec.gps_only:
+        _write_csv(root / "truth_map.csv", ["x", "y", "weight", "pxx", "pxy", "pyy"],
+                   [[float(x), float(y), 1.0, "", "", ""] for x, y in landmarks])
 
     k = np.arange(spec.steps)
     phase = 2 * np.pi * k / max(spec.steps, 1)
-    x_true = 100 + 100 * np.cos(phase)
-    y_true = 100 + 100 * np.sin(phase)
+    x_true, y_true = circle_position(k, spec.steps)
     theta_true = phase + np.pi / 2
 
     run_rows, summary_rows = [], []
@@ -104,9 +164,13 @@ def make_results_folder(root: Path, spec: FixtureSpec | None = None) -> Path:
             ms = rng.uniform(0.5, 1.5, spec.steps) * 0.1 * particles
             header = list(STEPS_COLUMNS) + (["nees"] if spec.nees else [])
             rows = []
+            if spec.gps_only:  # no true poses: empty truth and heading columns
+                head_err = np.full(spec.steps, math.nan)
+            truth = (x_true, y_true, theta_true) if not spec.gps_only else \
+                (head_err, head_err, head_err)
             for i in range(spec.steps):
-                row = [i, float(i), float(x[i]), float(y[i]), float(theta[i]), float(x_true[i]),
-                       float(y_true[i]), float(theta_true[i]), float(pos_err[i]),
+                row = [i, float(i), float(x[i]), float(y[i]), float(theta[i]), float(truth[0][i]),
+                       float(truth[1][i]), float(truth[2][i]), float(pos_err[i]),
                        float(head_err[i]), float(ess[i]), int(resampled[i]),
                        3 if estimator != "odometry" else 0, int(map_components[i]), float(ms[i])]
                 if spec.nees:
@@ -131,6 +195,8 @@ def make_results_folder(root: Path, spec: FixtureSpec | None = None) -> Path:
             (folder / "metrics.json").write_text(json.dumps(
                 {"estimator": estimator, "particles": particles, "seed": seed}), encoding="utf-8")
             gospa = float(30.0 * scale + rng.normal(0, 2.0))
+            if spec.gps_only:  # no true map
+                gospa = math.nan
             rmse = float(np.sqrt(np.mean(pos_err ** 2)))
             hrmse = float(np.sqrt(np.mean(head_err ** 2)))
             ess_pct = float(100 * np.mean(ess / particles))
@@ -179,6 +245,12 @@ def make_results_folder(root: Path, spec: FixtureSpec | None = None) -> Path:
         "jobs": 1,
     }
     (root / "config.json").write_text(json.dumps(config, indent=2), encoding="utf-8")
+    if spec.gps_only:
+        gps_rng = np.random.default_rng(54321)
+        for seed in spec.seeds:
+            write_gps(root / "truth" / f"seed-{seed}" / "gps.csv", spec.steps, gps_rng)
+    if spec.parent_weights:
+        write_parent_weights(root)
     if spec.scaling:
         rows = []
         for estimator, exponent in (("phd3", 1.0), ("phd2b", 3.0)):

@@ -2,11 +2,12 @@
 
 import contextlib
 import io
+import json
 import tempfile
 import unittest
 from pathlib import Path
 
-from fixture import FixtureSpec, make_results_folder
+from fixture import FixtureSpec, make_results_folder, write_parent_weights
 from phdslam_reports.csv_table import ResultsFormatError, read_csv
 from phdslam_reports.report import build_report
 
@@ -92,6 +93,84 @@ class MalformedInputTest(unittest.TestCase):
                 self.assertEqual(main(argv), 1)
             self.assertIn(f"{path}: required column 'ms_per_step_mean' is missing",
                           stderr.getvalue())
+
+    def assert_cli_error(self, *fragments: str) -> str:
+        stderr = io.StringIO()
+        with contextlib.redirect_stderr(stderr), contextlib.redirect_stdout(io.StringIO()):
+            self.assertEqual(make_report.main([str(self.results), "--out", str(self.out)]), 1)
+        message = stderr.getvalue()
+        for fragment in fragments:
+            self.assertIn(fragment, message)
+        return message
+
+    def test_parent_weights_missing_column(self):
+        write_parent_weights(self.results)
+        path = self.results / "parent_weights.csv"
+        replace_line(path, 0, "rb_weight", "rb")
+        self.assert_cli_error(f"{path}: required column 'rb_weight' is missing")
+
+    def test_parent_weights_non_numeric_weight(self):
+        write_parent_weights(self.results)
+        path = self.results / "parent_weights.csv"
+        lines = path.read_text().splitlines()
+        cells = lines[3].split(",")
+        cells[4] = "heavy"  # sc_weight of parent 2, file line 4
+        lines[3] = ",".join(cells)
+        path.write_text("\n".join(lines) + "\n")
+        self.assert_cli_error(f"{path}, line 4, column 'sc_weight': 'heavy' is not a number")
+
+    def test_parent_weights_empty_weight(self):
+        write_parent_weights(self.results)
+        path = self.results / "parent_weights.csv"
+        lines = path.read_text().splitlines()
+        cells = lines[6].split(",")
+        cells[5] = ""  # rb_weight of parent 5, file line 7
+        lines[6] = ",".join(cells)
+        path.write_text("\n".join(lines) + "\n")
+        self.assert_cli_error(f"{path}, line 7, column 'rb_weight': empty cell")
+
+    def test_parent_weights_not_summing_to_one(self):
+        write_parent_weights(self.results, parents=10)
+        path = self.results / "parent_weights.csv"
+        lines = path.read_text().splitlines()
+        cells = lines[1].split(",")
+        cells[5] = repr(float(cells[5]) + 1e-4)  # rb_weight of the first parent
+        lines[1] = ",".join(cells)
+        path.write_text("\n".join(lines) + "\n")
+        message = self.assert_cli_error(f"{path}, lines 2-11, column 'rb_weight': the weights "
+                                        "sum to 1.0001")
+        self.assertIn("expected 1 within 1e-06", message)
+
+    def test_parent_weights_negative_weight(self):
+        write_parent_weights(self.results)
+        path = self.results / "parent_weights.csv"
+        lines = path.read_text().splitlines()
+        cells = lines[2].split(",")
+        cells[4] = "-" + cells[4]
+        lines[2] = ",".join(cells)
+        path.write_text("\n".join(lines) + "\n")
+        self.assert_cli_error(f"{path}, line 3, column 'sc_weight': negative weight")
+
+    def test_parent_weights_json_missing_key_and_wrong_count(self):
+        write_parent_weights(self.results)
+        path = self.results / "parent_weights.json"
+        data = json.loads(path.read_text())
+        del data["predicted_mean"]
+        path.write_text(json.dumps(data))
+        self.assert_cli_error(f"{path}: key 'predicted_mean': expected [x, y, theta], got "
+                              "missing")
+        data["predicted_mean"] = [1, 2, 3]
+        data["parents"] = 41
+        path.write_text(json.dumps(data))
+        self.assert_cli_error(f"{path}: key 'parents' is 41, but parent_weights.csv has 40")
+
+    def test_gps_missing_column(self):
+        results = make_results_folder(Path(self.tmp.name) / "vp", FixtureSpec(
+            groups=(("phd3", 10),), steps=10, seeds=(1,), gps_only=True))
+        path = results / "truth" / "seed-1" / "gps.csv"
+        replace_line(path, 0, "t,x,y", "t,x,north")
+        self.results = results
+        self.assert_cli_error(f"{path}: required column 'y' is missing")
 
     def test_not_a_results_folder(self):
         empty = Path(self.tmp.name) / "empty"

@@ -30,7 +30,8 @@ class FullReportTest(unittest.TestCase):
         cls.tmp = tempfile.TemporaryDirectory()
         root = Path(cls.tmp.name)
         cls.results = make_results_folder(root / "results", FixtureSpec(
-            nees=True, particles_file=True, scaling=True, steps=40, steps_option=4000))
+            nees=True, particles_file=True, scaling=True, parent_weights=True, steps=40,
+            steps_option=4000))
         cls.out = root / "report"
         cls.report = build_report([cls.results], cls.out)
         cls.html = (cls.out / "index.html").read_text(encoding="utf-8")
@@ -50,11 +51,12 @@ class FullReportTest(unittest.TestCase):
     def test_figures_are_written_and_embedded(self):
         names = sorted(p.name for p in self.report.figure_files)
         self.assertEqual(names, ["fig1-trajectory-map.png", "fig2-metrics-over-time.png",
-                                 "fig3-particle-paths.png", "nees.png", "scaling.png"])
+                                 "fig3-particle-paths.png", "nees.png", "parent-weights.png",
+                                 "scaling.png"])
         for path in self.report.figure_files:
             self.assertTrue(path.read_bytes().startswith(PNG_MAGIC), path)
         embedded = re.findall(r'<img src="data:image/png;base64,([A-Za-z0-9+/=]+)"', self.html)
-        self.assertEqual(len(embedded), 5)
+        self.assertEqual(len(embedded), 6)
         for data in embedded:
             self.assertTrue(base64.b64decode(data).startswith(PNG_MAGIC))
         png_files = {p.read_bytes() for p in self.report.figure_files}
@@ -68,6 +70,11 @@ class FullReportTest(unittest.TestCase):
             self.assertTrue(href.startswith("#"), href)
         self.assertNotIn("http://", self.html)
         self.assertNotIn("https://", self.html)
+
+    def test_synthetic_fig1_has_truth_and_no_gps(self):
+        body = self.report.section("fig1").body
+        self.assertIn("True trajectory (black), estimate (dashed), true landmarks (+)", body)
+        self.assertNotIn("GPS", body)
 
     def test_summary_shows_paper_values_and_flags(self):
         summary = self.report.section("summary").body
@@ -119,13 +126,16 @@ class MinimalReportTest(unittest.TestCase):
         self.assertIn("<title>Minimal</title>", self.html)
 
     def test_sections_without_data_are_skipped_with_notes(self):
-        for section_id in ("paper-tables", "fig3", "nees", "scaling", "sensitivity"):
+        for section_id in ("paper-tables", "fig3", "nees", "scaling", "parent-weights",
+                           "sensitivity"):
             self.assertEqual(section_status(self.html, section_id), "skipped", section_id)
         for section_id in ("summary", "fig1", "fig2"):
             self.assertEqual(section_status(self.html, section_id), "shown", section_id)
         self.assertIn("no run folder holds particles.csv", self.html)
         self.assertIn("steps.csv has no &#x27;nees&#x27; column", self.html)
         self.assertIn("no scaling.csv", self.html)
+        self.assertIn("Skipped: no parent_weights.csv in the results folder (written by phdslam "
+                      "parent-weights --out DIR)", self.html)
 
     def test_configuration_mismatch_is_noted(self):
         self.assertIn("steps = 30 (paper: 4000)", self.html)

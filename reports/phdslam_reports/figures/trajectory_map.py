@@ -1,4 +1,8 @@
-"""Fig. 1 analogue: true and estimated trajectory, true landmarks and the estimated map."""
+"""Fig. 1 analogue: true and estimated trajectory, true landmarks and the estimated map.
+
+For real data without true poses but with GPS (Victoria Park) the GPS fixes are drawn under the
+estimate instead of a true trajectory, as in the paper's Fig. 4.
+"""
 
 from __future__ import annotations
 
@@ -12,7 +16,7 @@ from matplotlib.figure import Figure
 from matplotlib.patches import Ellipse
 
 from ..csv_table import CsvTable
-from ..style import TRUTH_COLOUR, estimator_colour, new_figure
+from ..style import GPS_COLOUR, TRUTH_COLOUR, estimator_colour, new_figure
 
 SIGMA_SCALE = 3.0
 
@@ -26,6 +30,22 @@ class TrajectoryPanel:
     steps: CsvTable
     estimated_map: CsvTable | None
     truth_map: CsvTable | None
+    gps: CsvTable | None = None  # truth/seed-<s>/gps.csv, given for runs without true poses
+
+
+def has_true_trajectory(steps: CsvTable) -> bool:
+    """True when steps.csv holds at least one true position."""
+    return bool(np.any(np.isfinite(steps.num("x_true")) & np.isfinite(steps.num("y_true"))))
+
+
+def gps_in_span(gps: CsvTable, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The (x, y) of the GPS fixes within the run's time span (every fix when t is unknown)."""
+    x, y, stamps = gps.num("x"), gps.num("y"), gps.num("t")
+    keep = np.isfinite(x) & np.isfinite(y)
+    finite_t = t[np.isfinite(t)]
+    if finite_t.size:
+        keep &= (stamps >= finite_t.min()) & (stamps <= finite_t.max())
+    return x[keep], y[keep]
 
 
 def covariance_ellipse(
@@ -61,7 +81,10 @@ def plot_trajectory_maps(
     panels: list[TrajectoryPanel], known_estimators: list[str],
     display_name: Callable[[str], str] = str,
 ) -> Figure | None:
-    """One panel per run: trajectories, true landmarks, the estimated map with 3-sigma ellipses."""
+    """One panel per run: trajectories, true landmarks, the estimated map with 3-sigma ellipses.
+
+    A panel with ``gps`` draws the GPS fixes of the run's time span (grey dots, label "GPS").
+    """
     if not panels:
         return None
     cols = min(3, len(panels))
@@ -74,6 +97,11 @@ def plot_trajectory_maps(
         xt, yt = steps.num("x_true"), steps.num("y_true")
         if np.any(np.isfinite(xt)):
             ax.plot(xt, yt, color=TRUTH_COLOUR, lw=1.2, label="true trajectory")
+        if panel.gps is not None:
+            gx, gy = gps_in_span(panel.gps, steps.num("t"))
+            if gx.size:
+                ax.plot(gx, gy, ls="none", marker="o", ms=2.6, mew=0, color=GPS_COLOUR,
+                        zorder=1, label="GPS")
         ax.plot(steps.num("x"), steps.num("y"), color=colour, lw=1.2, ls="--",
                 label=f"{display_name(panel.estimator)} estimate")
         if panel.truth_map is not None and panel.truth_map.rows:
