@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# The test command: installs what is missing, builds the release preset (warnings are errors),
+# The test command: installs what is missing (Chromium included, for the report-rendering test),
+# builds the release preset (warnings are errors),
 # runs every unit test with CTest, then the accuracy regression gates (the regression run and
 # bands of ci/thresholds.yaml). Exits non-zero on any failure.
 #
@@ -7,7 +8,9 @@
 #   ci/run-tests.sh --sanitize   also build and run the unit tests under ASan + UBSan
 set -euo pipefail
 cd "$(dirname "$0")/.."
-ci/install-deps.sh
+ci/install-deps.sh --browser
+# The report-rendering test runs in headless Chromium; here a missing browser is a failure.
+export PHDSLAM_REQUIRE_CHROMIUM=1
 
 jobs=$(nproc 2>/dev/null || echo 2)
 cmake --preset release >/dev/null

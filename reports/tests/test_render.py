@@ -23,6 +23,16 @@ def find_chromium() -> str | None:
 
 
 CHROMIUM = find_chromium()
+# The test command (ci/run-tests.sh) installs Chromium and sets this, so that a missing browser
+# fails the run there instead of skipping the test.
+REQUIRED = os.environ.get("PHDSLAM_REQUIRE_CHROMIUM") == "1"
+
+
+class ChromiumPresenceTest(unittest.TestCase):
+    def test_chromium_is_installed_where_required(self):
+        if not REQUIRED:
+            self.skipTest("PHDSLAM_REQUIRE_CHROMIUM is not 1")
+        self.assertIsNotNone(CHROMIUM, "PHDSLAM_REQUIRE_CHROMIUM=1 but no chromium on PATH")
 
 
 @unittest.skipIf(CHROMIUM is None, "chromium is not installed (apt-get install -y chromium, or "
