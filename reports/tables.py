@@ -27,7 +27,11 @@ from phdslam_reports.results import ResultsFolder  # noqa: E402
 
 
 def write_comparison_csv(comparison: Comparison, path: Path) -> None:
-    """One line per (estimator, N, metric): ours, se, paper, relative difference, flagged."""
+    """One line per (estimator, N, metric): ours, se, paper, relative difference, flagged.
+
+    paper_table is the id of the table that gave the paper's value (da_accuracy for the DA
+    rates), else the table the row was compared with.
+    """
     with path.open("w", newline="", encoding="utf-8") as out:
         writer = csv.writer(out, lineterminator="\n")
         writer.writerow(["estimator", "particles", "runs", "metric", "ours", "se", "paper",
@@ -41,7 +45,7 @@ def write_comparison_csv(comparison: Comparison, path: Path) -> None:
                 writer.writerow([row.group.estimator, row.group.particles, row.runs, cell.metric,
                                  text(cell.ours), text(cell.se), text(cell.paper),
                                  text(cell.relative), int(cell.flagged),
-                                 row.table.id if row.table else ""])
+                                 cell.source or (row.table.id if row.table else "")])
 
 
 def parse_arguments(argv: list[str] | None = None) -> argparse.Namespace:

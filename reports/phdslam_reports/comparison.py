@@ -5,6 +5,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
+import numpy as np
+
 from .paper import PaperTable, PaperValues, option_mismatches, primary_table, resampling_enabled
 from .results import Group, ResultsFolder
 from .stats import (
@@ -19,6 +21,12 @@ SUMMARY_METRICS = (
     "ms_per_step_mean",
 )
 OPTIONAL_METRICS = ("da_tpr", "da_tnr")
+"""Compared when summary.csv has the column with at least one value (the data-association rates
+are empty where they are not scored: PHD-SLAM 1.0, odometry, real data without a true map)."""
+
+SUPPLEMENTARY_TABLES = ("da_accuracy",)
+"""Published tables whose values fill the cells of metrics the primary table lacks, when they hold
+the primary table's scenario and resampling setting (the paper's DA rates beside Table II)."""
 
 RUNS_COLUMN_OF = {
     "pos_rmse_m": "pos_rmse_m",
@@ -43,6 +51,7 @@ class Cell:
     paper: float | None
     relative: float
     flagged: bool
+    source: str | None = None  # the id of the table that gave ``paper`` (None without a value)
 
 
 @dataclass
@@ -92,6 +101,36 @@ def metric_standard_error(
     return standard_error_of_values([_number(row.get(column)) for row in runs_rows])
 
 
+def _has_values(results: ResultsFolder, metric: str) -> bool:
+    """True when summary.csv has the column ``metric`` with at least one value."""
+    summary = results.summary
+    return (summary is not None and summary.has(metric)
+            and bool(np.any(np.isfinite(summary.num(metric)))))
+
+
+def published_value(
+    paper: PaperValues, table: PaperTable | None, group: Group, metric: str
+) -> tuple[PaperTable | None, float | None]:
+    """The paper's value of ``metric`` for ``group`` and the table it comes from.
+
+    The primary ``table`` when it covers the metric, else a supplementary table (DA accuracy) of
+    the same scenario and resampling setting; (None, None) when the paper gives no value.
+    """
+    if table is None:
+        return None, None
+    if metric in table.metrics:
+        return table, table.value(group.estimator, group.particles, metric)
+    for table_id in SUPPLEMENTARY_TABLES:
+        extra = paper.tables.get(table_id)
+        if (extra is None or metric not in extra.metrics or extra.scenario != table.scenario
+                or extra.resampling != table.resampling):
+            continue
+        value = extra.value(group.estimator, group.particles, metric)
+        if value is not None:
+            return extra, value
+    return None, None
+
+
 def compare(
     results: ResultsFolder, paper: PaperValues, table_override: str | None = None
 ) -> Comparison:
@@ -99,7 +138,7 @@ def compare(
     notes: list[str] = []
     if results.summary is None:
         return Comparison(rows=[], metrics=list(SUMMARY_METRICS), notes=notes)
-    metrics = list(SUMMARY_METRICS) + [m for m in OPTIONAL_METRICS if results.summary.has(m)]
+    metrics = list(SUMMARY_METRICS) + [m for m in OPTIONAL_METRICS if _has_values(results, m)]
     rows: list[ComparisonRow] = []
     mismatch_noted: set[str] = set()
     for record in results.summary.records():
@@ -119,7 +158,7 @@ def compare(
                 )
         for metric in metrics:
             ours = _number(record.get(metric))
-            reference = table.value(group.estimator, group.particles, metric) if table else None
+            source, reference = published_value(paper, table, group, metric)
             known = reference is not None
             row.cells.append(Cell(
                 metric=metric,
@@ -128,6 +167,7 @@ def compare(
                 paper=reference,
                 relative=relative_difference(ours, reference) if known else math.nan,
                 flagged=is_flagged(ours, reference) if known else False,
+                source=source.id if known and source is not None else None,
             ))
         rows.append(row)
     if results.runs_table is None:
@@ -141,8 +181,9 @@ def secondary_references(
 ) -> list[tuple[PaperTable, ComparisonRow, str, float | None]]:
     """Other published numbers (authors' rerun, DA accuracy) that concern our groups.
 
-    Returns (table, our row, metric, published value) for every such number; our value may be
-    missing (e.g. DA rates that the results do not hold).
+    Returns (table, our row, metric, published value) for every such number that the summary
+    table does not already show beside ours; our value may be missing (e.g. DA rates that the
+    results do not hold).
     """
     out = []
     for table_id in ("authors_rerun", "da_accuracy"):
@@ -152,9 +193,17 @@ def secondary_references(
         for row in comparison.rows:
             for metric in table.metrics:
                 value = table.value(row.group.estimator, row.group.particles, metric)
-                if value is not None:
+                cell = row.cell(metric)
+                if value is not None and not (cell is not None and cell.source == table.id):
                     out.append((table, row, metric, value))
     return out
+
+
+def paper_sources(paper: PaperValues, comparison: Comparison) -> list[PaperTable]:
+    """The published tables that gave the summary table its paper values, primary ones first."""
+    ids = [r.table.id for r in comparison.rows if r.table is not None]
+    ids += [c.source for r in comparison.rows for c in r.cells if c.source is not None]
+    return [paper.tables[i] for i in dict.fromkeys(ids) if i in paper.tables]
 
 
 def format_value(value: float | None, digits: int = 4) -> str:

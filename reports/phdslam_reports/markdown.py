@@ -4,9 +4,16 @@ from __future__ import annotations
 
 from typing import Sequence
 
-from .comparison import Comparison, format_relative, format_value, secondary_references
+from .comparison import (
+    Comparison,
+    format_relative,
+    format_value,
+    paper_sources,
+    secondary_references,
+)
 from .paper import PaperValues
 from .results import ResultsFolder
+from .stats import relative_difference
 from .tables_shared import matched_paper_tables, ours_with_se, paper_table_rows
 
 FLAG_MARK = "\u26a0"
@@ -57,6 +64,9 @@ def report_markdown(results: ResultsFolder, paper: PaperValues, comparison: Comp
         parts += [f"> {note}", ""]
     if comparison.rows:
         parts += ["## Summary beside the paper", "", comparison_markdown(comparison, paper), ""]
+        for table in paper_sources(paper, comparison):
+            parts += [f"Paper values: {table.title}; source: {table.source}."
+                      + (f" {table.notes}" if table.notes else ""), ""]
     else:
         parts += ["No summary.csv: nothing to tabulate.", ""]
     for table in matched_paper_tables(results, paper, comparison):
@@ -71,9 +81,10 @@ def report_markdown(results: ResultsFolder, paper: PaperValues, comparison: Comp
         for table, row, metric, value in secondary:
             cell = row.cell(metric)
             ours = ours_with_se(cell.ours, cell.se) if cell else "not in these results"
+            delta = format_relative(relative_difference(cell.ours, value)) if cell else ""
             rows.append([table.title, paper.display_name(row.group.estimator),
                          str(row.group.particles), paper.metric_label(metric), ours,
-                         format_value(value)])
+                         format_value(value), delta])
         parts += [markdown_table(["Reference", "Estimator", "N", "Metric", "ours \u00b1 SE",
-                                  "published"], rows), ""]
+                                  "published", "\u0394"], rows), ""]
     return "\n".join(parts)

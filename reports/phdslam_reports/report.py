@@ -9,11 +9,24 @@ from typing import Sequence
 
 import numpy as np
 
-from .comparison import Comparison, compare, format_relative, format_value, secondary_references
+from .comparison import (
+    OPTIONAL_METRICS,
+    Comparison,
+    compare,
+    format_relative,
+    format_value,
+    paper_sources,
+    secondary_references,
+)
 from .csv_table import ResultsFormatError
 from .figures.metrics_over_time import collect_series, plot_metrics_over_time
 from .figures.nees import nees_series, plot_nees
-from .figures.parent_weights import parent_weights_data, plot_parent_weights, pose_error
+from .figures.parent_weights import (
+    LOG_WEIGHT_RANGE,
+    parent_weights_data,
+    plot_parent_weights,
+    pose_error,
+)
 from .figures.particle_paths import MAX_PANELS, ParticlePanel, plot_particle_paths
 from .figures.scaling import plot_scaling, scaling_fits
 from .figures.sensitivity import (
@@ -134,9 +147,15 @@ class ReportBuilder:
             table_html(headers, rows),
             f"<p class=\"meta\">{flagged} cell(s) flagged.</p>",
         ]
+        if any(m in comparison.metrics for m in OPTIONAL_METRICS):
+            parts.insert(1, (
+                "<p>DA true-positive / true-negative rates: pooled over every scored measurement "
+                "of every run (summary.csv); \u2014 where the data association is not scored "
+                "(e.g. PHD 1.0, odometry). The paper's rates (its data-association accuracy "
+                "paragraph) state no particle count and stand beside every N.</p>"))
         parts += [note_html(n) for n in comparison.notes]
-        tables = {r.table.id: r.table for r in comparison.rows if r.table is not None}
-        for table in tables.values():
+        tables = paper_sources(self.paper, comparison)
+        for table in tables:
             parts.append(f"<p class=\"meta\">Paper values: {escape(table.title)}; source: "
                          f"{escape(table.source)}. {escape(table.notes)}</p>")
         if not tables:
@@ -355,9 +374,11 @@ class ReportBuilder:
         if meta is not None:
             where = "".join(f"{k} {meta[k]}, " for k in ("scenario", "seed") if k in meta)
             where += f"step {meta['step']}"
+            spread = (f" (standard deviations scaled by {format_value(data.spread)})"
+                      if data.spread is not None else "")
             parts.append(
                 f"<p>{escape(where[:1].upper() + where[1:])}: "
-                f"{data.parents} parent poses drawn from the predicted pose Gaussian, "
+                f"{data.parents} parent poses drawn from the predicted pose Gaussian{spread}, "
                 f"{meta['measurements']} measurements, a predicted map of "
                 f"{meta['map_components']} components.</p>")
         else:
@@ -373,26 +394,55 @@ class ReportBuilder:
             distance, heading = pose_error(pose, data.true_pose)
             return cells + [(f"{distance:.3f}", ""), (f"{heading:.2f}", "")]
 
-        rows = [[(w.title, "name"), (f"{w.ess:.1f} of {data.parents}", ""),
-                 (f"{float(np.max(w.weights)):.3g}", "")] + pose_cells(w.mean)
-                for w in data.weightings]
+        missed = data.missed_mass is not None
+        rows = []
+        for w in data.weightings:
+            row = [(w.title, "name"), (f"{w.ess:.1f} of {data.parents}", ""),
+                   (f"{float(np.max(w.weights)):.3g}", "")] + pose_cells(w.mean)
+            if missed:
+                row.append((f"{w.mean_missed_mass:.4g}", ""))
+            rows.append(row)
         if data.predicted_mean is not None:
             rows.append([("predicted mean (before the scan)", "name"), ("\u2014", ""),
-                         ("\u2014", "")] + pose_cells(data.predicted_mean))
-        parts.append(table_html(
-            ["Weighting", "ESS = 1/\u03a3w\u00b2", "largest weight", "weighted mean x (m)",
-             "y (m)", "\u03b8 (deg)", "distance to true pose (m)", "heading error (deg)"],
-            rows))
+                         ("\u2014", "")] + pose_cells(data.predicted_mean)
+                        + ([("\u2014", "")] if missed else []))
+        headers = ["Weighting", "ESS = 1/\u03a3w\u00b2", "largest weight", "weighted mean x (m)",
+                   "y (m)", "\u03b8 (deg)", "distance to true pose (m)", "heading error (deg)"]
+        if missed:
+            headers.append("weighted mean of \u03a3 pD w")
+        parts.append(table_html(headers, rows))
         if data.true_pose is None:
             parts.append(note_html("No true pose (real data): distances are not available."))
+        facts = [[("parents drawn", "name"), (str(data.parents), "")],
+                 [("spread (scale of the draws' standard deviations)", "name"),
+                  (format_value(data.spread) if data.spread is not None else "\u2014", "")]]
+        if missed:
+            low, high = float(np.min(data.missed_mass)), float(np.max(data.missed_mass))
+            facts.append([("missed-detection mass \u03a3 pD w per parent, min\u2013max", "name"),
+                          (f"{low:.4g}\u2013{high:.4g}", "")])
+        gaps = [float(np.max(w.log_weights)) - float(np.min(w.log_weights))
+                for w in data.weightings]
+        if data.log_weights_in_file:
+            facts.append([("log-weight range over the parents, single-cluster / RB-PHD (nats)",
+                           "name"), (" / ".join(f"{g:.4g}" for g in gaps), "")])
+        parts.append(table_html(["Draws", "value"], facts))
+        colours = ("normalised log-weight (sc_log_weight, rb_log_weight)"
+                   if data.log_weights_in_file else
+                   "log of the normalised weight (no log-weight columns in the file)")
         caption = (
             "The same predicted state and map, one scan: parent poses drawn from the predicted "
-            "pose Gaussian, point area and colour = normalised weight (one colour scale for "
-            "both panels); \u00d7 predicted mean, \u25c7 weighted mean of each weighting, \u2605 "
+            f"pose Gaussian, point area = normalised weight, colour = {colours} on one scale "
+            f"for both weighting panels, clipped below at {LOG_WEIGHT_RANGE:g} nats under the "
+            "largest; \u00d7 predicted mean, \u25c7 weighted mean of each weighting, \u2605 "
             "true pose (when known). "
             "The single-cluster likelihood keeps the missed-detection term exp(\u2212\u03a3 pD w), "
             "which penalises poses that put map mass in the field of view without detections; "
             "the RB-PHD-SLAM weighting (46) lacks it.")
+        if missed:
+            caption += (
+                " Right: the missed-detection mass \u03a3 pD w of each parent (colour; area = "
+                "RB-PHD weight): the single-cluster log-weight is the RB-PHD one minus it, up to "
+                "a constant, so parents with the larger \u03a3 pD w are the ones it penalises.")
         parts.append(self._figure(plot_parent_weights(data), f"{prefix}parent-weights.png",
                                   caption))
         return Section(sid, title, body="\n".join(parts))

@@ -51,8 +51,13 @@ SCALING_COLUMNS = ("estimator", "landmarks_in_fov", "us_per_call")
 GPS_COLUMNS = ("t", "x", "y")
 PARENT_WEIGHTS_COLUMNS = ("parent", "x", "y", "theta", "sc_weight", "rb_weight")
 PARENT_WEIGHT_COLUMNS = ("sc_weight", "rb_weight")
+PARENT_LOG_WEIGHT_COLUMNS = ("sc_log_weight", "rb_log_weight")
+"""Optional: the normalised natural-log weights (log-sum-exp 0), finite where weights underflow."""
+PARENT_MISSED_MASS_COLUMN = "missed_mass"
+"""Optional: sum of pD w over the predicted map seen from each parent (>= 0)."""
 WEIGHT_SUM_TOLERANCE = 1e-6
-"""|sum of a weight column - 1| allowed in parent_weights.csv (cells are printed with %.10g)."""
+"""|sum of a weight column - 1| (and |log-sum-exp| of a log-weight column) allowed in
+parent_weights.csv (cells are printed with %.10g)."""
 
 _GROUP_FOLDER = re.compile(r"^(?P<estimator>.+)-N(?P<particles>\d+)$")
 _SEED_FOLDER = re.compile(r"^seed-(?P<seed>\d+)$")
@@ -78,11 +83,23 @@ def _as_int(value: float, path: Path, column: str, row: int) -> int:
 
 
 def _validate_parent_weights(table: CsvTable) -> CsvTable:
-    """Every cell of parent_weights.csv present; weights >= 0 and each column summing to 1."""
+    """Every cell of parent_weights.csv present; weights >= 0 and each column summing to 1.
+
+    The optional columns sc_log_weight and rb_log_weight (both or neither) must be finite with a
+    log-sum-exp of 0, and missed_mass finite and >= 0.
+    """
     path = table.path
     if table.rows == 0:
         raise ResultsFormatError(f"{path}: no parent rows (expected one row per parent pose)")
-    for column in PARENT_WEIGHTS_COLUMNS:
+    present_logs = [c for c in PARENT_LOG_WEIGHT_COLUMNS if table.has(c)]
+    if len(present_logs) == 1:
+        other = next(c for c in PARENT_LOG_WEIGHT_COLUMNS if c not in present_logs)
+        raise ResultsFormatError(
+            f"{path}: column '{present_logs[0]}' without '{other}' (the log-weights of both "
+            "weightings are needed for their shared colour scale)")
+    optional = present_logs + ([PARENT_MISSED_MASS_COLUMN]
+                               if table.has(PARENT_MISSED_MASS_COLUMN) else [])
+    for column in list(PARENT_WEIGHTS_COLUMNS) + optional:
         values = table.num(column)
         for row, value in enumerate(values):
             if value != value:
@@ -101,13 +118,26 @@ def _validate_parent_weights(table: CsvTable) -> CsvTable:
                 raise ResultsFormatError(
                     f"{path}, line {table.line(row)}, column '{column}': negative weight "
                     f"{value:g}")
+            if column == PARENT_MISSED_MASS_COLUMN and value < 0:
+                raise ResultsFormatError(
+                    f"{path}, line {table.line(row)}, column '{column}': negative "
+                    f"missed-detection mass {value:g}")
+    lines = f"lines {table.line(0)}-{table.line(table.rows - 1)}"
     for column in PARENT_WEIGHT_COLUMNS:
         total = float(np.sum(table.num(column)))
         if not abs(total - 1.0) <= WEIGHT_SUM_TOLERANCE:
             raise ResultsFormatError(
-                f"{path}, lines {table.line(0)}-{table.line(table.rows - 1)}, column "
-                f"'{column}': the weights sum to {total:.10g}, expected 1 within "
-                f"{WEIGHT_SUM_TOLERANCE:g} (normalised weights)")
+                f"{path}, {lines}, column '{column}': the weights sum to {total:.10g}, expected "
+                f"1 within {WEIGHT_SUM_TOLERANCE:g} (normalised weights)")
+    for column in present_logs:
+        values = table.num(column)
+        top = float(np.max(values))
+        log_total = top + math.log(float(np.sum(np.exp(values - top))))
+        if not abs(log_total) <= WEIGHT_SUM_TOLERANCE:
+            raise ResultsFormatError(
+                f"{path}, {lines}, column '{column}': the log-sum-exp of the log-weights is "
+                f"{log_total:.10g}, expected 0 within {WEIGHT_SUM_TOLERANCE:g} (normalised "
+                "log-weights)")
     return table
 
 
@@ -146,6 +176,8 @@ def _validate_parent_weights_meta(data: object, path: Path, parents: int) -> dic
         fail("scenario", "a string")
     if "seed" in data and not _json_number(data["seed"]):
         fail("seed", "a number")
+    if "spread" in data and not (_json_number(data["spread"]) and data["spread"] > 0):
+        fail("spread", "a positive number")
     if int(data["parents"]) != parents:
         raise ResultsFormatError(
             f"{path}: key 'parents' is {data['parents']}, but {PARENT_WEIGHTS_FILE} has "

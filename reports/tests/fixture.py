@@ -28,6 +28,20 @@ RUNS_EXTRA = ("pos_rmse_std_m", "heading_rmse_std_deg", "map_size", "truth_map_s
               "pos_err_count", "ms_run")
 SUMMARY_EXTRA = ("pos_rmse_std_m", "heading_rmse_std_deg", "gospa_sem_m", "map_size_mean",
                  "pos_err_count", "failed_runs", "ms_per_step_std", "ms_run_mean")
+RUNS_DA = ("da_tpr", "da_tnr")
+SUMMARY_DA = ("da_tpr", "da_tnr", "da_positives", "da_negatives")
+DA_UNSCORED = ("phd1", "odometry")
+"""Estimators whose data association is not scored: empty rates, zero counts (as the runner)."""
+
+
+def da_counts(estimator: str, seed: int) -> tuple[int, int, int, int] | None:
+    """The fixture's (true positives, positives, true negatives, negatives) of one run."""
+    if estimator in DA_UNSCORED:
+        return None
+    positives, negatives = 800 + 10 * seed, 450 + 7 * seed
+    miss = 0.06 if estimator == "phd2b" else 0.015 + 0.004 * seed
+    return (round(positives * (1 - miss)), positives,
+            round(negatives * (0.995 - 0.001 * seed)), negatives)
 
 
 @dataclass
@@ -48,6 +62,7 @@ class FixtureSpec:
     landmarks: int = 24
     gps_only: bool = False  # real data with GPS: empty truth columns, truth/seed-<s>/gps.csv
     parent_weights: bool = False  # parent_weights.csv/.json at the root
+    da_rates: bool = False  # da_* columns in runs.csv and summary.csv, as the runner writes them
     error_scale: dict[str, float] = field(default_factory=lambda: {"odometry": 4.0})
 
 
@@ -90,12 +105,19 @@ def write_gps(path: Path, steps: int, rng: np.random.Generator) -> None:
     _write_csv(path, ["t", "x", "y"], [[float(a), float(b), float(c)] for a, b, c in zip(t, x, y)])
 
 
+PARENT_WEIGHTS_SPREAD = 10.0
+"""The fixture's parent_weights.json ``spread``."""
+
+
 def write_parent_weights(root: Path, parents: int = 40, true_pose: bool = True,
-                         meta: bool = True) -> Path:
+                         meta: bool = True, log_columns: bool = True) -> Path:
     """parent_weights.csv (and .json) as ``phdslam parent-weights --out root`` writes them.
 
     The parents are drawn around a predicted mean; the single-cluster weights fall off faster with
-    the distance to the true pose than the RB-PHD ones.
+    the distance to the true pose than the RB-PHD ones: the single-cluster log-weight is the
+    RB-PHD one minus missed_mass = 3 + (4/9) d^2 (d: distance to the true position), up to a
+    constant, as in the program. ``log_columns`` False writes the older six columns only
+    (parent,x,y,theta,sc_weight,rb_weight).
     """
     root = Path(root)
     root.mkdir(parents=True, exist_ok=True)
@@ -105,15 +127,22 @@ def write_parent_weights(root: Path, parents: int = 40, true_pose: bool = True,
     truth = np.array([101.5, 50.8, 0.32])
     poses = mean + rng.standard_normal((parents, 3)) @ np.linalg.cholesky(cov).T
     d2 = np.sum((poses[:, :2] - truth[:2]) ** 2, axis=1)
-    weights = []
+    missed = 3.0 + 4.0 / 9.0 * d2  # -0.5 d2 (single-cluster) = -d2 / 18 (RB-PHD) - missed + 3
+    weights, log_weights = [], []
     for sigma in (1.0, 3.0):  # single-cluster, RB-PHD
         log_w = -0.5 * d2 / sigma ** 2
-        w = np.exp(log_w - log_w.max())
-        weights.append(w / w.sum())
-    _write_csv(root / "parent_weights.csv",
-               ["parent", "x", "y", "theta", "sc_weight", "rb_weight"],
-               [[i, float(poses[i, 0]), float(poses[i, 1]), float(poses[i, 2]),
-                 float(weights[0][i]), float(weights[1][i])] for i in range(parents)])
+        top = log_w.max()
+        log_w = log_w - (top + math.log(np.sum(np.exp(log_w - top))))  # log-sum-exp 0
+        log_weights.append(log_w)
+        weights.append(np.exp(log_w))
+    header = ["parent", "x", "y", "theta", "sc_weight", "rb_weight"]
+    rows = [[i, float(poses[i, 0]), float(poses[i, 1]), float(poses[i, 2]),
+             float(weights[0][i]), float(weights[1][i])] for i in range(parents)]
+    if log_columns:
+        header += ["sc_log_weight", "rb_log_weight", "missed_mass"]
+        for i, row in enumerate(rows):
+            row += [float(log_weights[0][i]), float(log_weights[1][i]), float(missed[i])]
+    _write_csv(root / "parent_weights.csv", header, rows)
     if meta:
         data = {
             "step": 100, "parents": parents, "measurements": 7, "map_components": 12,
@@ -123,6 +152,8 @@ def write_parent_weights(root: Path, parents: int = 40, true_pose: bool = True,
             "ess_rb_phd": float(1 / np.sum(weights[1] ** 2)),
             "scenario": "paper-synthetic", "seed": 1,
         }
+        if log_columns:  # the program writes both together
+            data["spread"] = PARENT_WEIGHTS_SPREAD
         (root / "parent_weights.json").write_text(json.dumps(data, indent=2) + "\n",
                                                   encoding="utf-8")
     return root
@@ -205,6 +236,10 @@ def make_results_folder(root: Path, spec: FixtureSpec | None = None) -> Path:
                              res_pct, float(np.mean(ms)), float(np.std(pos_err, ddof=1)),
                              float(np.std(head_err, ddof=1)), spec.landmarks, spec.landmarks,
                              spec.steps, float(np.sum(ms))])
+            if spec.da_rates:
+                counts = da_counts(estimator, seed)
+                run_rows[-1] += ([float(counts[0] / counts[1]), float(counts[2] / counts[3])]
+                                 if counts else ["", ""])
             errs_all.append(pos_err)
             heads_all.append(head_err)
             gospas.append(gospa)
@@ -224,8 +259,17 @@ def make_results_folder(root: Path, spec: FixtureSpec | None = None) -> Path:
             float(np.std(h, ddof=1)), gstd / math.sqrt(runs), float(spec.landmarks), e.size, 0,
             float(np.std(np.concatenate(ms_all), ddof=1)), float(np.sum(ms_all) / runs),
         ])
-    _write_csv(root / "runs.csv", list(RUNS_COLUMNS) + list(RUNS_EXTRA), run_rows)
-    _write_csv(root / "summary.csv", list(SUMMARY_COLUMNS) + list(SUMMARY_EXTRA), summary_rows)
+        if spec.da_rates:  # pooled over every measurement of every run
+            counts = [da_counts(estimator, seed) for seed in spec.seeds]
+            if counts[0] is None:
+                summary_rows[-1] += ["", "", 0, 0]
+            else:
+                tp, p, tn, n = (sum(c[i] for c in counts) for i in range(4))
+                summary_rows[-1] += [float(tp / p), float(tn / n), p, n]
+    da_runs, da_summary = (RUNS_DA, SUMMARY_DA) if spec.da_rates else ((), ())
+    _write_csv(root / "runs.csv", list(RUNS_COLUMNS) + list(RUNS_EXTRA) + list(da_runs), run_rows)
+    _write_csv(root / "summary.csv", list(SUMMARY_COLUMNS) + list(SUMMARY_EXTRA)
+               + list(da_summary), summary_rows)
 
     parameters = {} if spec.resampling else {"resampling": False}
     config = {

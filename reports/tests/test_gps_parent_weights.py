@@ -9,6 +9,7 @@ import unittest
 from pathlib import Path
 
 from fixture import (  # first: puts reports/ on sys.path, checks the interpreter
+    PARENT_WEIGHTS_SPREAD,
     FixtureSpec,
     make_results_folder,
     write_gps,
@@ -17,6 +18,8 @@ from fixture import (  # first: puts reports/ on sys.path, checks the interprete
 
 import numpy as np  # noqa: E402  (after fixture, which checks the interpreter)
 from phdslam_reports.figures.parent_weights import (  # noqa: E402
+    LOG_WEIGHT_RANGE,
+    MISSED_MASS_TITLE,
     WEIGHTINGS,
     parent_weights_data,
     plot_parent_weights,
@@ -52,6 +55,31 @@ def legend_texts(fig) -> set[str]:
     """The texts of every axes legend of the figure."""
     return {t.get_text() for ax in fig.axes if ax.get_legend() is not None
             for t in ax.get_legend().get_texts()}
+
+
+def parent_panels(fig) -> list:
+    """The data panels of a parent-weights figure (colour bars left out)."""
+    return [ax for ax in fig.axes if ax.get_label() != "<colorbar>"]
+
+
+def colour_bars(fig) -> list:
+    """The colour-bar axes of a figure."""
+    return [ax for ax in fig.axes if ax.get_label() == "<colorbar>"]
+
+
+def parent_scatter(ax, parents: int):
+    """The scatter of the parents in a panel (the one collection with a value per parent)."""
+    found = [c for c in ax.collections if c.get_array() is not None
+             and len(c.get_array()) == parents]
+    assert len(found) == 1, found
+    return found[0]
+
+
+def parent_figure(results: Path):
+    """The data and the figure of the parent-weights section of a results folder."""
+    folder = ResultsFolder(results)
+    data = parent_weights_data(folder.parent_weights, folder.parent_weights_meta)
+    return folder, data, plot_parent_weights(data)
 
 
 def trajectory_figure(results: Path, out: Path):
@@ -202,29 +230,71 @@ class ParentWeightsReportTest(unittest.TestCase):
         self.assertIn(f"{math.hypot(predicted[0] - truth[0], predicted[1] - truth[1]):.3f}",
                       self.body)
 
-    def test_figure_has_two_panels_with_shared_axes_and_one_colour_scale(self):
-        folder = ResultsFolder(self.results)
-        data = parent_weights_data(folder.parent_weights, folder.parent_weights_meta)
-        fig = plot_parent_weights(data)
+    def test_missed_mass_range_weighted_means_and_spread_in_the_tables(self):
+        missed = self.csv[:, 8]
+        self.assertIn(f"<td>{missed.min():.4g}\u2013{missed.max():.4g}</td>", self.body)
+        for column in (4, 5):  # the weighted mean of missed_mass under each weighting
+            w = self.csv[:, column]
+            self.assertIn(f"<td>{np.sum(w * missed):.4g}</td>", self.body)
+        self.assertIn("weighted mean of \u03a3 pD w", self.body)
+        self.assertIn(f"<td>{PARENT_WEIGHTS_SPREAD:g}</td>", self.body)
+        self.assertIn(f"(standard deviations scaled by {PARENT_WEIGHTS_SPREAD:g})", self.body)
+        # the fixture's penalty grows with the distance to the true pose: single-cluster favours
+        # the parents with less missed mass
+        self.assertLess(np.sum(self.csv[:, 4] * missed), np.sum(self.csv[:, 5] * missed))
+        self.assertIn("the single-cluster log-weight is the RB-PHD one minus it", self.body)
+
+    def test_figure_has_three_panels_with_shared_axes(self):
+        folder, data, fig = parent_figure(self.results)
         try:
-            panels = [ax for ax in fig.axes if ax.get_label() != "<colorbar>"]
-            self.assertEqual(len(panels), 2)
-            a, b = panels
-            self.assertTrue(a.get_shared_x_axes().joined(a, b))
-            self.assertTrue(a.get_shared_y_axes().joined(a, b))
-            for ax, (column, title) in zip(panels, WEIGHTINGS):
+            panels = parent_panels(fig)
+            self.assertEqual(len(panels), 3)
+            for other in panels[1:]:
+                self.assertTrue(panels[0].get_shared_x_axes().joined(panels[0], other))
+                self.assertTrue(panels[0].get_shared_y_axes().joined(panels[0], other))
+            for ax, (column, _, title) in zip(panels, WEIGHTINGS):
                 w = folder.parent_weights.num(column)
                 self.assertIn(title, ax.get_title())
                 self.assertIn(f"ESS = 1/\u03a3w\u00b2 = {1 / np.sum(w ** 2):.1f} of 40",
                               ax.get_title())
-                self.assertIn("true pose", {t.get_text() for t in ax.get_legend().get_texts()})
-                self.assertIn("predicted mean",
-                              {t.get_text() for t in ax.get_legend().get_texts()})
-            norms = [c.norm for ax in panels for c in ax.collections if c.get_array() is not None
-                     and len(c.get_array()) == 40]
-            self.assertEqual(len(norms), 2)
-            self.assertIs(norms[0], norms[1])
-            self.assertAlmostEqual(norms[0].vmax, float(np.max(self.csv[:, 4:6])))
+            for ax in panels:
+                texts = {t.get_text() for t in ax.get_legend().get_texts()}
+                self.assertIn("true pose", texts)
+                self.assertIn("predicted mean", texts)
+            self.assertEqual(panels[2].get_title(), MISSED_MASS_TITLE)
+            self.assertIn("the single-cluster penalty", panels[2].get_title())
+        finally:
+            plt.close(fig)
+
+    def test_weighting_panels_share_one_log_weight_colour_scale(self):
+        _, _, fig = parent_figure(self.results)
+        try:
+            panels = parent_panels(fig)
+            scatters = [parent_scatter(ax, 40) for ax in panels[:2]]
+            self.assertIs(scatters[0].norm, scatters[1].norm)
+            norm = scatters[0].norm
+            log_w = self.csv[:, 6:8]  # sc_log_weight, rb_log_weight
+            self.assertAlmostEqual(norm.vmax, float(np.max(log_w)), places=8)
+            self.assertAlmostEqual(norm.vmin, norm.vmax - LOG_WEIGHT_RANGE)
+            for scatter, column in zip(scatters, (6, 7)):
+                # the colours are the file's log-weights clipped below, the sizes the weights
+                np.testing.assert_allclose(np.sort(scatter.get_array()),
+                                           np.sort(np.maximum(self.csv[:, column], norm.vmin)))
+                sizes = scatter.get_sizes()
+                weights = self.csv[:, column - 2]
+                self.assertAlmostEqual(float(np.max(sizes) - np.min(sizes)),
+                                       170.0 * float(np.ptp(weights))
+                                       / float(np.max(self.csv[:, 4:6])), places=6)
+            labels = [bar.get_ylabel() for bar in colour_bars(fig)]
+            self.assertEqual(len(labels), 2)
+            self.assertTrue(any("log weight (nats)" in label for label in labels), labels)
+            # the third panel has its own scale: the missed-detection mass
+            missed = parent_scatter(panels[2], 40)
+            self.assertIsNot(missed.norm, norm)
+            np.testing.assert_allclose(np.sort(missed.get_array()), np.sort(self.csv[:, 8]))
+            self.assertAlmostEqual(missed.norm.vmin, float(np.min(self.csv[:, 8])))
+            self.assertAlmostEqual(missed.norm.vmax, float(np.max(self.csv[:, 8])))
+            self.assertTrue(any("\u03a3 pD w" in label for label in labels), labels)
         finally:
             plt.close(fig)
 
@@ -266,15 +336,62 @@ class ParentWeightsVariantsTest(unittest.TestCase):
         self.assertIn("No parent_weights.json", body)
         self.assertEqual(len(embedded_pngs(body)), 1)
 
-    def test_extra_columns_are_accepted(self):
-        results = write_parent_weights(self.root / "pw")
+    def test_older_six_columns_give_two_panels_coloured_by_log_of_the_weights(self):
+        results = write_parent_weights(self.root / "pw", log_columns=False)
+        header = (results / "parent_weights.csv").read_text().splitlines()[0]
+        self.assertEqual(header, "parent,x,y,theta,sc_weight,rb_weight")
+        folder, data, fig = parent_figure(results)
+        try:
+            self.assertIsNone(data.missed_mass)
+            self.assertFalse(data.log_weights_in_file)
+            panels = parent_panels(fig)
+            self.assertEqual(len(panels), 2)
+            self.assertNotIn(MISSED_MASS_TITLE, [ax.get_title() for ax in panels])
+            scatters = [parent_scatter(ax, 40) for ax in panels]
+            self.assertIs(scatters[0].norm, scatters[1].norm)
+            norm = scatters[0].norm
+            weights = [folder.parent_weights.num(c) for c, _, _ in WEIGHTINGS]
+            with np.errstate(divide="ignore"):
+                logs = [np.log(w) for w in weights]
+            self.assertAlmostEqual(norm.vmax, max(float(np.max(v)) for v in logs))
+            self.assertAlmostEqual(norm.vmin, norm.vmax - LOG_WEIGHT_RANGE)
+            for scatter, log_w in zip(scatters, logs):
+                np.testing.assert_allclose(np.sort(scatter.get_array()),
+                                           np.sort(np.maximum(log_w, norm.vmin)))
+            self.assertEqual(len(colour_bars(fig)), 1)
+            self.assertIn("log weight (nats)", colour_bars(fig)[0].get_ylabel())
+        finally:
+            plt.close(fig)
+        body = build_report([results], self.root / "out").section("parent-weights").body
+        self.assertEqual(len(embedded_pngs(body)), 1)
+        self.assertIn("log of the normalised weight (no log-weight columns in the file)", body)
+        self.assertNotIn("min\u2013max", body)
+        self.assertNotIn("weighted mean of \u03a3 pD w", body)
+        self.assertIn("<td class=\"name\">spread (scale of the draws&#x27; standard deviations)"
+                      "</td><td>"
+                      "\u2014</td>", body)  # an older parent_weights.json has no spread
+
+    def test_weights_that_underflow_are_coloured_by_their_log_weight(self):
+        results = write_parent_weights(self.root / "pw", parents=4)
         path = results / "parent_weights.csv"
         lines = path.read_text().splitlines()
-        lines = [lines[0] + ",sc_log_weight,rb_log_weight,missed_mass"] + [
-            line + ",-1.5,-2.5,8.9" for line in lines[1:]]
+        lines[1:] = [
+            "0,100,50,0.3,1,1,0,0,8.5",
+            "1,101,50,0.3,0,0,-800,-790,8.9",  # both weights underflow to 0
+            "2,102,50,0.3,0,0,-15,-14,8.9",
+            "3,103,50,0.3,0,0,-1000,-1000,9",
+        ]
         path.write_text("\n".join(lines) + "\n")
-        self.assertTrue(build_report([results], self.root / "out").section(
-            "parent-weights").shown)
+        _, data, fig = parent_figure(results)
+        try:
+            scatter = parent_scatter(parent_panels(fig)[0], 4)
+            self.assertEqual(scatter.norm.vmax, 0.0)
+            np.testing.assert_allclose(np.sort(scatter.get_array()), [-20, -20, -15, 0])
+        finally:
+            plt.close(fig)
+        self.assertEqual(data.weightings[0].ess, 1.0)
+        body = build_report([results], self.root / "out").section("parent-weights").body
+        self.assertIn("<td>8.5\u20139</td>", body)
 
     def test_elongated_cloud_is_not_drawn_to_scale(self):
         folder = ResultsFolder(write_parent_weights(self.root / "pw"))

@@ -151,6 +151,63 @@ class MalformedInputTest(unittest.TestCase):
         path.write_text("\n".join(lines) + "\n")
         self.assert_cli_error(f"{path}, line 3, column 'sc_weight': negative weight")
 
+    def set_parent_cell(self, line: int, column: str, value: str) -> Path:
+        """Writes the fixture's parent_weights.csv with one cell replaced (1-based file line)."""
+        write_parent_weights(self.results)
+        path = self.results / "parent_weights.csv"
+        lines = path.read_text().splitlines()
+        cells = lines[line - 1].split(",")
+        cells[lines[0].split(",").index(column)] = value
+        lines[line - 1] = ",".join(cells)
+        path.write_text("\n".join(lines) + "\n")
+        return path
+
+    def test_parent_weights_non_numeric_log_weight_and_missed_mass(self):
+        path = self.set_parent_cell(5, "sc_log_weight", "tiny")
+        self.assert_cli_error(f"{path}, line 5, column 'sc_log_weight': 'tiny' is not a number")
+        path = self.set_parent_cell(9, "missed_mass", "n/a")
+        self.assert_cli_error(f"{path}, line 9, column 'missed_mass': 'n/a' is not a number")
+
+    def test_parent_weights_empty_or_infinite_optional_cells(self):
+        path = self.set_parent_cell(3, "rb_log_weight", "")
+        self.assert_cli_error(f"{path}, line 3, column 'rb_log_weight': empty cell")
+        path = self.set_parent_cell(4, "sc_log_weight", "-inf")
+        self.assert_cli_error(f"{path}, line 4, column 'sc_log_weight': '-inf' is not a finite "
+                              "number")
+
+    def test_parent_weights_negative_missed_mass(self):
+        path = self.set_parent_cell(6, "missed_mass", "-0.5")
+        self.assert_cli_error(f"{path}, line 6, column 'missed_mass': negative missed-detection "
+                              "mass -0.5")
+
+    def test_parent_weights_log_weights_not_normalised(self):
+        write_parent_weights(self.results, parents=10)
+        path = self.results / "parent_weights.csv"
+        lines = path.read_text().splitlines()
+        column = lines[0].split(",").index("rb_log_weight")
+        for i in range(1, len(lines)):
+            cells = lines[i].split(",")
+            cells[column] = repr(float(cells[column]) - 0.5)  # log-sum-exp -0.5
+            lines[i] = ",".join(cells)
+        path.write_text("\n".join(lines) + "\n")
+        message = self.assert_cli_error(f"{path}, lines 2-11, column 'rb_log_weight': the "
+                                        "log-sum-exp of the log-weights is -0.5")
+        self.assertIn("expected 0 within 1e-06", message)
+
+    def test_parent_weights_one_log_weight_column_without_the_other(self):
+        write_parent_weights(self.results)
+        path = self.results / "parent_weights.csv"
+        replace_line(path, 0, "rb_log_weight", "rb_log")
+        self.assert_cli_error(f"{path}: column 'sc_log_weight' without 'rb_log_weight'")
+
+    def test_parent_weights_json_spread(self):
+        write_parent_weights(self.results)
+        path = self.results / "parent_weights.json"
+        data = json.loads(path.read_text())
+        data["spread"] = "wide"
+        path.write_text(json.dumps(data))
+        self.assert_cli_error(f"{path}: key 'spread': expected a positive number, got \"wide\"")
+
     def test_parent_weights_json_missing_key_and_wrong_count(self):
         write_parent_weights(self.results)
         path = self.results / "parent_weights.json"
