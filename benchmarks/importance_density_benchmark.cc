@@ -19,7 +19,9 @@
 // gives the fitted log-log exponent b of time ~ M^b (least squares over the M values, against the
 // nominal M and against the mean associated count, and the slope between the two largest M, where
 // the leading term dominates); the table is also written as CSV to --scaling_csv=<path> (default
-// importance_density_scaling.csv in the working directory).
+// importance_density_scaling.csv in the working directory). The columns `estimator`,
+// `landmarks_in_fov` and `us_per_call` are those the report's scaling section reads: write it as
+// `--scaling_csv=RESULTS_DIR/scaling.csv` to have it drawn.
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -207,7 +209,7 @@ void PrintAndWriteScaling(const CollectingReporter& reporter,
                           const std::string& csv_path) {
   std::ofstream csv(csv_path);
   if (!csv) throw std::runtime_error("cannot write the scaling CSV '" + csv_path + "'");
-  csv << "density,landmarks_in_view,mean_active,mean_associated,mean_mixture_components,"
+  csv << "estimator,landmarks_in_fov,mean_active,mean_associated,mean_mixture_components,"
          "us_per_call,us_per_associated_component,us_per_mixture_component\n";
   std::printf("\n%-15s %5s %7s %10s %8s %11s %13s %13s\n", "density", "M", "active", "associated",
               "mixture", "us/call", "us/assoc.comp", "us/mix.comp");
