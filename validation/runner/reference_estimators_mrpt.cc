@@ -68,8 +68,8 @@ EstimatorEntry FastSlamEntry(const std::string& name, reference::FastSlamProposa
     j["particles"] = r.particles;
     return j;
   };
-  e.make_online = [proposal](
-                      const EstimatorRequest& r) -> std::unique_ptr<filters::OnlineEstimator> {
+  e.make_online =
+      [proposal](const EstimatorRequest& r) -> std::unique_ptr<filters::OnlineEstimator> {
     return std::make_unique<reference::FastSlam>(
         filters::EstimatorContext::FromScenario(RequireScenario(r)), r.particles, r.stream_seed,
         ResolveFastSlam(r, proposal));

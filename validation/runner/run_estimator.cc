@@ -73,6 +73,7 @@ void RunBatch(const EstimatorEntry& entry, const EstimatorRequest& request,
     record.pose_covs = std::move(result.pose_covs);
   }
   record.final_map = std::move(result.map);
+  record.solver_iterations = result.iterations;
   if (on_steps_done) on_steps_done(record.poses.size());
 }
 

@@ -1,5 +1,6 @@
 #include "validation/runner/run_metrics.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -148,6 +149,9 @@ RunEvaluation EvaluateRun(const RunRecord& record, const datasets::Scenario& sce
   EvaluateAssociation(record, scenario, ev.metrics);
   for (double ms : record.step_ms) ev.metrics.step_ms.Add(ms);
   ev.metrics.total_ms = record.total_ms;
+  if (record.solver_iterations) {
+    ev.metrics.solver_iterations = static_cast<std::size_t>(std::max(*record.solver_iterations, 0));
+  }
   return ev;
 }
 

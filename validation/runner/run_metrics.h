@@ -58,6 +58,7 @@ struct RunMetrics {
   /// association has every measurement in `unreported` and NaN rates.
   std::optional<AssociationCounts> association;
   std::optional<std::size_t> gps_matched_steps;  ///< data with GPS only
+  std::optional<std::size_t> solver_iterations;  ///< batch estimators: solver iterations
   ErrorMoments step_ms;                          ///< wall time per step (online estimators)
   double total_ms = 0.0;
 };

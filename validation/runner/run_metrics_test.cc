@@ -231,6 +231,10 @@ TEST(RunMetricsJson, RoundTripsTheSufficientStatistics) {
     old.erase(key);
   }
   EXPECT_FALSE(RunMetricsFromJson(old, "test").association);
+  // Online estimators have no solver iterations; files written before the key existed neither.
+  EXPECT_TRUE(j.at("solver_iterations").is_null());
+  old.erase("solver_iterations");
+  EXPECT_FALSE(RunMetricsFromJson(old, "test").solver_iterations);
 
   nlohmann::json missing = j;
   missing.erase("pos_err_count");
@@ -248,6 +252,7 @@ class FixedBatch final : public filters::BatchEstimator {
     filters::BatchResult r;
     r.poses.assign(poses_, Pose(1.0, 2.0, 3.0));
     r.map.means = {Landmark(5.0, 5.0)};
+    r.iterations = 17;
     return r;
   }
 
@@ -275,6 +280,11 @@ TEST(RunEstimator, RecordsBatchResultsAndChecksTheirLength) {
   const RunEvaluation ev = EvaluateRun(r, s);
   EXPECT_FALSE(ev.metrics.ess_pct);
   EXPECT_EQ(ev.metrics.step_ms.count, 0u);
+  ASSERT_TRUE(ev.metrics.solver_iterations);
+  EXPECT_EQ(*ev.metrics.solver_iterations, 17u);
+  const nlohmann::json j = ToJson(ev.metrics);
+  EXPECT_EQ(j.at("solver_iterations").get<int>(), 17);
+  EXPECT_EQ(*RunMetricsFromJson(j, "test").solver_iterations, 17u);
   poses = 2;
   EXPECT_THROW(RunEstimator(entry, request, s), std::runtime_error);
 }

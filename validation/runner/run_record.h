@@ -31,6 +31,8 @@ struct RunRecord {
   std::vector<std::vector<Landmark>> associations;
   /// Wall time of each Step call (ms, steady_clock); empty for batch estimators.
   std::vector<double> step_ms;
+  /// Batch estimators: the solver's iterations (BatchResult::iterations); nullopt for online ones.
+  std::optional<int> solver_iterations;
   /// Wall time of the whole estimation (ms): the sum of step_ms, or the batch solve.
   double total_ms = 0.0;
   /// The map estimate after the last step.

@@ -170,6 +170,7 @@ const std::vector<Column<GroupSummary>>& SummaryColumns() {
                     ? Count(static_cast<std::size_t>(g.association->tn + g.association->fp))
                     : std::string();
        }},
+      {"solver_iterations_mean", [](const G& g) { return Num(g.solver_iterations.Mean()); }},
   };
   return columns;
 }
@@ -218,6 +219,10 @@ const std::vector<Column<RunResult>>& RunColumns() {
       {"ms_run", [](const R& r) { return Num(r.metrics.total_ms); }},
       {"da_tpr", [](const R& r) { return DaRate(r.metrics.association, &AssociationCounts::tpr); }},
       {"da_tnr", [](const R& r) { return DaRate(r.metrics.association, &AssociationCounts::tnr); }},
+      {"solver_iterations",
+       [](const R& r) {
+         return r.metrics.solver_iterations ? Count(*r.metrics.solver_iterations) : std::string();
+       }},
   };
   return columns;
 }
@@ -331,6 +336,7 @@ std::vector<GroupSummary> SummariseGroups(const ResultsInventory& inventory) {
       }
       g.step_ms.Merge(m.step_ms);
       g.run_ms.Add(m.total_ms);
+      if (m.solver_iterations) g.solver_iterations.Add(static_cast<double>(*m.solver_iterations));
     }
     g.steps = steps.Mean();
     g.ess_pct = StepWeightedMean(runs, &RunMetrics::ess_pct);

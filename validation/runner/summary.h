@@ -74,8 +74,9 @@ struct GroupSummary {
   /// Association counts summed over the runs that were scored; nullopt when none was.
   std::optional<AssociationCounts> association;
   ErrorMoments step_ms;
-  ErrorMoments run_ms;            ///< total wall time per run
-  std::optional<GroupNees> nees;  ///< nullopt when no step has a NEES in every run
+  ErrorMoments run_ms;             ///< total wall time per run
+  ErrorMoments solver_iterations;  ///< batch estimators' solver iterations, one value per run
+  std::optional<GroupNees> nees;   ///< nullopt when no step has a NEES in every run
 };
 
 /// GroupNees of runs' per-step NEES series (NaN = no NEES at that step); steps beyond the

@@ -76,6 +76,7 @@ RunMetrics SecondRun() {
   da.tn = 3;
   da.fp = 1;
   m.association = da;
+  m.solver_iterations = 12;
   return m;
 }
 
@@ -202,6 +203,8 @@ TEST_F(SummaryTest, WritesSummaryAndRunsCsv) {
   EXPECT_EQ(a["da_tnr"], "0.75");
   EXPECT_EQ(a["da_positives"], "10");
   EXPECT_EQ(a["da_negatives"], "4");
+  // Solver iterations: the one run that has them.
+  EXPECT_EQ(a["solver_iterations_mean"], "12");
   auto b = Row(summary, 1);
   EXPECT_EQ(b["da_tpr"], "");
   EXPECT_EQ(b["da_positives"], "");
@@ -223,6 +226,8 @@ TEST_F(SummaryTest, WritesSummaryAndRunsCsv) {
   EXPECT_EQ(r1["gospa_localisation_mp"], "300");
   EXPECT_EQ(r1["da_tpr"], "");
   EXPECT_EQ(Row(runs, 1)["da_tnr"], "0.75");
+  EXPECT_EQ(Row(runs, 1)["solver_iterations"], "12");
+  EXPECT_EQ(r1["solver_iterations"], "");
   auto r3 = Row(runs, 2);
   EXPECT_EQ(r3["estimator"], "b");
   EXPECT_EQ(r3["gospa_m"], "");
