@@ -34,8 +34,12 @@ void EvaluateTrajectory(const RunRecord& record, const datasets::Scenario& scena
     for (std::size_t k = 0; k < n && k < record.pose_covs.size(); ++k) {
       if (!record.pose_covs[k] || !CholeskyLower<3>(*record.pose_covs[k])) continue;
       try {
-        ev.pose_nees[k] = PoseNees(truth.poses[k], record.poses[k], *record.pose_covs[k]);
-        ev.metrics.pose_nees.Add(ev.pose_nees[k]);
+        const double nees = PoseNees(truth.poses[k], record.poses[k], *record.pose_covs[k]);
+        // A covariance that passes the Cholesky test can still be so close to singular that
+        // e'P^-1 e overflows (collapsed particles without resampling): no NEES at that step.
+        if (!std::isfinite(nees)) continue;
+        ev.pose_nees[k] = nees;
+        ev.metrics.pose_nees.Add(nees);
       } catch (const std::invalid_argument&) {
         // Not symmetric positive definite by PoseNees' test: this step has no NEES.
       }
@@ -70,7 +74,7 @@ void EvaluateMap(const RunRecord& record, const datasets::Scenario& scenario,
   if (map.covs.size() == map.size()) {
     try {
       for (double nees : MatchedLandmarkNees(scenario.truth.landmarks, map.means, map.covs, r)) {
-        m.landmark_nees.Add(nees);
+        if (std::isfinite(nees)) m.landmark_nees.Add(nees);
       }
     } catch (const std::invalid_argument&) {
       // A matched component's covariance is not positive definite: no landmark NEES this run.

@@ -1,5 +1,6 @@
 // metrics.json form of RunMetrics.
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -167,10 +168,15 @@ RunMetrics RunMetricsFromJson(const nlohmann::json& j, const std::string& source
   m.resampling_pct = r.OptionalNumber("resampling_pct");
   m.hypotheses_mean = r.OptionalNumber("hypotheses_mean");
   m.map_components_mean = r.OptionalNumber("map_components_mean");
+  // NEES values are finite and non-negative, so a sum written as null overflowed: +infinity
+  // (e.g. collapsed particles without resampling, where single values reach 1e300).
+  const auto nees_sum = [&](const std::string& key) {
+    return r.OptionalNumber(key).value_or(std::numeric_limits<double>::infinity());
+  };
   m.pose_nees.count = r.Count("pose_nees_count");
-  m.pose_nees.sum = r.Number("pose_nees_sum");
+  m.pose_nees.sum = nees_sum("pose_nees_sum");
   m.landmark_nees.count = r.Count("landmark_nees_count");
-  m.landmark_nees.sum = r.Number("landmark_nees_sum");
+  m.landmark_nees.sum = nees_sum("landmark_nees_sum");
   // Association counts: absent in folders written before they existed, null when not scored.
   if (j.contains("da_tp") && !j.at("da_tp").is_null()) {
     AssociationCounts da;

@@ -187,6 +187,27 @@ TEST(EvaluateRun, LeavesTheAssociationUnscoredWithoutLabelsOrAssociations) {
   EXPECT_TRUE(std::isnan(m.association->tpr()));
 }
 
+TEST(EvaluateRun, LeavesOutANeesThatOverflows) {
+  // Positive definite by the Cholesky test, but e'P^-1 e overflows to infinity: that step has no
+  // NEES, and the sufficient statistics stay finite (metrics.json would otherwise hold null).
+  RunRecord r = HandRecord();
+  r.pose_covs[1] = Mat3::Identity() * 1e-320;
+  const RunEvaluation ev = EvaluateRun(r, TruthScenario());
+  EXPECT_TRUE(std::isnan(ev.pose_nees[1]));
+  EXPECT_EQ(ev.metrics.pose_nees.count, 0u);
+  EXPECT_TRUE(std::isfinite(ev.metrics.pose_nees.sum));
+
+  // Finite values whose sum overflows: written as null, read back as +infinity.
+  RunMetrics m = ev.metrics;
+  m.pose_nees.Add(1e308);
+  m.pose_nees.Add(1e308);
+  const nlohmann::json j = nlohmann::json::parse(ToJson(m).dump());  // as written to the file
+  EXPECT_TRUE(j.at("pose_nees_sum").is_null());
+  const RunMetrics back = RunMetricsFromJson(j, "test");
+  EXPECT_EQ(back.pose_nees.count, 2u);
+  EXPECT_TRUE(std::isinf(back.pose_nees.sum));
+}
+
 TEST(EvaluateRun, RejectsARecordOfTheWrongLength) {
   RunRecord r = HandRecord();
   r.poses.pop_back();
