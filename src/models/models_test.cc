@@ -109,6 +109,13 @@ TEST(SensorModel, DetectionProbabilityAndFovAreInclusivePointTests) {
   s.fov_range = 50.0;
   EXPECT_NEAR(s.DetectionProbability(x, Landmark(25.0, 0.0)), 0.35, 1e-12);
   EXPECT_NEAR(SensorModel{}.ClutterIntensity(), 1.4147e-4, 1e-8);
+  // A clutter-free sensor still gives the filters a positive intensity (its floor), and the floor
+  // is far below the paper's rate.
+  SensorModel clutter_free;
+  clutter_free.clutter_rate = 0.0;
+  EXPECT_GT(clutter_free.ClutterIntensity(), 0.0);
+  EXPECT_NEAR(clutter_free.ClutterIntensity() / SensorModel{}.ClutterIntensity(),
+              SensorModel::kMinFilterClutterRate / 5.0, 1e-15);
 }
 
 }  // namespace

@@ -27,11 +27,20 @@ struct SensorModel {
   Mat2 noise_cov = Mat2::Identity();         ///< R
   double clutter_rate = 5.0;                 ///< expected clutter points per scan (lambda)
 
-  /// lambda_c = lambda / (Theta_fov R_fov^2): lambda over the Cartesian area of the FOV sector,
-  /// used by the filters as a density in (r, phi) (reference notes 10.1, kept to reproduce the
-  /// published numbers).
+  /// The smallest clutter rate the filters' likelihoods use (points per scan). The RB-PHD-SLAM
+  /// family explains every measurement no component accounts for (clutter, but also a landmark's
+  /// first detection) by the clutter intensity, so lambda_c = 0 would give those measurements zero
+  /// likelihood and every particle the weight 0 (log -inf). A clutter-free scenario
+  /// (clutter_rate = 0: the clutter sensitivity sweep) is filtered with this rate instead; it is
+  /// far below every rate that occurs otherwise and changes nothing for them.
+  static constexpr double kMinFilterClutterRate = 1e-3;
+
+  /// lambda_c = lambda / (Theta_fov R_fov^2): lambda (at least kMinFilterClutterRate) over the
+  /// Cartesian area of the FOV sector, used by the filters as a density in (r, phi) (reference
+  /// notes 10.1, kept to reproduce the published numbers).
   [[nodiscard]] double ClutterIntensity() const {
-    return clutter_rate / (fov_half_angle * fov_range * fov_range);
+    return std::max(clutter_rate, kMinFilterClutterRate) /
+           (fov_half_angle * fov_range * fov_range);
   }
 
   /// pD evaluated at the landmark point m from pose x (a point evaluation, notes section 9).
