@@ -29,7 +29,9 @@ std::vector<datasets::MapPoint> MapPoints(const filters::MapEstimate& map) {
     datasets::MapPoint p;
     p.position = map.means[i];
     p.weight = i < map.log_weights.size() ? std::exp(map.log_weights[i]) : 0.0;
-    if (i < map.covs.size()) p.cov = map.covs[i];
+    // A covariance that could not be computed (e.g. the smoother's marginal of a landmark the
+    // rank-deficient Jacobian leaves unobservable) is written as "not available".
+    if (i < map.covs.size() && map.covs[i].allFinite()) p.cov = map.covs[i];
     points.push_back(p);
   }
   return points;

@@ -7,6 +7,8 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "datasets/map_io.h"
+#include "datasets/test_temp_dir.h"
 #include "validation/runner/results_io.h"
 #include "validation/runner/run_estimator.h"
 #include "validation/runner/run_files.h"
@@ -320,6 +322,21 @@ TEST(StepsCsv, HasANeesColumnEmptyWhereThereIsNone) {
   EXPECT_EQ(table.rows[0].back(), "");
   EXPECT_EQ(table.rows[1].back(), "25.01");
   EXPECT_EQ(table.rows[2].back(), "");
+}
+
+TEST(RunFiles, WritesACovarianceThatIsNotFiniteAsNotAvailable) {
+  const datasets::Scenario s = TruthScenario();
+  RunRecord r = HandRecord();
+  r.final_map.means.push_back(Landmark(10.0, 1.0));
+  r.final_map.log_weights.push_back(0.0);
+  r.final_map.covs.push_back(Mat2::Constant(kNaN));
+  const std::filesystem::path folder = datasets::testing::FreshTestDir();
+  WriteRunFiles(folder, r, s, EvaluateRun(r, s), nlohmann::json{{"estimator", "hand"}});
+  const std::vector<datasets::MapPoint> map = datasets::ReadMapCsv(folder / "map.csv");
+  ASSERT_EQ(map.size(), 2u);
+  ASSERT_TRUE(map[0].cov);
+  EXPECT_EQ((*map[0].cov)(0, 0), 1.0);
+  EXPECT_FALSE(map[1].cov);
 }
 
 TEST(ParticlesCsv, NormalisesTheLogWeightsOfEachStep) {
