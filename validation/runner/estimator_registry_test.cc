@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "datasets/scenario_generator.h"
 #include "src/core/random.h"
 
 namespace phdslam::validation {
@@ -102,6 +103,37 @@ TEST(PhdSlamEntries, VictoriaParkResamplingThresholdDependsOnTheVariant) {
   request.scenario_name = "paper-synthetic";
   request.name = "phd1";
   EXPECT_EQ(FindEstimator("phd1").resolved_parameters(request).at("ess_threshold"), 0.2);
+}
+
+TEST(MrptEkfPostProcessed, RunsTheSameFilterAndReportsASubsetOfItsMap) {
+  bool built = false;
+  for (const EstimatorEntry& e : EstimatorTable()) built = built || e.name == "mrpt-ekf";
+  if (!built) GTEST_SKIP() << "built without MRPT";
+  datasets::GeneratorOptions o;
+  o.steps = 60;
+  o.landmarks = 40;
+  o.corridor_half_width = 60.0;
+  const datasets::Scenario scenario = datasets::GenerateScenario(o, 3);
+  EstimatorRequest request;
+  request.scenario = &scenario;
+  request.name = "mrpt-ekf";
+  auto raw = FindEstimator("mrpt-ekf").make_online(request);
+  request.name = "mrpt-ekf-postprocessed";
+  auto post = FindEstimator("mrpt-ekf-postprocessed").make_online(request);
+  for (const datasets::ScenarioStep& step : scenario.steps) {
+    const filters::StepOutput a = raw->Step(step.data);
+    const filters::StepOutput b = post->Step(step.data);
+    ASSERT_EQ(a.pose, b.pose);
+  }
+  const filters::MapEstimate raw_map = raw->Map();
+  const filters::MapEstimate post_map = post->Map();
+  EXPECT_GT(post_map.size(), 0u);
+  EXPECT_LT(post_map.size(), raw_map.size());  // the clutter landmarks are dropped
+  for (const Landmark& m : post_map.means) {
+    bool found = false;
+    for (const Landmark& r : raw_map.means) found = found || r == m;
+    EXPECT_TRUE(found) << m.transpose();
+  }
 }
 
 TEST(RunStreamSeed, FollowsTheDocumentedDerivation) {
