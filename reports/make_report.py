@@ -9,6 +9,7 @@ Example:
 from __future__ import annotations
 
 import argparse
+import json
 import sys
 from pathlib import Path
 
@@ -42,7 +43,8 @@ def parse_arguments(argv: list[str] | None = None) -> argparse.Namespace:
                "message names the file and column); 2 usage error.",
     )
     parser.add_argument("results_dirs", nargs="+", type=Path, metavar="RESULTS_DIR",
-                        help="results folder written by 'phdslam run --out'")
+                        help="results folder written by 'phdslam run --out'; a sweep's root "
+                             "folder (sweep.json) stands for its value folders")
     parser.add_argument("--out", type=Path, default=None, metavar="REPORT_DIR",
                         help="folder for index.html and the PNG files "
                              "(default: FIRST_RESULTS_DIR/report)")
@@ -58,11 +60,33 @@ def parse_arguments(argv: list[str] | None = None) -> argparse.Namespace:
     return parser.parse_args(argv)
 
 
+def expand_sweep_roots(dirs: list[Path]) -> list[Path]:
+    """A sweep root ('phdslam run' of an experiment with a sweep: sweep.json, no summary.csv)
+    stands for its value folders, in the order of sweep.json."""
+    expanded: list[Path] = []
+    for folder in dirs:
+        sweep_file = folder / "sweep.json"
+        if not sweep_file.is_file() or (folder / "summary.csv").is_file():
+            expanded.append(folder)
+            continue
+        try:
+            sweep = json.loads(sweep_file.read_text(encoding="utf-8"))
+        except (OSError, ValueError) as error:
+            raise ResultsFormatError(f"{sweep_file}: {error}") from error
+        folders = sweep.get("folders") if isinstance(sweep, dict) else None
+        if (not isinstance(folders, list) or not folders
+                or not all(isinstance(f, str) and f for f in folders)):
+            raise ResultsFormatError(f"{sweep_file}: 'folders' must be a non-empty list of names")
+        expanded.extend(folder / f for f in folders)
+    return expanded
+
+
 def main(argv: list[str] | None = None) -> int:
     """Builds the report; returns the exit code."""
     args = parse_arguments(argv)
     out = args.out if args.out is not None else args.results_dirs[0] / "report"
     try:
+        args.results_dirs = expand_sweep_roots(args.results_dirs)
         paper = PaperValues.load(args.paper_values)
         if args.paper_table not in (None, "none") and args.paper_table not in paper.tables:
             sys.stderr.write(f"error: --paper-table {args.paper_table}: unknown table (known: "
