@@ -8,6 +8,8 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
+#include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <optional>
@@ -33,6 +35,16 @@ std::optional<Eigen::Matrix<double, N, N>> CholeskyLower(const Eigen::Matrix<dou
   return l;
 }
 
+/// A square root S (S S^T = P) of a symmetric positive semi-definite P through its
+/// eigen-decomposition, eigenvalues below zero (round-off) taken as zero. Unlike CholeskyLower it
+/// exists for singular P (e.g. a noise without a heading component), so draws x = mu + S xi need
+/// no fallback; it does not check P.
+template <int N>
+Eigen::Matrix<double, N, N> PsdSquareRoot(const Eigen::Matrix<double, N, N>& p) {
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, N, N>> eig(p);
+  return eig.eigenvectors() * eig.eigenvalues().cwiseMax(0.0).cwiseSqrt().asDiagonal();
+}
+
 /// log N(x; mu, S) via a Cholesky factor of S; nullopt when S is not positive definite.
 template <int N>
 std::optional<double> LogNormalPdf(const Eigen::Matrix<double, N, 1>& x,
@@ -53,8 +65,8 @@ struct Gaussian2Eval {
 };
 inline Gaussian2Eval EvalGaussian2(const Eigen::Vector2d& r, const Eigen::Matrix2d& s) {
   const double det = s(0, 0) * s(1, 1) - s(0, 1) * s(1, 0);
-  const double d2 = (s(1, 1) * r(0) * r(0) - (s(0, 1) + s(1, 0)) * r(0) * r(1) +
-                     s(0, 0) * r(1) * r(1)) / det;
+  const double d2 =
+      (s(1, 1) * r(0) * r(0) - (s(0, 1) + s(1, 0)) * r(0) * r(1) + s(0, 0) * r(1) * r(1)) / det;
   return {-std::log(2.0 * std::numbers::pi) - 0.5 * std::log(det) - 0.5 * d2, d2};
 }
 

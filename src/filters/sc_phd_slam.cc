@@ -29,15 +29,11 @@ Eigen::Matrix<double, N, N> PsdFactor(const Eigen::Matrix<double, N, N>& q,
   if (!q.allFinite() || (q - q.transpose()).cwiseAbs().maxCoeff() > 1e-12 * scale) {
     throw std::invalid_argument("ScPhdSlam: " + what + " must be finite and symmetric");
   }
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, N, N>> eig(q);
-  Eigen::Matrix<double, N, 1> d = eig.eigenvalues();
-  for (int i = 0; i < N; ++i) {
-    if (d(i) < -1e-12 * scale) {
-      throw std::invalid_argument("ScPhdSlam: " + what + " must be positive semi-definite");
-    }
-    d(i) = std::sqrt(std::max(0.0, d(i)));
+  if (Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, N, N>>(q).eigenvalues().minCoeff() <
+      -1e-12 * scale) {
+    throw std::invalid_argument("ScPhdSlam: " + what + " must be positive semi-definite");
   }
-  return eig.eigenvectors() * d.asDiagonal();
+  return PsdSquareRoot<N>(q);
 }
 
 }  // namespace

@@ -1,9 +1,9 @@
 #include "validation/runner/parent_weights.h"
 
-#include <Eigen/Eigenvalues>
 #include <cmath>
 #include <stdexcept>
 
+#include "src/core/gaussian.h"
 #include "src/core/log_sum_exp.h"
 #include "src/core/random.h"
 #include "src/filters/estimator.h"
@@ -13,15 +13,6 @@
 
 namespace phdslam::validation {
 namespace {
-
-// A square root S of a symmetric positive semi-definite matrix (S S^T = P), through its
-// eigen-decomposition with negative round-off eigenvalues clamped to zero: the predicted pose
-// covariance is nearly singular in the heading (Q_n's 1e-18), where a Cholesky may fail.
-Mat3 PsdSquareRoot(const Mat3& p) {
-  const Eigen::SelfAdjointEigenSolver<Mat3> eig(p);
-  const Vec3 root = eig.eigenvalues().cwiseMax(0.0).cwiseSqrt();
-  return eig.eigenvectors() * root.asDiagonal();
-}
 
 double EffectiveSampleSize(const std::vector<double>& w) {
   double sum_sq = 0.0;
@@ -73,7 +64,9 @@ ParentWeights CompareParentWeightingAtStep(const datasets::Scenario& scenario,
 
   RandomStream rng(DeriveSeed(settings.stream_seed, 2));
   w.spread = settings.spread;
-  const Mat3 root = settings.spread * PsdSquareRoot(w.predicted_cov);
+  // The predicted covariance is nearly singular in the heading (Q_n's 1e-18), where a Cholesky
+  // may fail: an eigen-decomposition square root has no such case.
+  const Mat3 root = settings.spread * PsdSquareRoot<3>(w.predicted_cov);
   w.poses.reserve(static_cast<std::size_t>(settings.parents));
   for (int i = 0; i < settings.parents; ++i) {
     const Vec3 xi(rng.Normal(), rng.Normal(), rng.Normal());
