@@ -1,0 +1,252 @@
+// Declarative parameter tables: one row per parameter of a struct gives its JSON output, its
+// JSON / `--set` input with the value checks, and the list of known keys, so that no parameter
+// struct needs a hand-written if-chain.
+//
+//   const ParameterTable<MyParams>& Table() {
+//     static const ParameterTable<MyParams> table({
+//         IntField<MyParams>("particles", [](auto& p) -> auto& { return p.particles; }, AtLeast(1)),
+//         NumberField<MyParams>("gate", [](auto& p) -> auto& { return p.gate; }, Above(0.0)),
+//         BoolField<MyParams>("resampling", [](auto& p) -> auto& { return p.resampling; }),
+//     });
+//     return table;
+//   }
+//
+// The accessor is a generic lambda returning a reference to the member, so one accessor serves
+// both reading (const) and writing; members of nested structs are reached the same way.
+#pragma once
+
+#include <Eigen/Core>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace phdslam::params {
+
+/// Thrown for a bad parameter value or an unknown key; the message names the key.
+inline void Fail(const std::string& key, const std::string& what) {
+  throw std::invalid_argument("parameter '" + key + "': " + what);
+}
+
+/// The closed or open interval a number must lie in.
+struct Bounds {
+  double min = -std::numeric_limits<double>::infinity();
+  double max = std::numeric_limits<double>::infinity();
+  bool min_exclusive = false;
+  bool max_exclusive = false;
+
+  [[nodiscard]] bool Contains(double v) const {
+    const bool above = min_exclusive ? v > min : v >= min;
+    const bool below = max_exclusive ? v < max : v <= max;
+    return above && below;
+  }
+  [[nodiscard]] std::string Describe() const {
+    auto num = [](double v) {
+      nlohmann::json j = v;
+      return j.dump();
+    };
+    std::string s;
+    if (std::isfinite(min)) s += std::string(min_exclusive ? "> " : ">= ") + num(min);
+    if (std::isfinite(max)) {
+      s += (s.empty() ? "" : " and ") + std::string(max_exclusive ? "< " : "<= ") + num(max);
+    }
+    return s.empty() ? "any finite number" : s;
+  }
+};
+
+inline Bounds AnyValue() { return {}; }
+inline Bounds AtLeast(double v) { return {v}; }
+inline Bounds Above(double v) { return {v, std::numeric_limits<double>::infinity(), true}; }
+inline Bounds Between(double lo, double hi) { return {lo, hi}; }
+/// A probability in [0, 1].
+inline Bounds Probability() { return {0.0, 1.0}; }
+
+/// A finite JSON number, checked against `bounds`.
+inline double ReadNumber(const nlohmann::json& v, const std::string& key, const Bounds& bounds) {
+  if (!v.is_number()) Fail(key, "expected a number, got " + v.dump());
+  const double d = v.get<double>();
+  if (!std::isfinite(d)) Fail(key, "not finite");
+  if (!bounds.Contains(d)) Fail(key, "must be " + bounds.Describe() + ", got " + v.dump());
+  return d;
+}
+
+/// A whole JSON number of modest size (|v| <= 1e9), checked against `bounds`.
+inline int ReadInt(const nlohmann::json& v, const std::string& key, const Bounds& bounds) {
+  if (!v.is_number()) Fail(key, "expected an integer, got " + v.dump());
+  const double d = v.get<double>();
+  if (!std::isfinite(d) || d != std::floor(d) || std::abs(d) > 1e9) {
+    Fail(key, "expected an integer, got " + v.dump());
+  }
+  if (!bounds.Contains(d)) Fail(key, "must be " + bounds.Describe() + ", got " + v.dump());
+  return static_cast<int>(d);
+}
+
+inline bool ReadBool(const nlohmann::json& v, const std::string& key) {
+  if (!v.is_boolean()) Fail(key, "expected true or false, got " + v.dump());
+  return v.get<bool>();
+}
+
+/// One row: a named parameter with its reader and writer.
+template <class T>
+struct Field {
+  std::string key;
+  std::string help;  ///< the accepted values, for error messages and --help
+  std::function<nlohmann::json(const T&)> write;
+  std::function<void(const nlohmann::json&, T&)> read;  ///< throws naming the key
+};
+
+/// The rows of one parameter struct.
+template <class T>
+class ParameterTable {
+ public:
+  explicit ParameterTable(std::vector<Field<T>> fields) : fields_(std::move(fields)) {}
+
+  /// Every parameter by key (a flat object).
+  [[nodiscard]] nlohmann::json ToJson(const T& params) const {
+    nlohmann::json j = nlohmann::json::object();
+    for (const Field<T>& f : fields_) j[f.key] = f.write(params);
+    return j;
+  }
+
+  /// Applies every key of `overrides`. Throws std::invalid_argument naming the key when it is
+  /// unknown (listing the known keys) or its value is of the wrong type or out of range.
+  void Apply(const nlohmann::json& overrides, T& params) const {
+    if (!overrides.is_object()) {
+      throw std::invalid_argument("parameters: expected an object, got " + overrides.dump());
+    }
+    for (const auto& [key, value] : overrides.items()) {
+      const Field<T>* field = Find(key);
+      if (field == nullptr) {
+        throw std::invalid_argument("unknown parameter '" + key + "' (known: " + KnownKeys() + ")");
+      }
+      field->read(value, params);
+    }
+  }
+
+  [[nodiscard]] const Field<T>* Find(const std::string& key) const {
+    for (const Field<T>& f : fields_) {
+      if (f.key == key) return &f;
+    }
+    return nullptr;
+  }
+
+  [[nodiscard]] std::string KnownKeys() const {
+    std::string s;
+    for (const Field<T>& f : fields_) s += (s.empty() ? "" : ", ") + f.key;
+    return s;
+  }
+
+  [[nodiscard]] const std::vector<Field<T>>& fields() const { return fields_; }
+
+ private:
+  std::vector<Field<T>> fields_;
+};
+
+template <class T, class Access>
+Field<T> NumberField(std::string key, Access access, Bounds bounds = {}) {
+  return {key, bounds.Describe(), [access](const T& p) { return nlohmann::json(access(p)); },
+          [access, key, bounds](const nlohmann::json& v, T& p) {
+            access(p) = ReadNumber(v, key, bounds);
+          }};
+}
+
+template <class T, class Access>
+Field<T> IntField(std::string key, Access access, Bounds bounds = {}) {
+  return {key, "an integer " + bounds.Describe(),
+          [access](const T& p) { return nlohmann::json(access(p)); },
+          [access, key, bounds](const nlohmann::json& v, T& p) {
+            access(p) = ReadInt(v, key, bounds);
+          }};
+}
+
+template <class T, class Access>
+Field<T> BoolField(std::string key, Access access) {
+  return {key, "true or false", [access](const T& p) { return nlohmann::json(access(p)); },
+          [access, key](const nlohmann::json& v, T& p) { access(p) = ReadBool(v, key); }};
+}
+
+/// An enumeration written and read by name.
+template <class T, class E, class Access>
+Field<T> EnumField(std::string key, Access access, std::vector<std::pair<E, std::string>> names) {
+  std::string help;
+  for (const auto& [value, name] : names) help += (help.empty() ? "\"" : ", \"") + name + "\"";
+  return {key, "one of " + help,
+          [access, names](const T& p) {
+            for (const auto& [value, name] : names) {
+              if (value == access(p)) return nlohmann::json(name);
+            }
+            return nlohmann::json(nullptr);
+          },
+          [access, key, names, help](const nlohmann::json& v, T& p) {
+            if (v.is_string()) {
+              for (const auto& [value, name] : names) {
+                if (name == v.get<std::string>()) {
+                  access(p) = value;
+                  return;
+                }
+              }
+            }
+            Fail(key, "expected one of " + help + ", got " + v.dump());
+          }};
+}
+
+/// A diagonal matrix written and read as the array of its diagonal entries, each in `bounds`.
+template <class T, int N, class Access>
+Field<T> DiagonalField(std::string key, Access access, Bounds bounds = {}) {
+  return {key, "an array of " + std::to_string(N) + " numbers " + bounds.Describe(),
+          [access](const T& p) {
+            nlohmann::json j = nlohmann::json::array();
+            for (int i = 0; i < N; ++i) j.push_back(access(p)(i, i));
+            return j;
+          },
+          [access, key, bounds](const nlohmann::json& v, T& p) {
+            if (!v.is_array() || v.size() != static_cast<std::size_t>(N)) {
+              Fail(key, "expected an array of " + std::to_string(N) + " numbers, got " + v.dump());
+            }
+            Eigen::Matrix<double, N, N> m = Eigen::Matrix<double, N, N>::Zero();
+            for (int i = 0; i < N; ++i) m(i, i) = ReadNumber(v[i], key, bounds);
+            access(p) = m;
+          }};
+}
+
+/// A number that may also be the string `automatic` (stored as NaN: derived elsewhere).
+template <class T, class Access>
+Field<T> NumberOrAutomaticField(std::string key, Access access, std::string automatic) {
+  return {key, "a number or \"" + automatic + "\"",
+          [access, automatic](const T& p) {
+            return std::isnan(access(p)) ? nlohmann::json(automatic) : nlohmann::json(access(p));
+          },
+          [access, key, automatic](const nlohmann::json& v, T& p) {
+            if (v.is_string() && v.get<std::string>() == automatic) {
+              access(p) = std::numeric_limits<double>::quiet_NaN();
+            } else {
+              access(p) = ReadNumber(v, key, {});
+            }
+          }};
+}
+
+/// The rows of `table` for a member struct, re-keyed under the same names and reached through
+/// `access` (e.g. the map parameters inside every filter's parameters).
+template <class T, class Inner, class Access>
+std::vector<Field<T>> Embed(const ParameterTable<Inner>& table, Access access) {
+  std::vector<Field<T>> rows;
+  for (const Field<Inner>& f : table.fields()) {
+    rows.push_back({f.key, f.help, [access, w = f.write](const T& p) { return w(access(p)); },
+                    [access, r = f.read](const nlohmann::json& v, T& p) { r(v, access(p)); }});
+  }
+  return rows;
+}
+
+/// Concatenates row lists.
+template <class T>
+std::vector<Field<T>> Rows(std::initializer_list<std::vector<Field<T>>> parts) {
+  std::vector<Field<T>> all;
+  for (const auto& part : parts) all.insert(all.end(), part.begin(), part.end());
+  return all;
+}
+
+}  // namespace phdslam::params
