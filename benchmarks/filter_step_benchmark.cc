@@ -39,10 +39,10 @@ const datasets::Scenario& PaperScenario() {
 
 void BenchmarkStep(benchmark::State& state, const std::string& variant, int particles) {
   const datasets::Scenario& scenario = PaperScenario();
-  filters::PhdSlamParams params = filters::PhdSlamParams::ForScenario("paper-synthetic");
+  filters::PhdSlamParams params;
   params.particles = particles;
   const auto filter =
-      filters::MakePhdSlam(variant, filters::EstimatorContext::FromScenario(scenario), params,
+      filters::MakePhdSlam(variant, scenario.PublicContext(), params,
                            DeriveSeed(HashName(variant), 1));
   std::size_t k = 0;
   for (; k < kWarmupSteps; ++k) filter->Step(scenario.steps[k].data);

@@ -80,9 +80,9 @@ struct Workload {
 StoredState PredictParticle(const filters::PhdParticle& particle, const datasets::StepData& step,
                             const filters::EstimatorContext& context,
                             const filters::PhdSlamParams& params) {
-  StoredState s{particle.pose, particle.cov, particle.map, step.measurements};
-  if (!particle.births.empty()) {
-    s.map.AddBirths(particle.pose, particle.births, context.sensor.noise_cov, params.map);
+  StoredState s{particle.pose, particle.cov, particle.map.gm, step.measurements};
+  if (!particle.map.births.empty()) {
+    s.map.AddBirths(particle.pose, particle.map.births, context.sensor.noise_cov, params.map);
   }
   if (step.times.size() < 2) return s;
   s.predicted_cov += params.pose_regularisation;
@@ -101,7 +101,7 @@ Workload MakeWorkload(int landmarks_in_view, const filters::PhdSlamParams& base_
   const datasets::GeneratorOptions options = datasets::OptionsForLandmarksInView(
       landmarks_in_view, kWarmupSteps + kStoredStates + kPathBeyondStoredStates);
   const datasets::Scenario scenario = datasets::GenerateScenario(options, 1);
-  const filters::EstimatorContext context = filters::EstimatorContext::FromScenario(scenario);
+  const filters::EstimatorContext context = scenario.PublicContext();
   filters::PhdSlamParams params = base_params;
   params.particles = 1;
   const auto filter = filters::MakePhdSlam("phd3", context, params,
@@ -119,7 +119,7 @@ Workload MakeWorkload(int landmarks_in_view, const filters::PhdSlamParams& base_
   const auto joint = filters::MakeImportanceDensity("phd2b", params);
   for (const StoredState& s : w.states) {
     const filters::ProposalOutput out =
-        joint->Build({s.predicted_mean, s.predicted_cov, &s.map, s.measurements, &w.sensor});
+        joint->Build({s.predicted_mean, s.predicted_cov, s.map.active(), s.measurements, &w.sensor, {}});
     for (int c : out.best_association) w.mean_associated += c >= 0 ? 1.0 : 0.0;
     w.mean_active += static_cast<double>(s.map.active().size());
   }
@@ -135,7 +135,7 @@ void BenchmarkBuild(benchmark::State& state, const Workload* workload,
     const StoredState& s = workload->states[next];
     next = (next + 1) % workload->states.size();
     filters::ProposalOutput out = density->Build(
-        {s.predicted_mean, s.predicted_cov, &s.map, s.measurements, &workload->sensor});
+        {s.predicted_mean, s.predicted_cov, s.map.active(), s.measurements, &workload->sensor, {}});
     benchmark::DoNotOptimize(out);
   }
   state.counters["associated"] = workload->mean_associated;
@@ -148,7 +148,7 @@ double MeanMixtureSize(const Workload& workload, const filters::ImportanceDensit
   double total = 0.0;
   for (const StoredState& s : workload.states) {
     total += static_cast<double>(
-        density.Build({s.predicted_mean, s.predicted_cov, &s.map, s.measurements, &workload.sensor})
+        density.Build({s.predicted_mean, s.predicted_cov, s.map.active(), s.measurements, &workload.sensor, {}})
             .mixture.size());
   }
   return total / static_cast<double>(workload.states.size());
@@ -270,7 +270,7 @@ int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
 
-  const filters::PhdSlamParams params = filters::PhdSlamParams::ForScenario("generated");
+  const filters::PhdSlamParams params;
   std::vector<std::unique_ptr<Workload>> workloads;
   std::vector<std::unique_ptr<filters::ImportanceDensity>> densities;
   std::map<std::string, double> mixture_sizes;

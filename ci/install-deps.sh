@@ -15,6 +15,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libyaml-cpp-dev nlohmann-json3-dev libcli11-dev
   python3 python3-matplotlib python3-numpy python3-scipy python3-yaml
+  clang-format clang-tidy
 )
 if [[ "${1:-}" == "--browser" ]]; then
   packages+=(chromium)

@@ -9,4 +9,13 @@ std::unique_ptr<models::MotionModel> Scenario::MakeMotionModel() const {
   return std::make_unique<models::VelocityMotionModel>();
 }
 
+filters::EstimatorContext Scenario::PublicContext() const {
+  filters::EstimatorContext c;
+  c.initial_pose = initial_pose;
+  c.motion = MakeMotionModel();
+  c.control_noise_cov = control_noise_cov;
+  c.sensor = sensor;
+  return c;
+}
+
 }  // namespace phdslam::datasets

@@ -10,7 +10,9 @@
 #include <string>
 #include <vector>
 
+#include "src/core/step_data.h"
 #include "src/core/types.h"
+#include "src/filters/estimator.h"
 #include "src/models/car_motion_model.h"
 #include "src/models/motion_model.h"
 #include "src/models/sensor_model.h"
@@ -22,16 +24,8 @@ inline constexpr int kClutter = -1;
 /// Origin label of a real detection whose landmark is unknown (real data sets).
 inline constexpr int kUnknownOrigin = -2;
 
-/// What an estimator receives at one filter step.
-struct StepData {
-  /// Time stamps [t_prev, ..., t_k] (s). A single entry means no propagation at this step
-  /// (reference notes 2.3).
-  std::vector<double> times;
-  /// controls[i] is held over [times[i], times[i+1]] (zero-order hold): size times.size() - 1.
-  std::vector<Control> controls;
-  /// Range-bearing measurements of this scan, bearings wrapped.
-  std::vector<Measurement> measurements;
-};
+/// What an estimator receives at one filter step (defined below the filters, in src/core).
+using StepData = phdslam::StepData;
 
 struct ScenarioStep {
   StepData data;
@@ -65,6 +59,8 @@ struct Scenario {
   GroundTruth truth;
 
   [[nodiscard]] std::unique_ptr<models::MotionModel> MakeMotionModel() const;
+  /// The public part an online estimator may see: initial pose, motion and sensor models, noise.
+  [[nodiscard]] filters::EstimatorContext PublicContext() const;
   /// The time stamp of step k (its last time stamp).
   [[nodiscard]] double StepTime(std::size_t k) const { return steps[k].data.times.back(); }
 };

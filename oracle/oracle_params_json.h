@@ -1,15 +1,19 @@
-// OracleParams <-> JSON, for the resolved configuration stored with results and for parameter
-// overrides from experiment files and the command line (`--set oracle:key=value`).
+// The parameter table of OracleParams: the resolved configuration stored with results and the
+// parameter overrides from experiment files and the command line (`--set oracle:key=value`).
 #pragma once
 
 #include <nlohmann/json.hpp>
 
 #include "oracle/oracle_rbpf.h"
+#include "src/core/parameter_table.h"
 
 namespace phdslam::oracle {
 
-/// Every parameter by name: particles, resampling, ess_threshold (x N), ipl_iterations,
-/// ipl_kl_tolerance, pose_regularisation (the diagonal [qx, qy, qtheta]).
+/// particles, resampling, ess_threshold (x N), ipl_iterations, ipl_kl_tolerance,
+/// pose_regularisation (the diagonal [qx, qy, qtheta]).
+const params::ParameterTable<OracleParams>& OracleParamsTable();
+
+/// Every parameter by name.
 nlohmann::json ToJson(const OracleParams& params);
 
 /// Applies the keys of `overrides` (an object) to `params`, then validates the result. Throws

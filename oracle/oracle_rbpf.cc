@@ -8,11 +8,9 @@
 #include <string>
 #include <utility>
 
+#include "oracle/known_association_density.h"
 #include "src/core/angles.h"
 #include "src/core/gaussian.h"
-#include "src/filters/pose_prediction.h"
-#include "src/filters/ipl.h"
-#include "src/filters/resampling.h"
 #include "src/models/range_bearing_model.h"
 
 namespace phdslam::oracle {
@@ -69,51 +67,18 @@ void OracleParams::Validate() const {
   }
 }
 
-OracleRbpf::OracleRbpf(filters::EstimatorContext context, std::vector<std::vector<int>> origins,
-                       OracleParams params, std::uint64_t stream_seed)
-    : context_(std::move(context)),
-      origins_(std::move(origins)),
-      params_(std::move(params)),
-      rng_(stream_seed) {
-  params_.Validate();
-  if (!context_.motion) throw std::invalid_argument("oracle RBPF: the context has no motion model");
-  const int landmark_slots = CheckOrigins(origins_);
-  particles_.resize(params_.particles);
-  for (OracleParticle& p : particles_) {
-    p.pose = context_.initial_pose;
-    p.log_weight = -std::log(static_cast<double>(params_.particles));
-    p.landmarks.resize(landmark_slots);
-  }
+OracleMapModel::OracleMapModel(std::vector<std::vector<int>> origins, const Mat2& measurement_noise)
+    : origins_(std::move(origins)), noise_cov_(measurement_noise) {
+  landmark_slots_ = CheckOrigins(origins_);
 }
 
-std::unique_ptr<OracleRbpf> OracleRbpf::FromScenario(const datasets::Scenario& scenario,
-                                                     OracleParams params,
-                                                     std::uint64_t stream_seed) {
-  std::vector<std::vector<int>> origins;
-  origins.reserve(scenario.steps.size());
-  for (std::size_t k = 0; k < scenario.steps.size(); ++k) {
-    const datasets::ScenarioStep& s = scenario.steps[k];
-    if (s.origin.size() != s.data.measurements.size()) {
-      throw std::invalid_argument(
-          "oracle RBPF: scenario '" + scenario.name + "' step " + std::to_string(k) + " has " +
-          std::to_string(s.data.measurements.size()) + " measurements but " +
-          std::to_string(s.origin.size()) + " origin labels; the oracle needs every origin");
-    }
-    origins.push_back(s.origin);
-  }
-  try {
-    return std::make_unique<OracleRbpf>(filters::EstimatorContext::FromScenario(scenario),
-                                        std::move(origins), std::move(params), stream_seed);
-  } catch (const std::invalid_argument& e) {
-    throw std::invalid_argument("scenario '" + scenario.name + "': " + e.what());
-  }
+OracleMapModel::Map OracleMapModel::InitialMap() const {
+  Map m;
+  m.landmarks.resize(landmark_slots_);
+  return m;
 }
 
-void OracleRbpf::Predict(OracleParticle& particle, const datasets::StepData& step) const {
-  PredictPoseGaussian(context_, step, params_.pose_regularisation, particle.pose, particle.cov);
-}
-
-filters::StepOutput OracleRbpf::Step(const datasets::StepData& step) {
+void OracleMapModel::BeginStep(const StepData& step) {
   if (step_index_ >= origins_.size()) {
     throw std::invalid_argument("oracle RBPF: step " + std::to_string(step_index_) +
                                 " has no origin labels (only " + std::to_string(origins_.size()) +
@@ -126,147 +91,60 @@ filters::StepOutput OracleRbpf::Step(const datasets::StepData& step) {
                                 std::to_string(origin.size()) + " origin labels");
   }
   ++step_index_;
-  const int n = static_cast<int>(particles_.size());
-  const int nz = static_cast<int>(step.measurements.size());
-
+  origin_ = &origin;
   // Landmark measurements in ascending landmark order (the IPL's sequential order).
-  std::vector<int> by_landmark;
-  for (int j = 0; j < nz; ++j) {
-    if (origin[j] >= 0) by_landmark.push_back(j);
+  by_landmark_.clear();
+  for (int j = 0; j < static_cast<int>(origin.size()); ++j) {
+    if (origin[j] >= 0) by_landmark_.push_back(j);
   }
-  std::sort(by_landmark.begin(), by_landmark.end(),
+  std::sort(by_landmark_.begin(), by_landmark_.end(),
             [&origin](int a, int b) { return origin[a] < origin[b]; });
-
-  // 1. The step's random numbers, laid out as in RbPhdSlam.
-  std::vector<double> uniforms(n);
-  std::vector<Vec3> normals(n);
-  for (double& u : uniforms) u = rng_.Uniform();
-  for (Vec3& xi : normals) xi << rng_.Normal(), rng_.Normal(), rng_.Normal();
-
-  const Mat2& r_cov = context_.sensor.noise_cov;
-  const filters::IplOptions ipl_options{params_.ipl_iterations, params_.ipl_kl_tolerance};
-  const Landmark nan_landmark = Landmark::Constant(std::numeric_limits<double>::quiet_NaN());
-  std::vector<std::vector<Landmark>> associations(n);
-  std::vector<filters::IplPair> pairs;
-  std::vector<int> pair_measurements;
-
-  for (int idx = 0; idx < n; ++idx) {
-    OracleParticle& p = particles_[idx];
-    // 2a. Predict.
-    Predict(p, step);
-    const Pose mu0 = p.pose;
-    const Mat3 sigma0 = p.cov;
-    // 2b. Proposal over the re-observed landmarks.
-    pairs.clear();
-    pair_measurements.clear();
-    std::vector<Landmark>& assoc = associations[idx];
-    assoc.assign(nz, nan_landmark);
-    for (int j : by_landmark) {
-      const OracleLandmark& lm = p.landmarks[origin[j]];
-      if (!lm.seen) continue;
-      pairs.push_back({lm.mean, lm.cov, step.measurements[j]});
-      pair_measurements.push_back(j);
-      assoc[j] = lm.mean;
-    }
-    Pose proposal_mean = mu0;
-    Mat3 proposal_cov = sigma0;
-    bool proposal_is_prior = true;
-    if (!pairs.empty()) {
-      const filters::IplResult ipl =
-          filters::PartitionedIpl(mu0, sigma0, pairs, r_cov, ipl_options);
-      if (ipl.iterations > 0) {
-        proposal_mean = ipl.mean;
-        proposal_cov = ipl.cov;
-        proposal_is_prior = false;
-      }
-    }
-    // 2c. Sample and add log f - log q.
-    const auto chol = CholeskyLower<3>(proposal_cov);
-    if (chol) {
-      const Pose x = proposal_mean + *chol * normals[idx];
-      if (!proposal_is_prior) {
-        const auto log_prior = LogNormalPdf<3>(x, mu0, sigma0);
-        const auto log_q = LogNormalPdf<3>(x, proposal_mean, proposal_cov);
-        if (log_prior && log_q) p.log_weight += *log_prior - *log_q;
-      }
-      p.pose = x;
-    } else {
-      p.pose = mu0;
-    }
-    p.cov.setZero();
-    // 2d. Landmark likelihoods and EKF updates at the sampled pose, then first sightings.
-    for (int j : pair_measurements) {
-      OracleLandmark& lm = p.landmarks[origin[j]];
-      const auto jac = models::MeasurementJacobians(p.pose, lm.mean);
-      Vec2 nu = step.measurements[j] - models::PredictMeasurement(p.pose, lm.mean);
-      nu(1) = WrapAngle(nu(1));
-      const Mat2 pht = lm.cov * jac.hm.transpose();
-      Mat2 s = jac.hm * pht + r_cov;
-      Symmetrize(s);
-      const auto log_lik = LogNormalPdf<2>(nu, Vec2::Zero(), s);
-      if (log_lik) p.log_weight += *log_lik;
-      const Mat2 k = pht * s.inverse();
-      lm.mean += k * nu;
-      lm.cov -= k * s * k.transpose();
-      Symmetrize(lm.cov);
-    }
-    for (int j : by_landmark) {
-      OracleLandmark& lm = p.landmarks[origin[j]];
-      if (lm.seen) continue;
-      lm.mean = models::InverseMeasurement(p.pose, step.measurements[j]);
-      lm.cov = models::BirthCovariance(p.pose, step.measurements[j], r_cov);
-      lm.seen = true;
-    }
-  }
-
-  // 3. Estimate from the highest-weight particle (first on ties), before resampling.
-  best_ = 0;
-  for (int i = 1; i < n; ++i) {
-    if (particles_[i].log_weight > particles_[best_].log_weight) best_ = i;
-  }
-  const OracleParticle& best = particles_[best_];
-  best_landmarks_ = best.landmarks;
-  filters::StepOutput out;
-  out.pose = best.pose;
-  out.association = std::move(associations[best_]);
-  out.diag.hypotheses = 1;
-  out.diag.map_components =
-      static_cast<int>(std::count_if(best.landmarks.begin(), best.landmarks.end(),
-                                     [](const OracleLandmark& lm) { return lm.seen; }));
-
-  // 4. ESS and resampling.
-  std::vector<double> log_w(n);
-  for (int i = 0; i < n; ++i) log_w[i] = particles_[i].log_weight;
-  const std::vector<double> w = filters::NormalisedWeights(log_w);
-  if (n > 1) {
-    Mat3 spread = Mat3::Zero();
-    for (int i = 0; i < n; ++i) {
-      const Vec3 d = particles_[i].pose - out.pose;
-      spread += w[i] * d * d.transpose();
-    }
-    out.pose_cov = spread;
-  }
-  out.diag.ess = n == 1 ? 1.0 : filters::EffectiveSampleSize(w);
-  if (n > 1 && params_.resampling && out.diag.ess <= params_.ess_threshold * n) {
-    std::vector<double> r(n);
-    for (double& u : r) u = rng_.Uniform();
-    const std::vector<int> sources = filters::StratifiedResample(w, r);
-    std::vector<OracleParticle> next;
-    next.reserve(n);
-    const double log_uniform = -std::log(static_cast<double>(n));
-    for (int s : sources) {
-      next.push_back(particles_[s]);
-      next.back().log_weight = log_uniform;
-    }
-    particles_ = std::move(next);
-    out.diag.resampled = true;
-  }
-  return out;
 }
 
-filters::MapEstimate OracleRbpf::Map() const {
+filters::MapView OracleMapModel::View(const Map& map) {
+  view_.clear();
+  view_association_.assign(origin_->size(), -1);
+  for (int j : by_landmark_) {
+    const OracleLandmark& lm = map.landmarks[(*origin_)[j]];
+    if (!lm.seen) continue;
+    view_association_[j] = static_cast<int>(view_.size());
+    view_.push_back({lm.mean, lm.cov, 0.0});
+  }
+  return {view_, view_association_};
+}
+
+void OracleMapModel::Update(Map& map, const Pose& pose, const StepData& step,
+                            double& log_weight) const {
+  const std::vector<int>& origin = *origin_;
+  // Landmark likelihoods and EKF updates at the sampled pose, then first sightings.
+  for (int j : by_landmark_) {
+    OracleLandmark& lm = map.landmarks[origin[j]];
+    if (!lm.seen) continue;
+    const auto jac = models::MeasurementJacobians(pose, lm.mean);
+    Vec2 nu = step.measurements[j] - models::PredictMeasurement(pose, lm.mean);
+    nu(1) = WrapAngle(nu(1));
+    const Mat2 pht = lm.cov * jac.hm.transpose();
+    Mat2 s = jac.hm * pht + noise_cov_;
+    Symmetrize(s);
+    const auto log_lik = LogNormalPdf<2>(nu, Vec2::Zero(), s);
+    if (log_lik) log_weight += *log_lik;
+    const Mat2 k = pht * s.inverse();
+    lm.mean += k * nu;
+    lm.cov -= k * s * k.transpose();
+    Symmetrize(lm.cov);
+  }
+  for (int j : by_landmark_) {
+    OracleLandmark& lm = map.landmarks[origin[j]];
+    if (lm.seen) continue;
+    lm.mean = models::InverseMeasurement(pose, step.measurements[j]);
+    lm.cov = models::BirthCovariance(pose, step.measurements[j], noise_cov_);
+    lm.seen = true;
+  }
+}
+
+filters::MapEstimate OracleMapModel::ToMapEstimate(const Snapshot& snapshot) const {
   filters::MapEstimate m;
-  for (const OracleLandmark& lm : best_landmarks_) {
+  for (const OracleLandmark& lm : snapshot) {
     if (!lm.seen) continue;
     m.means.push_back(lm.mean);
     m.covs.push_back(lm.cov);
@@ -275,4 +153,64 @@ filters::MapEstimate OracleRbpf::Map() const {
   return m;
 }
 
+int OracleMapModel::ComponentCount(const Map& map) const {
+  return static_cast<int>(std::count_if(map.landmarks.begin(), map.landmarks.end(),
+                                        [](const OracleLandmark& lm) { return lm.seen; }));
+}
+
+std::unique_ptr<OracleRbpf> MakeKnownAssociationFilter(
+    filters::EstimatorContext context, std::vector<std::vector<int>> origins, OracleParams params,
+    std::unique_ptr<filters::ImportanceDensity> density, std::uint64_t stream_seed) {
+  params.Validate();
+  if (!context.motion) throw std::invalid_argument("oracle RBPF: the context has no motion model");
+  OracleMapModel model(std::move(origins), context.sensor.noise_cov);
+  filters::ParticleFilterParams skeleton;
+  skeleton.particles = params.particles;
+  skeleton.resampling = params.resampling;
+  skeleton.ess_threshold_kind = filters::EssThresholdKind::kRelative;
+  skeleton.ess_threshold = params.ess_threshold;
+  skeleton.pose_regularisation = params.pose_regularisation;
+  skeleton.reuse_parent_proposal = false;
+  return std::make_unique<OracleRbpf>(std::move(context), skeleton, std::move(model),
+                                      std::move(density), stream_seed);
+}
+
+std::unique_ptr<OracleRbpf> MakeOracle(filters::EstimatorContext context,
+                                       std::vector<std::vector<int>> origins, OracleParams params,
+                                       std::uint64_t stream_seed) {
+  auto density = std::make_unique<KnownAssociationIplDensity>(
+      filters::IplOptions{params.ipl_iterations, params.ipl_kl_tolerance});
+  return MakeKnownAssociationFilter(std::move(context), std::move(origins), std::move(params),
+                                    std::move(density), stream_seed);
+}
+
+std::vector<std::vector<int>> ScenarioOrigins(const datasets::Scenario& scenario) {
+  std::vector<std::vector<int>> origins;
+  origins.reserve(scenario.steps.size());
+  for (std::size_t k = 0; k < scenario.steps.size(); ++k) {
+    const datasets::ScenarioStep& s = scenario.steps[k];
+    if (s.origin.size() != s.data.measurements.size()) {
+      throw std::invalid_argument(
+          "oracle RBPF: scenario '" + scenario.name + "' step " + std::to_string(k) + " has " +
+          std::to_string(s.data.measurements.size()) + " measurements but " +
+          std::to_string(s.origin.size()) + " origin labels; the oracle needs every origin");
+    }
+    origins.push_back(s.origin);
+  }
+  return origins;
+}
+
+std::unique_ptr<OracleRbpf> MakeOracle(const datasets::Scenario& scenario, OracleParams params,
+                                       std::uint64_t stream_seed) {
+  std::vector<std::vector<int>> origins = ScenarioOrigins(scenario);
+  try {
+    return MakeOracle(scenario.PublicContext(), std::move(origins), std::move(params),
+                      stream_seed);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument("scenario '" + scenario.name + "': " + e.what());
+  }
+}
+
 }  // namespace phdslam::oracle
+
+template class phdslam::filters::ParticleFilter<phdslam::oracle::OracleMapModel>;

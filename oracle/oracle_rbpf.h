@@ -1,25 +1,17 @@
 // The oracle RBPF: FastSLAM 2.0 with known data association and the partitioned IPL proposal
-// (reference notes section 16, "Oracle RBPF"). It is the only estimator that reads the scenario's
-// hidden origin labels, and it serves as the accuracy bound the PHD-SLAM filters are compared
-// with.
+// (reference notes section 16, "Oracle RBPF"). It is the particle-filter skeleton
+// (src/filters/particle_filter.h) over per-landmark EKFs; it differs from PHD-SLAM only in where
+// its association comes from: it reads the scenario's hidden origin labels, and it serves as the
+// accuracy bound the PHD-SLAM filters are compared with.
 //
-// One recursion, with the step structure and random-number layout of RbPhdSlam:
-//   1. draw N uniforms (unused; drawn so that the stream layout matches RbPhdSlam) and 3N
-//      standard normals;
-//   2. for each particle in index order:
-//      a. predict the pose Gaussian (Q_n once, then every sub-interval; nothing at a step with a
-//         single time stamp), exactly as RbPhdSlam::Predict;
-//      b. proposal: the partitioned IPL (ipl.h) from the predicted Gaussian over the measurements
-//         of landmarks this particle has seen before, in ascending landmark order;
-//      c. sample x = mu + chol(Sigma) xi and add log N(x; mu0, Sigma0) - log q(x); when the
-//         proposal covariance has no Cholesky factor the pose stays at the predicted mean and
-//         this term is skipped; with no re-observed landmark q is the prior and the term is 0;
-//      d. for each re-observed landmark add log N(z; h(m, x), Hm P Hm^T + R) (bearing residual
-//         wrapped) and apply the EKF update at x; initialise first sightings with the inverse
-//         model at x (covariance G R G^T);
-//   3. the estimate is the highest-weight particle (first on ties), before resampling;
-//   4. resample (stratified, notes 14) when N > 1, resampling is on and ESS <= ess_threshold N;
-//      this draws N more uniforms.
+// Per step and particle (the skeleton's order and random-number layout):
+//   - proposal (known_association_density.h): the partitioned IPL from the predicted Gaussian over
+//     the measurements of landmarks this particle has seen before, in ascending landmark order;
+//     the prior when there are none;
+//   - update: for each re-observed landmark add log N(z; h(m, x), Hm P Hm^T + R) (bearing residual
+//     wrapped) and apply the EKF update at x; initialise first sightings with the inverse model at
+//     x (covariance G R G^T);
+//   - proposals are not shared between copies of one parent (reuse_parent_proposal is off).
 // Clutter measurements are discarded and missed detections are simply absent, so neither touches
 // the weights or the random stream: removing clutter from a scenario leaves the result unchanged.
 #pragma once
@@ -29,9 +21,10 @@
 #include <vector>
 
 #include "datasets/scenario.h"
-#include "src/core/random.h"
 #include "src/core/types.h"
 #include "src/filters/estimator.h"
+#include "src/filters/particle_filter.h"
+#include "src/phd/gaussian_component.h"
 
 namespace phdslam::oracle {
 
@@ -56,54 +49,74 @@ struct OracleLandmark {
   bool seen = false;
 };
 
-struct OracleParticle {
-  Pose pose = Pose::Zero();
-  Mat3 cov = Mat3::Zero();  ///< non-zero only between prediction and sampling
-  double log_weight = 0.0;
-  std::vector<OracleLandmark> landmarks;  ///< indexed by landmark id
+/// A particle's map: one EKF slot per landmark index.
+struct OracleMap {
+  std::vector<OracleLandmark> landmarks;
 };
 
-class OracleRbpf final : public filters::OnlineEstimator {
+/// The known-association map model of the skeleton.
+class OracleMapModel {
  public:
+  using Map = OracleMap;
+  using Snapshot = std::vector<OracleLandmark>;
+
   /// `origins[k]` holds the hidden origin labels of step k (landmark index >= 0 or
-  /// datasets::kClutter). Throws std::invalid_argument for invalid params or a label below
-  /// kClutter (e.g. Victoria Park's kUnknownOrigin: real detections have no known origin).
-  OracleRbpf(filters::EstimatorContext context, std::vector<std::vector<int>> origins,
-             OracleParams params, std::uint64_t stream_seed);
+  /// datasets::kClutter). Throws std::invalid_argument for a label below kClutter (e.g. Victoria
+  /// Park's kUnknownOrigin: real detections have no known origin) or a landmark measured twice in
+  /// one scan.
+  OracleMapModel(std::vector<std::vector<int>> origins, const Mat2& measurement_noise);
 
-  /// The oracle of a scenario: context = EstimatorContext::FromScenario(scenario), origins from
-  /// its steps. Throws std::invalid_argument naming the scenario when a step with measurements
-  /// has no origin labels or a label is unknown.
-  static std::unique_ptr<OracleRbpf> FromScenario(const datasets::Scenario& scenario,
-                                                  OracleParams params, std::uint64_t stream_seed);
-
-  /// Processes the next step (an internal counter selects its origin labels). Throws
-  /// std::invalid_argument when called more often than there are origin rows or when the step's
-  /// measurement count differs from its label count. StepOutput::association holds, for each
-  /// measurement, the best particle's landmark mean before this step's update, NaN for clutter
-  /// and first sightings.
-  filters::StepOutput Step(const datasets::StepData& step) override;
-
-  /// Every initialised landmark of the best particle of the last step, in landmark order, with
-  /// log-weight 0. Empty before the first step.
-  [[nodiscard]] filters::MapEstimate Map() const override;
-
-  [[nodiscard]] const std::vector<OracleParticle>& particles() const { return particles_; }
-  /// Index (before resampling) of the particle the last estimate came from.
-  [[nodiscard]] int best_particle() const { return best_; }
+  [[nodiscard]] Map InitialMap() const;
+  /// Selects the step's origin labels (an internal counter). Throws std::invalid_argument when
+  /// called more often than there are origin rows or when the measurement count differs from the
+  /// label count.
+  void BeginStep(const StepData& step);
+  void BeforePrediction(Map& /*map*/, const Pose& /*pose*/) const {}
+  /// The re-observed landmarks (seen before) in ascending landmark order, with the known
+  /// association of every measurement into that list.
+  [[nodiscard]] filters::MapView View(const Map& map);
+  void Update(Map& map, const Pose& pose, const StepData& step, double& log_weight) const;
+  [[nodiscard]] Snapshot Estimate(const Map& map) const { return map.landmarks; }
+  /// Every initialised landmark in landmark order, with log-weight 0.
+  [[nodiscard]] filters::MapEstimate ToMapEstimate(const Snapshot& snapshot) const;
+  [[nodiscard]] int ComponentCount(const Map& map) const;
   [[nodiscard]] int steps_done() const { return static_cast<int>(step_index_); }
 
  private:
-  void Predict(OracleParticle& particle, const datasets::StepData& step) const;
-
-  filters::EstimatorContext context_;
   std::vector<std::vector<int>> origins_;
-  OracleParams params_;
-  RandomStream rng_;
-  std::vector<OracleParticle> particles_;
+  Mat2 noise_cov_;
+  int landmark_slots_ = 0;
   std::size_t step_index_ = 0;
-  int best_ = 0;
-  std::vector<OracleLandmark> best_landmarks_;  ///< snapshot of the last estimate's map
+  const std::vector<int>* origin_ = nullptr;  ///< labels of the current step
+  std::vector<int> by_landmark_;              ///< its landmark measurements, by landmark index
+  std::vector<phd::GaussianComponent> view_;
+  std::vector<int> view_association_;
 };
 
+using OracleRbpf = filters::ParticleFilter<OracleMapModel>;
+
+/// The oracle with explicit origin labels. Throws std::invalid_argument for invalid params,
+/// a context without motion model, or invalid labels (OracleMapModel).
+std::unique_ptr<OracleRbpf> MakeOracle(filters::EstimatorContext context,
+                                       std::vector<std::vector<int>> origins, OracleParams params,
+                                       std::uint64_t stream_seed);
+
+/// The known-association map model with another importance density (e.g. the transition density:
+/// FastSLAM 1.0 with known association); `params` as for the oracle.
+std::unique_ptr<OracleRbpf> MakeKnownAssociationFilter(
+    filters::EstimatorContext context, std::vector<std::vector<int>> origins, OracleParams params,
+    std::unique_ptr<filters::ImportanceDensity> density, std::uint64_t stream_seed);
+
+/// Origin labels of every step of a scenario, checked against its measurement counts. Throws
+/// std::invalid_argument naming the scenario and step when a step's labels are missing.
+std::vector<std::vector<int>> ScenarioOrigins(const datasets::Scenario& scenario);
+
+/// The oracle of a scenario: its public context, origins from its steps. Throws
+/// std::invalid_argument naming the scenario when a step with measurements has no origin labels
+/// or a label is unknown.
+std::unique_ptr<OracleRbpf> MakeOracle(const datasets::Scenario& scenario, OracleParams params,
+                                       std::uint64_t stream_seed);
+
 }  // namespace phdslam::oracle
+
+extern template class phdslam::filters::ParticleFilter<phdslam::oracle::OracleMapModel>;

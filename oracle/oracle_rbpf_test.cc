@@ -40,7 +40,7 @@ struct RunResult {
 };
 
 RunResult RunOracle(const datasets::Scenario& s, const OracleParams& params, std::uint64_t seed) {
-  auto oracle = OracleRbpf::FromScenario(s, params, seed);
+  auto oracle = MakeOracle(s, params, seed);
   RunResult r;
   for (const auto& step : s.steps) r.outputs.push_back(oracle->Step(step.data));
   r.map = oracle->Map();
@@ -184,11 +184,12 @@ TEST(OracleRbpf, SingleParticleWeightIncrementEqualsTheHandComputation) {
   s1.times = {0.0, 1.0};
   s1.controls = {Control(1.5, 0.04)};
   s1.measurements = {Measurement(27.3, 0.07), Measurement(12.0, -0.5), Measurement(37.0, -0.9)};
-  OracleRbpf oracle(context, {{0}, {0, datasets::kClutter, 1}}, params, seed);
+  auto oracle_ptr = MakeOracle(context, {{0}, {0, datasets::kClutter, 1}}, params, seed);
+  OracleRbpf& oracle = *oracle_ptr;
   oracle.Step(s0);
   ASSERT_EQ(oracle.particles()[0].log_weight, 0.0);  // nothing re-observed: no increment
   ASSERT_EQ(oracle.particles()[0].pose, context.initial_pose);
-  const OracleLandmark lm0 = oracle.particles()[0].landmarks[0];
+  const OracleLandmark lm0 = oracle.particles()[0].map.landmarks[0];
   ASSERT_TRUE(lm0.seen);
   EXPECT_LT(
       (lm0.mean - models::InverseMeasurement(context.initial_pose, s0.measurements[0])).norm(),
@@ -230,20 +231,20 @@ TEST(OracleRbpf, SingleParticleWeightIncrementEqualsTheHandComputation) {
   const double expected = HandLogNormal<3>(x - mu0, sigma0) - HandLogNormal<3>(x - q_mean, q_cov) +
                           HandLogNormal<2>(nu, s_lm);
 
-  const OracleParticle& p = oracle.particles()[0];
+  const auto& p = oracle.particles()[0];
   EXPECT_NEAR(p.log_weight, expected, 1e-8 * std::max(1.0, std::abs(expected)));
   EXPECT_LT((p.pose - x).norm(), 1e-10);
   EXPECT_LT((out.pose - x).norm(), 1e-10);
   EXPECT_FALSE(out.pose_cov.has_value());
   // The landmark EKF update at the sampled pose.
   const Mat2 k_lm = lm0.cov * jx.hm.transpose() * s_lm.inverse();
-  EXPECT_LT((p.landmarks[0].mean - (lm0.mean + k_lm * nu)).norm(), 1e-10);
-  EXPECT_LT((p.landmarks[0].cov - (lm0.cov - k_lm * s_lm * k_lm.transpose())).norm(), 1e-10);
+  EXPECT_LT((p.map.landmarks[0].mean - (lm0.mean + k_lm * nu)).norm(), 1e-10);
+  EXPECT_LT((p.map.landmarks[0].cov - (lm0.cov - k_lm * s_lm * k_lm.transpose())).norm(), 1e-10);
   // The first sighting: inverse model at the sampled pose.
-  ASSERT_TRUE(p.landmarks[1].seen);
-  EXPECT_LT((p.landmarks[1].mean - models::InverseMeasurement(x, s1.measurements[2])).norm(),
+  ASSERT_TRUE(p.map.landmarks[1].seen);
+  EXPECT_LT((p.map.landmarks[1].mean - models::InverseMeasurement(x, s1.measurements[2])).norm(),
             1e-10);
-  EXPECT_LT((p.landmarks[1].cov - models::BirthCovariance(x, s1.measurements[2], r)).norm(), 1e-12);
+  EXPECT_LT((p.map.landmarks[1].cov - models::BirthCovariance(x, s1.measurements[2], r)).norm(), 1e-12);
   // Association: the updated landmark's prior mean; NaN for clutter and the first sighting.
   ASSERT_EQ(out.association.size(), 3u);
   EXPECT_EQ(out.association[0], lm0.mean);
@@ -253,14 +254,14 @@ TEST(OracleRbpf, SingleParticleWeightIncrementEqualsTheHandComputation) {
   // Map: both landmarks in index order, log-weight 0.
   const filters::MapEstimate map = oracle.Map();
   ASSERT_EQ(map.size(), 2u);
-  EXPECT_EQ(map.means[0], p.landmarks[0].mean);
-  EXPECT_EQ(map.means[1], p.landmarks[1].mean);
+  EXPECT_EQ(map.means[0], p.map.landmarks[0].mean);
+  EXPECT_EQ(map.means[1], p.map.landmarks[1].mean);
   EXPECT_EQ(map.log_weights, std::vector<double>({0.0, 0.0}));
 }
 
 TEST(OracleRbpf, MapIsEmptyBeforeTheFirstStep) {
   const datasets::Scenario s = SmallScenario(0.0, 1);
-  auto oracle = OracleRbpf::FromScenario(s, {}, 1);
+  auto oracle = MakeOracle(s, {}, 1);
   EXPECT_EQ(oracle->Map().size(), 0u);
 }
 
@@ -272,7 +273,7 @@ TEST(OracleRbpf, RejectsUnknownOriginsAndMismatchedSteps) {
     step.origin.assign(step.data.measurements.size(), datasets::kUnknownOrigin);
   }
   try {
-    OracleRbpf::FromScenario(unknown, {}, 1);
+    MakeOracle(unknown, {}, 1);
     FAIL() << "expected std::invalid_argument";
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("vp-like"), std::string::npos) << e.what();
@@ -281,13 +282,13 @@ TEST(OracleRbpf, RejectsUnknownOriginsAndMismatchedSteps) {
   datasets::Scenario missing = s;
   missing.steps[3].origin.clear();
   ASSERT_FALSE(missing.steps[3].data.measurements.empty());
-  EXPECT_THROW(OracleRbpf::FromScenario(missing, {}, 1), std::invalid_argument);
+  EXPECT_THROW(MakeOracle(missing, {}, 1), std::invalid_argument);
   datasets::Scenario twice = s;
   twice.steps[3].origin.push_back(twice.steps[3].origin[0]);
   twice.steps[3].data.measurements.push_back(twice.steps[3].data.measurements[0]);
-  EXPECT_THROW(OracleRbpf::FromScenario(twice, {}, 1), std::invalid_argument);
+  EXPECT_THROW(MakeOracle(twice, {}, 1), std::invalid_argument);
 
-  auto oracle = OracleRbpf::FromScenario(s, {}, 1);
+  auto oracle = MakeOracle(s, {}, 1);
   datasets::StepData wrong = s.steps[0].data;
   wrong.measurements.push_back(Measurement(10.0, 0.0));
   EXPECT_THROW(oracle->Step(wrong), std::invalid_argument);
@@ -296,10 +297,10 @@ TEST(OracleRbpf, RejectsUnknownOriginsAndMismatchedSteps) {
 
   OracleParams bad;
   bad.particles = 0;
-  EXPECT_THROW(OracleRbpf::FromScenario(s, bad, 1), std::invalid_argument);
+  EXPECT_THROW(MakeOracle(s, bad, 1), std::invalid_argument);
   bad = {};
   bad.ipl_iterations = 0;
-  EXPECT_THROW(OracleRbpf::FromScenario(s, bad, 1), std::invalid_argument);
+  EXPECT_THROW(MakeOracle(s, bad, 1), std::invalid_argument);
 }
 
 }  // namespace

@@ -226,7 +226,9 @@ void AddParentWeightsCommand(CLI::App& app, ParentWeightsArguments& a) {
       "scan of --step, and writes the "
       "normalised weights under the single-cluster likelihood (with exp(-sum pD w)) and under "
       "the RB-PHD-SLAM weighting (46) to OUT/parent_weights.csv "
-      "(parent,x,y,theta,sc_weight,rb_weight) and OUT/parent_weights.json (step, predicted "
+      "(parent,x,y,theta,sc_weight,rb_weight,sc_log_weight,rb_log_weight,missed_mass: the "
+      "log-weights normalised to log-sum-exp 0, the missed-detection mass sum pD w of the "
+      "predicted map seen from each parent) and OUT/parent_weights.json (step, predicted "
       "Gaussian, true pose, ESS of each weighting). The report draws it when OUT is a results "
       "folder.");
   pw->add_option("--scenario", a.scenario, "Scenario")->capture_default_str();

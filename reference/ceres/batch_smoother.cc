@@ -336,12 +336,12 @@ BatchSmoother::BatchSmoother(SmootherOptions options) : options_(std::move(optio
   options_.Validate();
 }
 
-filters::BatchResult BatchSmoother::Solve(const datasets::Scenario& scenario) {
+datasets::BatchResult BatchSmoother::Solve(const datasets::Scenario& scenario) {
   const Clock::time_point start = Clock::now();
   report_ = SmootherReport{};
   association_.clear();
   labels_.clear();
-  filters::BatchResult result;
+  datasets::BatchResult result;
   if (scenario.steps.empty()) return result;
 
   const std::vector<OdometryIncrement> increments =

@@ -13,6 +13,7 @@
 #include "datasets/scenario.h"
 #include "reference/ceres/landmark_association.h"
 #include "reference/ceres/odometry_increment.h"
+#include "datasets/batch_estimator.h"
 #include "src/filters/estimator.h"
 
 namespace phdslam::reference {
@@ -115,7 +116,7 @@ struct SmootherReport {
   std::vector<std::string> brief_reports;  ///< ceres::Solver::Summary::BriefReport per solve
 };
 
-class BatchSmoother final : public filters::BatchEstimator {
+class BatchSmoother final : public datasets::BatchEstimator {
  public:
   /// Throws std::invalid_argument naming the field when an option is out of range.
   explicit BatchSmoother(SmootherOptions options);
@@ -126,7 +127,7 @@ class BatchSmoother final : public filters::BatchEstimator {
   /// whole call, covariances included. map.log_weights are 0. When compute_covariances is off,
   /// pose_covs are empty optionals and map.covs hold the pose-known approximation
   /// (sum Hm^T R^-1 Hm)^-1.
-  filters::BatchResult Solve(const datasets::Scenario& scenario) override;
+  datasets::BatchResult Solve(const datasets::Scenario& scenario) override;
 
   /// After Solve: per step, per measurement, the index into BatchResult.map (kUnassociated for
   /// clutter or unused measurements).

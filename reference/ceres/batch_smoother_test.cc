@@ -23,7 +23,7 @@ CircleScenarioOptions NoiseFree() {
   return o;
 }
 
-void ExpectTruthRecovered(const datasets::Scenario& s, const filters::BatchResult& r,
+void ExpectTruthRecovered(const datasets::Scenario& s, const datasets::BatchResult& r,
                           const std::vector<int>& labels, double tol) {
   ASSERT_EQ(r.poses.size(), s.truth.poses.size());
   for (std::size_t k = 0; k < r.poses.size(); ++k) {
@@ -39,7 +39,7 @@ void ExpectTruthRecovered(const datasets::Scenario& s, const filters::BatchResul
 TEST(BatchSmoother, NoiseFreeKnownAssociationRecoversTheTruth) {
   const datasets::Scenario s = MakeCircleScenario(NoiseFree());
   BatchSmoother smoother(SmootherOptions{});
-  const filters::BatchResult r = smoother.Solve(s);
+  const datasets::BatchResult r = smoother.Solve(s);
   ASSERT_EQ(smoother.landmark_labels().size(), 20u);  // every landmark of the ring is seen
   for (std::size_t i = 0; i < 20; ++i) EXPECT_EQ(smoother.landmark_labels()[i], int(i));
   ExpectTruthRecovered(s, r, smoother.landmark_labels(), 1e-6);
@@ -53,7 +53,7 @@ TEST(BatchSmoother, NoiseFreeCarModelWithSubIntervalsAndAnchoredFirstStep) {
   o.first_step_propagates = true;
   const datasets::Scenario s = MakeCircleScenario(o);
   BatchSmoother smoother(SmootherOptions{});
-  const filters::BatchResult r = smoother.Solve(s);
+  const datasets::BatchResult r = smoother.Solve(s);
   ExpectTruthRecovered(s, r, smoother.landmark_labels(), 1e-6);
   // Pose 0 is estimated (linked to the fixed initial pose by step 0's odometry).
   ASSERT_TRUE(r.pose_covs[0].has_value());
@@ -67,7 +67,7 @@ TEST_P(SmoothingBeatsDeadReckoning, WithNoise) {
   SmootherOptions o;
   o.odometry_residual = GetParam();
   BatchSmoother smoother(o);
-  const filters::BatchResult r = smoother.Solve(s);
+  const datasets::BatchResult r = smoother.Solve(s);
   const double dr = PositionRmse(s, DeadReckoning(s, ScenarioOdometry(s, {})));
   const double sm = PositionRmse(s, r.poses);
   std::cout << "dead reckoning RMSE " << dr << " m, smoother RMSE " << sm << " m, "
@@ -89,7 +89,7 @@ INSTANTIATE_TEST_SUITE_P(BatchSmoother, SmoothingBeatsDeadReckoning,
 TEST(BatchSmoother, CovariancesAreSymmetricPositiveDefiniteAndConsistent) {
   const datasets::Scenario s = MakeCircleScenario(CircleScenarioOptions{});
   BatchSmoother smoother(SmootherOptions{});
-  const filters::BatchResult r = smoother.Solve(s);
+  const datasets::BatchResult r = smoother.Solve(s);
   ASSERT_TRUE(smoother.report().covariance_ok);
   ASSERT_EQ(r.pose_covs.size(), r.poses.size());
   ASSERT_TRUE(r.pose_covs[0].has_value());
@@ -117,9 +117,9 @@ TEST(BatchSmoother, SchurAndNormalCholeskyAgree) {
   const datasets::Scenario s = MakeCircleScenario(CircleScenarioOptions{});
   SmootherOptions o;
   o.compute_covariances = false;
-  const filters::BatchResult a = BatchSmoother(o).Solve(s);
+  const datasets::BatchResult a = BatchSmoother(o).Solve(s);
   o.linear_solver = SparseLinearSolver::kSparseSchur;
-  const filters::BatchResult b = BatchSmoother(o).Solve(s);
+  const datasets::BatchResult b = BatchSmoother(o).Solve(s);
   for (std::size_t k = 0; k < a.poses.size(); ++k) {
     EXPECT_LT((a.poses[k] - b.poses[k]).norm(), 1e-4);
   }
@@ -132,7 +132,7 @@ TEST(BatchSmoother, FilterModeWithRelabelledTruthEqualsKnownMode) {
   const datasets::Scenario s = MakeCircleScenario(CircleScenarioOptions{});
   SmootherOptions known;
   known.compute_covariances = false;
-  const filters::BatchResult a = BatchSmoother(known).Solve(s);
+  const datasets::BatchResult a = BatchSmoother(known).Solve(s);
   SmootherOptions filter = known;
   filter.association = AssociationMode::kFilter;
   filter.robust_loss = "none";
@@ -142,7 +142,7 @@ TEST(BatchSmoother, FilterModeWithRelabelledTruthEqualsKnownMode) {
     filter.filter_association.push_back(labels);
   }
   BatchSmoother smoother(filter);
-  const filters::BatchResult b = smoother.Solve(s);
+  const datasets::BatchResult b = smoother.Solve(s);
   ASSERT_EQ(b.map.means.size(), a.map.means.size());
   const std::size_t n = a.map.means.size();
   for (std::size_t i = 0; i < n; ++i) {
@@ -181,7 +181,7 @@ TEST(BatchSmoother, UnknownAssociationWithoutNoiseRecoversTheTruth) {
   SmootherOptions o;
   o.association = AssociationMode::kUnknown;
   BatchSmoother smoother(o);
-  const filters::BatchResult r = smoother.Solve(s);
+  const datasets::BatchResult r = smoother.Solve(s);
   ASSERT_EQ(r.map.means.size(), 20u);
   // Map index -> truth index through the association (consistent for every measurement).
   std::vector<int> truth_of(20, -1);
@@ -208,7 +208,7 @@ TEST(BatchSmoother, UnknownAssociationWithClutterRecoversTheLandmarkCount) {
   o.association = AssociationMode::kUnknown;
   o.initial_pass_solve_steps = 25;  // exercise the intermediate solves on this short run
   BatchSmoother smoother(o);
-  const filters::BatchResult r = smoother.Solve(s);
+  const datasets::BatchResult r = smoother.Solve(s);
   EXPECT_EQ(smoother.report().solves, 3 + smoother.report().reassociation_rounds + 1);
   // Association accuracy against the hidden labels.
   int true_pos = 0;

@@ -86,7 +86,7 @@ FilterThenSmooth::FilterThenSmooth(std::unique_ptr<filters::OnlineEstimator> fil
   options_.Validate();
 }
 
-filters::BatchResult FilterThenSmooth::Solve(const datasets::Scenario& scenario) {
+datasets::BatchResult FilterThenSmooth::Solve(const datasets::Scenario& scenario) {
   if (smoother_) throw std::logic_error("FilterThenSmooth::Solve: the filter has already run");
   const auto start = std::chrono::steady_clock::now();
   std::vector<std::vector<Landmark>> means;
@@ -127,7 +127,7 @@ filters::BatchResult FilterThenSmooth::Solve(const datasets::Scenario& scenario)
   o.filter_association = labels_;
   if (o.initial_poses.empty()) o.initial_poses = std::move(poses);
   smoother_ = std::make_unique<BatchSmoother>(std::move(o));
-  filters::BatchResult result = smoother_->Solve(scenario);
+  datasets::BatchResult result = smoother_->Solve(scenario);
   result.solve_seconds += filter_seconds_;
   return result;
 }

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "reference/ceres/batch_smoother.h"
+#include "datasets/batch_estimator.h"
 #include "src/filters/estimator.h"
 
 namespace phdslam::reference {
@@ -26,7 +27,7 @@ std::vector<std::vector<int>> LabelsFromAssociatedMeans(
     const std::vector<std::vector<Landmark>>& birth_points = {});
 
 /// Runs the filter and then the smoother on its association.
-class FilterThenSmooth final : public filters::BatchEstimator {
+class FilterThenSmooth final : public datasets::BatchEstimator {
  public:
   /// `filter` must be built for the scenario Solve will receive; options.association is set to
   /// kFilter and options.filter_association is filled by Solve.
@@ -43,7 +44,7 @@ class FilterThenSmooth final : public filters::BatchEstimator {
   /// below min_observations. BatchResult.solve_seconds
   /// includes the filter's run; filter_seconds() gives that part alone. Throws
   /// std::runtime_error when the filter reports no association for a scan with measurements.
-  filters::BatchResult Solve(const datasets::Scenario& scenario) override;
+  datasets::BatchResult Solve(const datasets::Scenario& scenario) override;
 
   [[nodiscard]] const BatchSmoother& smoother() const { return *smoother_; }
   [[nodiscard]] double filter_seconds() const { return filter_seconds_; }

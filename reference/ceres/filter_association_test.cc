@@ -78,9 +78,9 @@ TEST(FilterThenSmooth, WithAPerfectFilterEqualsTheKnownAssociation) {
   SmootherOptions o;
   o.compute_covariances = false;
   o.robust_loss = "none";
-  const filters::BatchResult known = BatchSmoother(o).Solve(s);
+  const datasets::BatchResult known = BatchSmoother(o).Solve(s);
   FilterThenSmooth fs(std::make_unique<LabelFilter>(s, false), o);
-  const filters::BatchResult r = fs.Solve(s);
+  const datasets::BatchResult r = fs.Solve(s);
   ASSERT_EQ(r.map.means.size(), known.map.means.size());
   for (std::size_t k = 0; k < r.poses.size(); ++k) {
     EXPECT_LT((r.poses[k] - known.poses[k]).norm(), 1e-6);

@@ -20,7 +20,7 @@ void WriteUpperTriangle3(std::ostream& os, const Mat3& info) {
 }  // namespace
 
 void ExportG2o(const std::filesystem::path& path, const datasets::Scenario& scenario,
-               const filters::BatchResult& solution,
+               const datasets::BatchResult& solution,
                const std::vector<std::vector<int>>& association, const OdometryNoiseFloor& floor) {
   const std::size_t steps = scenario.steps.size();
   const std::size_t landmarks = solution.map.means.size();

@@ -18,6 +18,7 @@
 
 #include "datasets/scenario.h"
 #include "reference/ceres/odometry_increment.h"
+#include "datasets/batch_estimator.h"
 #include "src/filters/estimator.h"
 
 namespace phdslam::reference {
@@ -26,7 +27,7 @@ namespace phdslam::reference {
 /// into solution.map, or -1) with vertex values from `solution`. Throws std::invalid_argument
 /// when the sizes disagree and std::runtime_error when the file cannot be written.
 void ExportG2o(const std::filesystem::path& path, const datasets::Scenario& scenario,
-               const filters::BatchResult& solution,
+               const datasets::BatchResult& solution,
                const std::vector<std::vector<int>>& association,
                const OdometryNoiseFloor& floor = {});
 

@@ -67,7 +67,7 @@ TEST(ExportG2o, WritesEveryVertexAndEdgeAndParsesBack) {
   SmootherOptions o;
   o.compute_covariances = false;
   BatchSmoother smoother(o);
-  const filters::BatchResult r = smoother.Solve(s);
+  const datasets::BatchResult r = smoother.Solve(s);
   const auto path = TempFile("circle.g2o");
   ExportG2o(path, s, r, smoother.association());
   const G2oFile g = Parse(path);
@@ -141,7 +141,7 @@ TEST(ExportG2o, AnchorsAPropagatingFirstStepToTheFixedInitialPose) {
   SmootherOptions o;
   o.compute_covariances = false;
   BatchSmoother smoother(o);
-  const filters::BatchResult r = smoother.Solve(s);
+  const datasets::BatchResult r = smoother.Solve(s);
   const auto path = TempFile("anchored.g2o");
   ExportG2o(path, s, r, smoother.association());
   const G2oFile g = Parse(path);
@@ -159,7 +159,7 @@ TEST(ExportG2o, RejectsMismatchedInputs) {
   SmootherOptions o;
   o.compute_covariances = false;
   BatchSmoother smoother(o);
-  const filters::BatchResult r = smoother.Solve(s);
+  const datasets::BatchResult r = smoother.Solve(s);
   auto association = smoother.association();
   association[2].push_back(0);
   EXPECT_THROW(ExportG2o(TempFile("bad.g2o"), s, r, association), std::invalid_argument);

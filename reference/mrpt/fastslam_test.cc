@@ -26,7 +26,7 @@ using testing::PositionRmse;
 using testing::RunOnline;
 
 double DeadReckoningRmse(const datasets::Scenario& s) {
-  filters::OdometryEstimator dr(filters::EstimatorContext::FromScenario(s));
+  filters::OdometryEstimator dr(s.PublicContext());
   return PositionRmse(s, RunOnline(dr, s));
 }
 
@@ -49,7 +49,7 @@ CircleScenarioOptions WithClutter() {
 TEST(FastSlam, Version2TracksTheTruthWithClutter) {
   for (std::uint64_t seed : {1, 2}) {
     const datasets::Scenario s = MakeCircleScenario(WithClutter(), seed);
-    FastSlam fs(filters::EstimatorContext::FromScenario(s), 10, 100 + seed,
+    FastSlam fs(s.PublicContext(), 10, 100 + seed,
                 Version(FastSlamProposal::kMeasurementConditioned));
     const double rmse = PositionRmse(s, RunOnline(fs, s));
     ::testing::Test::RecordProperty("rmse_v2_seed" + std::to_string(seed), std::to_string(rmse));
@@ -66,7 +66,7 @@ TEST(FastSlam, Version2TracksTheTruthWithClutter) {
 TEST(FastSlam, Version1TracksTheTruthWithClutter) {
   for (std::uint64_t seed : {1, 2}) {
     const datasets::Scenario s = MakeCircleScenario(WithClutter(), seed);
-    FastSlam fs(filters::EstimatorContext::FromScenario(s), 50, 200 + seed,
+    FastSlam fs(s.PublicContext(), 50, 200 + seed,
                 Version(FastSlamProposal::kMotionModel));
     const double rmse = PositionRmse(s, RunOnline(fs, s));
     ::testing::Test::RecordProperty("rmse_v1_seed" + std::to_string(seed), std::to_string(rmse));
@@ -84,9 +84,9 @@ TEST(FastSlam, Version2IsNotWorseThanVersion1) {
   double sum2 = 0.0;
   for (std::uint64_t seed : {1, 2, 3}) {
     const datasets::Scenario s = MakeCircleScenario(CircleScenarioOptions{}, seed);
-    FastSlam v1(filters::EstimatorContext::FromScenario(s), 10, 300 + seed,
+    FastSlam v1(s.PublicContext(), 10, 300 + seed,
                 Version(FastSlamProposal::kMotionModel));
-    FastSlam v2(filters::EstimatorContext::FromScenario(s), 10, 300 + seed,
+    FastSlam v2(s.PublicContext(), 10, 300 + seed,
                 Version(FastSlamProposal::kMeasurementConditioned));
     sum1 += PositionRmse(s, RunOnline(v1, s));
     sum2 += PositionRmse(s, RunOnline(v2, s));
@@ -103,7 +103,7 @@ struct Trace {
 };
 
 Trace RunTrace(const datasets::Scenario& s, FastSlamProposal proposal, std::uint64_t seed) {
-  FastSlam fs(filters::EstimatorContext::FromScenario(s), 10, seed, Version(proposal));
+  FastSlam fs(s.PublicContext(), 10, seed, Version(proposal));
   Trace t;
   for (const datasets::ScenarioStep& step : s.steps) {
     const filters::StepOutput out = fs.Step(step.data);
@@ -129,8 +129,8 @@ TEST(FastSlam, SameSeedGivesIdenticalResults) {
     EXPECT_GT(resamplings, 0);
 
     // Interleaved with an estimator on another seed, in one thread.
-    FastSlam a(filters::EstimatorContext::FromScenario(s), 10, 42, Version(proposal));
-    FastSlam other(filters::EstimatorContext::FromScenario(s), 10, 43, Version(proposal));
+    FastSlam a(s.PublicContext(), 10, 42, Version(proposal));
+    FastSlam other(s.PublicContext(), 10, 43, Version(proposal));
     Trace interleaved;
     std::vector<Pose> other_poses;
     for (const datasets::ScenarioStep& step : s.steps) {
@@ -158,9 +158,9 @@ TEST(FastSlam, ReportsDiagnostics) {
   CircleScenarioOptions o = WithClutter();
   o.steps = 40;
   const datasets::Scenario s = MakeCircleScenario(o, 8);
-  FastSlam single(filters::EstimatorContext::FromScenario(s), 1, 1,
+  FastSlam single(s.PublicContext(), 1, 1,
                   Version(FastSlamProposal::kMeasurementConditioned));
-  FastSlam many(filters::EstimatorContext::FromScenario(s), 10, 1,
+  FastSlam many(s.PublicContext(), 10, 1,
                 Version(FastSlamProposal::kMotionModel));
   for (const datasets::ScenarioStep& step : s.steps) {
     const filters::StepOutput one = single.Step(step.data);

@@ -28,7 +28,7 @@ using testing::PositionRmse;
 using testing::RunOnline;
 
 double DeadReckoningRmse(const datasets::Scenario& s) {
-  filters::OdometryEstimator dr(filters::EstimatorContext::FromScenario(s));
+  filters::OdometryEstimator dr(s.PublicContext());
   return PositionRmse(s, RunOnline(dr, s));
 }
 
@@ -37,7 +37,7 @@ double DeadReckoningRmse(const datasets::Scenario& s) {
 TEST(MrptEkfSlam, TracksTheTruthWithoutClutter) {
   for (std::uint64_t seed : {1, 2}) {
     const datasets::Scenario s = MakeCircleScenario(CircleScenarioOptions{}, seed);
-    MrptEkfSlam ekf(filters::EstimatorContext::FromScenario(s));
+    MrptEkfSlam ekf(s.PublicContext());
     const double rmse = PositionRmse(s, RunOnline(ekf, s));
     const double dr = DeadReckoningRmse(s);
     ::testing::Test::RecordProperty("rmse_seed" + std::to_string(seed), std::to_string(rmse));
@@ -53,7 +53,7 @@ TEST(MrptEkfSlam, TracksTheTruthWithoutClutter) {
 // The heading is reported unwrapped: the robot turns 0.1 rad/s for 150 s (more than two turns).
 TEST(MrptEkfSlam, ReportsAnUnwrappedHeading) {
   const datasets::Scenario s = MakeCircleScenario(CircleScenarioOptions{}, 3);
-  MrptEkfSlam ekf(filters::EstimatorContext::FromScenario(s));
+  MrptEkfSlam ekf(s.PublicContext());
   const std::vector<Pose> poses = RunOnline(ekf, s);
   for (std::size_t k = 0; k < poses.size(); ++k) {
     ASSERT_NEAR(poses[k](2), s.truth.poses[k](2), 0.05) << "step " << k;
@@ -69,7 +69,7 @@ TEST(MrptEkfSlam, PostProcessedMapDropsClutterLandmarks) {
   o.clutter_rate = 2.0;
   o.detection_probability = 0.95;
   const datasets::Scenario s = MakeCircleScenario(o, 4);
-  MrptEkfSlam ekf(filters::EstimatorContext::FromScenario(s));
+  MrptEkfSlam ekf(s.PublicContext());
   const double rmse = PositionRmse(s, RunOnline(ekf, s));
   EXPECT_LT(rmse, 0.3);
   EXPECT_LT(rmse, DeadReckoningRmse(s));
@@ -91,7 +91,7 @@ TEST(MrptEkfSlam, TrackDeletionRemovesClutterFromTheState) {
   const datasets::Scenario s = MakeCircleScenario(o, 4);
   MrptEkfSlamOptions eo;
   eo.prune_after_steps = 5;
-  MrptEkfSlam ekf(filters::EstimatorContext::FromScenario(s), eo);
+  MrptEkfSlam ekf(s.PublicContext(), eo);
   EXPECT_LT(PositionRmse(s, RunOnline(ekf, s)), 0.3);
   const filters::MapEstimate raw = ekf.Map();
   // At most the clutter of the last five scans (about 10 points) is still tentative.
@@ -107,8 +107,8 @@ TEST(MrptEkfSlam, KeepsThePoseCovarianceSymmetric) {
   const datasets::Scenario s = MakeCircleScenario(o, 2);
   MrptEkfSlamOptions stock;
   stock.symmetrize_covariance = false;
-  MrptEkfSlam a(filters::EstimatorContext::FromScenario(s));
-  MrptEkfSlam b(filters::EstimatorContext::FromScenario(s), stock);
+  MrptEkfSlam a(s.PublicContext());
+  MrptEkfSlam b(s.PublicContext(), stock);
   double worst_stock = 0.0;
   for (const datasets::ScenarioStep& step : s.steps) {
     const filters::StepOutput oa = a.Step(step.data);
@@ -183,8 +183,8 @@ TEST(MrptEkfSlam, SameInputGivesIdenticalResults) {
   o.steps = 60;
   o.clutter_rate = 2.0;
   const datasets::Scenario s = MakeCircleScenario(o, 5);
-  MrptEkfSlam a(filters::EstimatorContext::FromScenario(s));
-  MrptEkfSlam b(filters::EstimatorContext::FromScenario(s));
+  MrptEkfSlam a(s.PublicContext());
+  MrptEkfSlam b(s.PublicContext());
   for (const datasets::ScenarioStep& step : s.steps) {
     const filters::StepOutput oa = a.Step(step.data);
     const filters::StepOutput ob = b.Step(step.data);
@@ -206,7 +206,7 @@ TEST(MrptEkfSlam, WritesNoFiles) {
     o.steps = 20;
     o.clutter_rate = 2.0;
     const datasets::Scenario s = MakeCircleScenario(o, 6);
-    MrptEkfSlam ekf(filters::EstimatorContext::FromScenario(s));
+    MrptEkfSlam ekf(s.PublicContext());
     RunOnline(ekf, s);
   }
   std::filesystem::current_path(before);

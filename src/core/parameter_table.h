@@ -46,8 +46,10 @@ struct Bounds {
   }
   [[nodiscard]] std::string Describe() const {
     auto num = [](double v) {
-      nlohmann::json j = v;
-      return j.dump();
+      if (v == std::floor(v) && std::abs(v) < 1e15) {
+        return std::to_string(static_cast<long long>(v));
+      }
+      return nlohmann::json(v).dump();
     };
     std::string s;
     if (std::isfinite(min)) s += std::string(min_exclusive ? "> " : ">= ") + num(min);

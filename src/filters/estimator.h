@@ -7,7 +7,7 @@
 #include <utility>
 #include <vector>
 
-#include "datasets/scenario.h"
+#include "src/core/step_data.h"
 #include "src/core/types.h"
 #include "src/models/motion_model.h"
 #include "src/models/sensor_model.h"
@@ -20,8 +20,6 @@ struct EstimatorContext {
   std::shared_ptr<const models::MotionModel> motion;
   Mat2 control_noise_cov = Mat2::Identity();
   models::SensorModel sensor;
-
-  static EstimatorContext FromScenario(const datasets::Scenario& s);
 };
 
 /// Diagnostics of one step, kept in the run record.
@@ -54,37 +52,12 @@ class OnlineEstimator {
  public:
   virtual ~OnlineEstimator() = default;
   /// Processes one filter step and returns the pose estimate at its last time stamp.
-  virtual StepOutput Step(const datasets::StepData& step) = 0;
+  virtual StepOutput Step(const StepData& step) = 0;
   /// The current map estimate.
   [[nodiscard]] virtual MapEstimate Map() const = 0;
   /// Pose and log-weight of every particle after the last step, for particle filters that
   /// expose them (particle traces); empty otherwise.
   [[nodiscard]] virtual std::vector<std::pair<Pose, double>> ParticleStates() const { return {}; }
-};
-
-}  // namespace phdslam::filters
-
-namespace phdslam::filters {
-
-/// Result of a batch (whole-scenario) estimator such as the smoother.
-struct BatchResult {
-  std::vector<Pose> poses;                 ///< one per step
-  std::vector<std::optional<Mat3>> pose_covs;  ///< marginal covariances where computed
-  MapEstimate map;
-  int iterations = 0;
-  double solve_seconds = 0.0;
-};
-
-}  // namespace phdslam::filters
-
-namespace phdslam::filters {
-
-/// A batch estimator consumes the whole scenario at once. It receives the full Scenario; an
-/// implementation documents which hidden parts (origin labels) a mode reads, if any.
-class BatchEstimator {
- public:
-  virtual ~BatchEstimator() = default;
-  virtual BatchResult Solve(const datasets::Scenario& scenario) = 0;
 };
 
 }  // namespace phdslam::filters

@@ -29,7 +29,7 @@ ProposalOutput TransitionDensity::Build(const ProposalInput& input) const {
 }
 
 AssociationCosts BuildAssociationCosts(const ProposalInput& input, const PhdSlamParams& params) {
-  const auto& active = input.map->active();
+  const std::span<const phd::GaussianComponent> active = input.landmarks;
   const int m = static_cast<int>(active.size());
   const int nz = static_cast<int>(input.measurements.size());
   const double log_clutter = std::log(input.sensor->ClutterIntensity());
@@ -84,7 +84,7 @@ AssociationCosts BuildAssociationCosts(const ProposalInput& input, const PhdSlam
 }
 
 ProposalOutput GmIplDensity::Build(const ProposalInput& input) const {
-  const auto& active = input.map->active();
+  const std::span<const phd::GaussianComponent> active = input.landmarks;
   if (params_.max_hypotheses <= 0 || active.empty() || input.measurements.empty()) {
     ProposalOutput prior = PriorOnly(input);
     // Nothing to associate with: every measurement is clutter or a new landmark.

@@ -1,19 +1,12 @@
-// The GM-PHD map parameters (phd::MapParams) as JSON keys, shared by every filter that carries
-// GM-PHD maps so that each parameter has one name and one range check.
+// The parameter table of the GM-PHD map options (phd::MapParams), embedded in the parameter
+// tables of every filter that carries GM-PHD maps.
 #pragma once
 
-#include <nlohmann/json.hpp>
-#include <string>
-
+#include "src/core/parameter_table.h"
 #include "src/phd/map_params.h"
 
 namespace phdslam::filters {
 
-/// Writes every map parameter into `j` under its name.
-void WriteMapParams(const phd::MapParams& params, nlohmann::json& j);
-
-/// Applies one override when `key` names a map parameter and returns true; returns false for any
-/// other key. Throws std::invalid_argument naming the key for a wrong type or range.
-bool ApplyMapParam(const std::string& key, const nlohmann::json& value, phd::MapParams& params);
+const params::ParameterTable<phd::MapParams>& MapParamsTable();
 
 }  // namespace phdslam::filters

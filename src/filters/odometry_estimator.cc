@@ -10,7 +10,7 @@ namespace phdslam::filters {
 OdometryEstimator::OdometryEstimator(EstimatorContext context)
     : context_(std::move(context)), pose_(context_.initial_pose) {}
 
-StepOutput OdometryEstimator::Step(const datasets::StepData& step) {
+StepOutput OdometryEstimator::Step(const StepData& step) {
   PredictPoseGaussian(context_, step, Mat3::Zero(), pose_, cov_);
   map_ = MapEstimate{};
   for (const Measurement& z : step.measurements) {

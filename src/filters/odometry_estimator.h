@@ -10,7 +10,7 @@ namespace phdslam::filters {
 class OdometryEstimator final : public OnlineEstimator {
  public:
   explicit OdometryEstimator(EstimatorContext context);
-  StepOutput Step(const datasets::StepData& step) override;
+  StepOutput Step(const StepData& step) override;
   [[nodiscard]] MapEstimate Map() const override { return map_; }
 
  private:

@@ -60,7 +60,7 @@ MomentMatchedGaussian MomentMatch(std::span<const double> log_weights, std::span
 }
 
 ProposalOutput MergedEkfDensity::Build(const ProposalInput& input) const {
-  const auto& active = input.map->active();
+  const std::span<const phd::GaussianComponent> active = input.landmarks;
   const int num_z = static_cast<int>(input.measurements.size());
   if (active.empty() || num_z == 0) return PriorProposal(input);
 

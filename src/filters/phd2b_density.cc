@@ -151,7 +151,7 @@ JointIplResult JointIpl(const Pose& prior_mean, const Mat3& prior_cov,
 }
 
 ProposalOutput JointIplDensity::Build(const ProposalInput& input) const {
-  const auto& active = input.map->active();
+  const std::span<const phd::GaussianComponent> active = input.landmarks;
   if (active.empty() || input.measurements.empty()) return PriorProposal(input);
   const AssociationCosts costs = BuildAssociationCosts(input, params_);
   if (costs.rows.empty()) return PriorProposal(input);

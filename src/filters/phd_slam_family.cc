@@ -32,8 +32,8 @@ std::unique_ptr<ImportanceDensity> MakeImportanceDensity(const std::string& vari
 
 std::unique_ptr<RbPhdSlam> MakePhdSlam(const std::string& variant, EstimatorContext context,
                                        const PhdSlamParams& params, std::uint64_t stream_seed) {
-  return std::make_unique<RbPhdSlam>(std::move(context), params,
-                                     MakeImportanceDensity(variant, params), stream_seed);
+  return MakeRbPhdSlam(std::move(context), params, MakeImportanceDensity(variant, params),
+                       stream_seed);
 }
 
 }  // namespace phdslam::filters

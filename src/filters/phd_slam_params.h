@@ -1,19 +1,15 @@
 // Parameters of the RB-PHD-SLAM family (reference notes section 17). Defaults are the paper's
-// synthetic-scenario values; ForScenario() switches to the Victoria Park ones.
+// synthetic-scenario values; the defaults that depend on the scenario (Victoria Park's) are in the
+// runner's table of scenario defaults (validation/runner/scenario_defaults.cc).
 #pragma once
 
 #include <cmath>
-#include <string>
 
 #include "src/core/types.h"
+#include "src/filters/particle_filter_params.h"
 #include "src/phd/map_params.h"
 
 namespace phdslam::filters {
-
-enum class EssThresholdKind {
-  kRelative,  ///< resample when ESS <= threshold * N (synthetic: 0.2)
-  kAbsolute,  ///< resample when ESS <= threshold (Victoria Park: 1)
-};
 
 struct PhdSlamParams {
   int particles = 1;
@@ -43,12 +39,6 @@ struct PhdSlamParams {
   /// Reference code: copies of one resampled parent share one proposal (a speed optimisation
   /// with no effect on results).
   bool reuse_parent_proposal = true;
-
-  /// Paper defaults for a named scenario ("paper-synthetic", "generated", "victoria-park") and,
-  /// where they differ between the filters, a variant of the family ("phd1", "phd2a", "phd2b",
-  /// "phd3"; empty: PHD-SLAM 3.0's). Victoria Park resamples when ESS <= 1 for 2.0b and 3.0
-  /// (notes 17) and when ESS <= 2.5 for 1.0 and 2.0a (see phd_slam_params.cc).
-  static PhdSlamParams ForScenario(const std::string& scenario, const std::string& variant = "");
 };
 
 }  // namespace phdslam::filters

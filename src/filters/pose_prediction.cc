@@ -4,7 +4,7 @@
 
 namespace phdslam::filters {
 
-void PredictPoseGaussian(const EstimatorContext& context, const datasets::StepData& step,
+void PredictPoseGaussian(const EstimatorContext& context, const StepData& step,
                          const Mat3& regularisation, Pose& mean, Mat3& cov) {
   if (step.times.size() < 2) return;
   cov += regularisation;

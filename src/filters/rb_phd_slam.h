@@ -1,56 +1,70 @@
-// Rao-Blackwellised PHD-SLAM: particles carry a pose and a GM-PHD map; the family members differ
-// only in their ImportanceDensity (reference notes sections 6-14).
+// Rao-Blackwellised PHD-SLAM: the particle-filter skeleton (particle_filter.h) over per-particle
+// GM-PHD maps; the family members differ only in their ImportanceDensity (reference notes
+// sections 6-14).
 #pragma once
 
 #include <cstdint>
 #include <memory>
 #include <vector>
 
-#include "src/core/random.h"
 #include "src/filters/estimator.h"
 #include "src/filters/importance_density.h"
+#include "src/filters/particle_filter.h"
 #include "src/filters/phd_slam_params.h"
 #include "src/phd/gm_phd_map.h"
 
 namespace phdslam::filters {
 
-struct PhdParticle {
-  Pose pose = Pose::Zero();
-  Mat3 cov = Mat3::Zero();      ///< non-zero only between prediction and sampling
-  double log_weight = 0.0;
-  int parent = 0;               ///< source index after resampling; -1: compute own proposal
-  phd::GmPhdMap map;
-  std::vector<Measurement> births;  ///< previous step's ungated measurements
+/// A particle's map: the GM-PHD intensity and the previous scan's ungated measurements, which
+/// become births at the next prediction.
+struct PhdParticleMap {
+  phd::GmPhdMap gm;
+  std::vector<Measurement> births;
 };
 
-class RbPhdSlam final : public OnlineEstimator {
+/// The GM-PHD map model of the skeleton:
+///  - before prediction, the pending births are added at the pose the scan was taken from;
+///  - the landmark view is the active component list;
+///  - the update is the GM-PHD update at the sampled pose (its log-likelihood added to the
+///    weight), the ungated measurements kept as next births, then the hypothesis reduction;
+///  - the estimate is every component with log-weight above ln((1 - pD)^2) (or the parameter).
+class PhdMapModel {
  public:
-  RbPhdSlam(EstimatorContext context, PhdSlamParams params,
-            std::unique_ptr<ImportanceDensity> density, std::uint64_t stream_seed);
+  using Map = PhdParticleMap;
+  using Snapshot = std::vector<phd::GaussianComponent>;
 
-  StepOutput Step(const datasets::StepData& step) override;
-  [[nodiscard]] MapEstimate Map() const override;
-  [[nodiscard]] std::vector<std::pair<Pose, double>> ParticleStates() const override;
+  PhdMapModel(const EstimatorContext& context, const PhdSlamParams& params);
 
-  [[nodiscard]] const std::vector<PhdParticle>& particles() const { return particles_; }
-  /// Index (before resampling) of the particle the last estimate came from.
-  [[nodiscard]] int best_particle() const { return best_; }
-  /// The top-ranked association of the last step's best particle (measurement -> active component
-  /// index before the update, -1 for none), when the importance density provides one.
-  [[nodiscard]] const std::vector<int>& best_association() const { return best_association_; }
+  [[nodiscard]] Map InitialMap() const { return {}; }
+  void BeginStep(const StepData& /*step*/) {}
+  void BeforePrediction(Map& map, const Pose& pose) const;
+  [[nodiscard]] MapView View(const Map& map) const { return {map.gm.active(), {}}; }
+  void Update(Map& map, const Pose& pose, const StepData& step, double& log_weight) const;
+  [[nodiscard]] Snapshot Estimate(const Map& map) const {
+    return map.gm.Estimate(estimate_threshold_);
+  }
+  [[nodiscard]] MapEstimate ToMapEstimate(const Snapshot& snapshot) const;
+  [[nodiscard]] int ComponentCount(const Map& map) const {
+    return static_cast<int>(map.gm.size());
+  }
 
  private:
-  void Predict(PhdParticle& particle, const datasets::StepData& step) const;
-  double EstimateThreshold() const;
-
-  EstimatorContext context_;
-  PhdSlamParams params_;
-  std::unique_ptr<ImportanceDensity> density_;
-  RandomStream rng_;
-  std::vector<PhdParticle> particles_;
-  int best_ = 0;
-  std::vector<int> best_association_;
-  std::vector<phd::GaussianComponent> last_map_;  ///< best particle's estimate at the last step
+  models::SensorModel sensor_;
+  phd::MapParams map_params_;
+  double estimate_threshold_;
 };
 
+using RbPhdSlam = ParticleFilter<PhdMapModel>;
+using PhdParticle = RbPhdSlam::ParticleType;
+
+/// The skeleton parameters of a PHD-SLAM parameter set.
+ParticleFilterParams SkeletonParams(const PhdSlamParams& params);
+
+/// A PHD-SLAM filter with the given importance density.
+std::unique_ptr<RbPhdSlam> MakeRbPhdSlam(EstimatorContext context, const PhdSlamParams& params,
+                                         std::unique_ptr<ImportanceDensity> density,
+                                         std::uint64_t stream_seed);
+
 }  // namespace phdslam::filters
+
+extern template class phdslam::filters::ParticleFilter<phdslam::filters::PhdMapModel>;

@@ -9,16 +9,11 @@
 
 #include "src/core/gaussian.h"
 #include "src/core/log_sum_exp.h"
-#include "src/filters/json_fields.h"
-#include "src/filters/map_params_json.h"
 #include "src/filters/resampling.h"
 #include "src/models/sensor_model.h"
 
 namespace phdslam::filters {
 namespace {
-
-constexpr const char* kControlNoiseName = "control-noise";
-constexpr const char* kLinearisedGaussianName = "linearised-gaussian";
 
 /// A factor L with L L^T = Q for a symmetric positive semi-definite Q (eigen-decomposition, so a
 /// singular Q such as zero noise is allowed). Throws naming `what` otherwise.
@@ -37,64 +32,6 @@ Eigen::Matrix<double, N, N> PsdFactor(const Eigen::Matrix<double, N, N>& q,
 }
 
 }  // namespace
-
-ScPhdSlamParams::ScPhdSlamParams() {
-  map.birth_log_weight = std::log(0.01);
-  map.reference_births_from_ungated_only = false;
-  map.reference_omit_missed_detection_mass = false;
-}
-
-ScPhdSlamParams ScPhdSlamParams::ForScenario(const std::string& scenario) {
-  ScPhdSlamParams p;
-  if (scenario == "victoria-park") p.map.merge_threshold = 10.0;
-  return p;
-}
-
-nlohmann::json ToJson(const ScPhdSlamParams& p) {
-  nlohmann::json j;
-  j["particles"] = p.particles;
-  j["shotgun"] = p.shotgun;
-  WriteMapParams(p.map, j);
-  j["pose_regularisation"] = {p.pose_regularisation(0, 0), p.pose_regularisation(1, 1),
-                              p.pose_regularisation(2, 2)};
-  j["prediction"] = p.prediction == ScPredictionSampling::kControlNoise ? kControlNoiseName
-                                                                        : kLinearisedGaussianName;
-  j["empty_scan_update"] = p.empty_scan_update;
-  return j;
-}
-
-void ApplyJson(const nlohmann::json& overrides, ScPhdSlamParams& p) {
-  if (!overrides.is_object()) throw std::invalid_argument("parameters: expected an object");
-  for (const auto& [key, v] : overrides.items()) {
-    if (key == "particles") {
-      p.particles = IntAt(v, key);
-      Require(p.particles >= 1, key, "must be >= 1");
-    } else if (key == "shotgun") {
-      p.shotgun = IntAt(v, key);
-      Require(p.shotgun >= 1, key, "must be >= 1");
-    } else if (ApplyMapParam(key, v, p.map)) {
-      // a GM-PHD map parameter
-    } else if (key == "pose_regularisation") {
-      Require(v.is_array() && v.size() == 3, key, "expected [qx, qy, qtheta]");
-      for (int i = 0; i < 3; ++i) {
-        p.pose_regularisation(i, i) = NumberAt(v[i], key);
-        Require(p.pose_regularisation(i, i) >= 0, key, "entries must be >= 0");
-      }
-    } else if (key == "prediction") {
-      const std::string expected = std::string("expected \"") + kControlNoiseName + "\" or \"" +
-                                   kLinearisedGaussianName + "\"";
-      Require(v.is_string(), key, expected);
-      const std::string s = v.get<std::string>();
-      Require(s == kControlNoiseName || s == kLinearisedGaussianName, key, expected);
-      p.prediction = s == kControlNoiseName ? ScPredictionSampling::kControlNoise
-                                            : ScPredictionSampling::kLinearisedGaussian;
-    } else if (key == "empty_scan_update") {
-      p.empty_scan_update = BoolAt(v, key);
-    } else {
-      throw std::invalid_argument("unknown parameter '" + key + "'");
-    }
-  }
-}
 
 double UpdateDaughterMap(phd::GmPhdMap& map, const Pose& pose,
                          std::span<const Measurement> measurements,
@@ -136,30 +73,6 @@ std::vector<phd::GaussianComponent> CardinalityMapEstimate(const phd::GmPhdMap& 
   return all;
 }
 
-std::vector<ParentWeighting> CompareParentWeights(std::span<const Pose> parent_poses,
-                                                  const phd::GmPhdMap& predicted_map,
-                                                  std::span<const Measurement> measurements,
-                                                  const models::SensorModel& sensor,
-                                                  const phd::MapParams& params) {
-  phd::MapParams single_cluster = params;
-  single_cluster.reference_omit_missed_detection_mass = false;
-  phd::MapParams rb_phd = params;
-  rb_phd.reference_omit_missed_detection_mass = true;
-  std::vector<double> log_sc;
-  std::vector<double> log_rb;
-  for (const Pose& x : parent_poses) {
-    phd::GmPhdMap a = predicted_map;
-    log_sc.push_back(UpdateDaughterMap(a, x, measurements, sensor, single_cluster, true, nullptr));
-    phd::GmPhdMap b = predicted_map;
-    log_rb.push_back(UpdateDaughterMap(b, x, measurements, sensor, rb_phd, true, nullptr));
-  }
-  const std::vector<double> w_sc = NormalisedWeights(log_sc);
-  const std::vector<double> w_rb = NormalisedWeights(log_rb);
-  std::vector<ParentWeighting> out(w_sc.size());
-  for (std::size_t i = 0; i < w_sc.size(); ++i) out[i] = {w_sc[i], w_rb[i], log_sc[i], log_rb[i]};
-  return out;
-}
-
 ScPhdSlam::ScPhdSlam(EstimatorContext context, ScPhdSlamParams params, std::uint64_t stream_seed)
     : context_(std::move(context)), params_(std::move(params)), rng_(stream_seed) {
   if (params_.particles < 1) {
@@ -180,7 +93,7 @@ ScPhdSlam::ScPhdSlam(EstimatorContext context, ScPhdSlamParams params, std::uint
   }
 }
 
-Pose ScPhdSlam::SamplePose(const Pose& pose, const datasets::StepData& step,
+Pose ScPhdSlam::SamplePose(const Pose& pose, const StepData& step,
                            std::span<const double> xi) const {
   const Vec3 xi_pose(xi[0], xi[1], xi[2]);
   const std::size_t intervals = step.times.size() - 1;
@@ -207,7 +120,7 @@ Pose ScPhdSlam::SamplePose(const Pose& pose, const datasets::StepData& step,
   return chol ? Pose(mean + *chol * xi_pose) : mean;
 }
 
-StepOutput ScPhdSlam::Step(const datasets::StepData& step) {
+StepOutput ScPhdSlam::Step(const StepData& step) {
   if (step.times.empty()) throw std::invalid_argument("ScPhdSlam::Step: step has no time stamps");
   const std::size_t intervals = step.times.size() - 1;
   if (step.controls.size() < intervals) {

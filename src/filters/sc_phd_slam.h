@@ -32,7 +32,6 @@
 #pragma once
 
 #include <cstdint>
-#include <nlohmann/json.hpp>
 #include <span>
 #include <string>
 #include <utility>
@@ -43,43 +42,10 @@
 #include "src/filters/estimator.h"
 #include "src/phd/gaussian_component.h"
 #include "src/phd/gm_phd_map.h"
+#include "src/filters/sc_phd_slam_params.h"
 #include "src/phd/map_params.h"
 
 namespace phdslam::filters {
-
-/// How a child's pose is drawn from its parent.
-enum class ScPredictionSampling {
-  kControlNoise,        ///< u + N(0, Q_u) per sub-interval through the motion model
-  kLinearisedGaussian,  ///< one draw from the linearised propagated Gaussian
-};
-
-struct ScPhdSlamParams {
-  /// N: parents kept after pruning.
-  int particles = 1;
-  /// M: children predicted from every parent ("shotgun" factor).
-  int shotgun = 4;
-  /// GM-PHD map options. Defaults differ from PhdSlamParams in three places (set by the
-  /// constructor): birth_log_weight = ln 0.01, births from every measurement of the previous
-  /// step, and the missed-detection mass -sum pD w kept in the parent weight.
-  phd::MapParams map;
-  /// Q_n: regularising pose noise, once per step before propagation (reference notes 4.1).
-  Mat3 pose_regularisation = Vec3(1e-9, 1e-9, 1e-18).asDiagonal();
-  ScPredictionSampling prediction = ScPredictionSampling::kControlNoise;
-  /// Apply the missed-detection update and weight on scans without measurements.
-  bool empty_scan_update = true;
-
-  ScPhdSlamParams();
-  /// Paper defaults for a named scenario ("paper-synthetic", "generated", "victoria-park": the
-  /// merge threshold U = 10 there).
-  static ScPhdSlamParams ForScenario(const std::string& scenario);
-};
-
-/// Every parameter by name (flat object; matrices as arrays of their diagonal).
-nlohmann::json ToJson(const ScPhdSlamParams& params);
-
-/// Applies the keys of `overrides`. Throws std::invalid_argument naming the key when it is unknown
-/// or its value has the wrong type or is out of range.
-void ApplyJson(const nlohmann::json& overrides, ScPhdSlamParams& params);
 
 /// One pose sample of the parent process with its daughter map.
 struct ScParent {
@@ -110,34 +76,13 @@ double UpdateDaughterMap(phd::GmPhdMap& map, const Pose& pose,
 /// active and passive lists, highest log-weight first (stable on ties, active before passive).
 std::vector<phd::GaussianComponent> CardinalityMapEstimate(const phd::GmPhdMap& map);
 
-/// One parent under the two weightings of CompareParentWeights.
-struct ParentWeighting {
-  double single_cluster = 0.0;  ///< normalised weight, single-cluster likelihood
-  double rb_phd = 0.0;          ///< normalised weight, RB-PHD-SLAM weighting (46)
-  /// The log-likelihood increments themselves (unnormalised); log_rb_phd - log_single_cluster is
-  /// the parent's missed-detection mass sum pD w.
-  double log_single_cluster = 0.0;
-  double log_rb_phd = 0.0;
-};
-
-/// For the report's weighting figure: parents with the same predicted map at the poses
-/// `parent_poses` and equal prior weights, updated with one scan. Returns, per parent, its
-/// weight under the single-cluster likelihood, with the missed-detection term exp(-sum pD w),
-/// and under the RB-PHD-SLAM weighting (46), sum_j log(lambda_c + ...) alone.
-/// `params` supplies the gate; its two reference_* likelihood options are overridden.
-std::vector<ParentWeighting> CompareParentWeights(std::span<const Pose> parent_poses,
-                                                  const phd::GmPhdMap& predicted_map,
-                                                  std::span<const Measurement> measurements,
-                                                  const models::SensorModel& sensor,
-                                                  const phd::MapParams& params);
-
 class ScPhdSlam final : public OnlineEstimator {
  public:
   /// Throws std::invalid_argument when particles or shotgun is below 1, the context has no motion
   /// model, or a noise covariance is not symmetric positive semi-definite.
   ScPhdSlam(EstimatorContext context, ScPhdSlamParams params, std::uint64_t stream_seed);
 
-  StepOutput Step(const datasets::StepData& step) override;
+  StepOutput Step(const StepData& step) override;
   [[nodiscard]] MapEstimate Map() const override;
 
   /// The N parents after the last step, log-weights normalised.
@@ -149,7 +94,7 @@ class ScPhdSlam final : public OnlineEstimator {
 
  private:
   /// Predicts `pose` over the step's sub-intervals with the normals `xi` (3 + 2 per sub-interval).
-  [[nodiscard]] Pose SamplePose(const Pose& pose, const datasets::StepData& step,
+  [[nodiscard]] Pose SamplePose(const Pose& pose, const StepData& step,
                                 std::span<const double> xi) const;
 
   EstimatorContext context_;

@@ -13,11 +13,11 @@
 
 namespace phdslam::validation {
 
-const datasets::Scenario& RequireScenario(const EstimatorRequest& request) {
-  if (request.scenario == nullptr) {
+const filters::EstimatorContext& RequireContext(const EstimatorRequest& request) {
+  if (request.context == nullptr) {
     throw std::invalid_argument("estimator '" + request.name + "': no scenario given");
   }
-  return *request.scenario;
+  return *request.context;
 }
 
 void RequireSingleParticle(const EstimatorRequest& request) {
@@ -28,8 +28,12 @@ void RequireSingleParticle(const EstimatorRequest& request) {
   }
 }
 
-const std::string& RequestScenarioName(const EstimatorRequest& request) {
-  return request.scenario != nullptr ? request.scenario->name : request.scenario_name;
+void RequireKnownOrigins(const EstimatorRequest& request) {
+  if (request.scenario_name == "victoria-park") {
+    throw std::invalid_argument("estimator '" + request.name +
+                                "' needs the hidden landmark identities, which scenario '" +
+                                request.scenario_name + "' does not have");
+  }
 }
 
 namespace {
@@ -46,27 +50,9 @@ EstimatorEntry OdometryEntry() {
                           "estimator '" + request.name + "'");
   };
   e.make_online = [](const EstimatorRequest& request) -> std::unique_ptr<filters::OnlineEstimator> {
-    return std::make_unique<filters::OdometryEstimator>(
-        filters::EstimatorContext::FromScenario(RequireScenario(request)));
+    return std::make_unique<filters::OdometryEstimator>(RequireContext(request));
   };
   return e;
-}
-
-// Paper defaults for the request's scenario, its particle count, then the overrides.
-filters::PhdSlamParams ResolvePhdSlamParams(const EstimatorRequest& request) {
-  const std::string& scenario =
-      request.scenario != nullptr ? request.scenario->name : request.scenario_name;
-  filters::PhdSlamParams params = filters::PhdSlamParams::ForScenario(scenario, request.name);
-  try {
-    filters::ApplyJson(request.overrides, params);
-  } catch (const std::invalid_argument& e) {
-    throw std::invalid_argument("estimator '" + request.name + "': " + e.what());
-  }
-  if (request.particles < 1) {
-    throw std::invalid_argument("estimator '" + request.name + "': --particles must be >= 1");
-  }
-  params.particles = request.particles;
-  return params;
 }
 
 EstimatorEntry PhdSlamEntry(const filters::PhdSlamVariant& variant) {
@@ -74,35 +60,19 @@ EstimatorEntry PhdSlamEntry(const filters::PhdSlamVariant& variant) {
   e.name = variant.name;
   e.description = variant.description;
   e.resolved_parameters = [](const EstimatorRequest& request) {
-    return filters::ToJson(ResolvePhdSlamParams(request));
+    return filters::ToJson(ResolveParameters(request, filters::PhdSlamParamsTable()));
   };
   e.make_online = [](const EstimatorRequest& request) -> std::unique_ptr<filters::OnlineEstimator> {
-    return filters::MakePhdSlam(request.name,
-                                filters::EstimatorContext::FromScenario(RequireScenario(request)),
-                                ResolvePhdSlamParams(request), request.stream_seed);
+    return filters::MakePhdSlam(request.name, RequireContext(request),
+                                ResolveParameters(request, filters::PhdSlamParamsTable()),
+                                request.stream_seed);
   };
   return e;
 }
 
 oracle::OracleParams ResolveOracleParams(const EstimatorRequest& request) {
-  const std::string& scenario =
-      request.scenario != nullptr ? request.scenario->name : request.scenario_name;
-  if (scenario == "victoria-park") {
-    throw std::invalid_argument("estimator '" + request.name +
-                                "' needs the hidden landmark identities, which scenario '" +
-                                scenario + "' does not have");
-  }
-  oracle::OracleParams params;
-  try {
-    oracle::ApplyJson(request.overrides, params);
-  } catch (const std::invalid_argument& e) {
-    throw std::invalid_argument("estimator '" + request.name + "': " + e.what());
-  }
-  if (request.particles < 1) {
-    throw std::invalid_argument("estimator '" + request.name + "': --particles must be >= 1");
-  }
-  params.particles = request.particles;
-  return params;
+  RequireKnownOrigins(request);
+  return ResolveParameters(request, oracle::OracleParamsTable());
 }
 
 EstimatorEntry OracleEntry() {
@@ -111,30 +81,16 @@ EstimatorEntry OracleEntry() {
   e.description =
       "oracle RBPF: FastSLAM 2.0 with the known data association (reads the hidden origin "
       "labels) and the partitioned IPL proposal; synthetic scenarios only";
+  e.reads_truth = true;
   e.resolved_parameters = [](const EstimatorRequest& request) {
     return oracle::ToJson(ResolveOracleParams(request));
   };
-  e.make_online = [](const EstimatorRequest& request) -> std::unique_ptr<filters::OnlineEstimator> {
-    return oracle::OracleRbpf::FromScenario(RequireScenario(request), ResolveOracleParams(request),
-                                            request.stream_seed);
+  e.make_online_with_truth =
+      [](const EstimatorRequest& request,
+         const datasets::Scenario& with_truth) -> std::unique_ptr<filters::OnlineEstimator> {
+    return oracle::MakeOracle(with_truth, ResolveOracleParams(request), request.stream_seed);
   };
   return e;
-}
-
-filters::ScPhdSlamParams ResolveScPhdSlamParams(const EstimatorRequest& request) {
-  const std::string& scenario =
-      request.scenario != nullptr ? request.scenario->name : request.scenario_name;
-  filters::ScPhdSlamParams params = filters::ScPhdSlamParams::ForScenario(scenario);
-  try {
-    filters::ApplyJson(request.overrides, params);
-  } catch (const std::invalid_argument& e) {
-    throw std::invalid_argument("estimator '" + request.name + "': " + e.what());
-  }
-  if (request.particles < 1) {
-    throw std::invalid_argument("estimator '" + request.name + "': --particles must be >= 1");
-  }
-  params.particles = request.particles;
-  return params;
 }
 
 EstimatorEntry ScPhdSlamEntry() {
@@ -145,15 +101,20 @@ EstimatorEntry ScPhdSlamEntry() {
       "children with GM-PHD maps, single-cluster likelihood weights, pruned to the N best; "
       "expected a posteriori pose";
   e.resolved_parameters = [](const EstimatorRequest& r) {
-    return filters::ToJson(ResolveScPhdSlamParams(r));
+    return filters::ToJson(ResolveParameters(r, filters::ScPhdSlamParamsTable()));
   };
   e.make_online = [](const EstimatorRequest& r) -> std::unique_ptr<filters::OnlineEstimator> {
     return std::make_unique<filters::ScPhdSlam>(
-        filters::EstimatorContext::FromScenario(RequireScenario(r)), ResolveScPhdSlamParams(r),
-        r.stream_seed);
+        RequireContext(r), ResolveParameters(r, filters::ScPhdSlamParamsTable()), r.stream_seed);
   };
   return e;
 }
+
+}  // namespace
+
+EstimatorEntry OracleFastSlam1Entry();  // oracle_fastslam1.cc: the worked example
+
+namespace {
 
 std::vector<EstimatorEntry> BuildTable() {
   std::vector<EstimatorEntry> table = {OdometryEntry()};
@@ -162,6 +123,7 @@ std::vector<EstimatorEntry> BuildTable() {
   }
   table.push_back(ScPhdSlamEntry());
   table.push_back(OracleEntry());
+  table.push_back(OracleFastSlam1Entry());
   for (EstimatorEntry& e : MrptEstimators()) table.push_back(std::move(e));
   for (EstimatorEntry& e : CeresEstimators()) table.push_back(std::move(e));
   return table;

@@ -34,7 +34,7 @@ TEST(EstimatorTable, HasOdometryAndUniqueNames) {
     EXPECT_TRUE(names.insert(e.name).second) << e.name << " twice";
     EXPECT_FALSE(e.description.empty()) << e.name;
     EXPECT_TRUE(e.resolved_parameters) << e.name;
-    EXPECT_TRUE(e.batch ? static_cast<bool>(e.make_batch) : static_cast<bool>(e.make_online))
+    EXPECT_TRUE(e.HasFactory())
         << e.name;
   }
   EXPECT_EQ(FindEstimator("odometry").name, "odometry");
@@ -53,9 +53,10 @@ TEST(FindEstimator, UnknownNameListsTheKnownOnes) {
 
 TEST(OdometryEntry, DeadReckonsTheScenario) {
   const datasets::Scenario scenario = TwoStepScenario();
+  const filters::EstimatorContext context = scenario.PublicContext();
   EstimatorRequest request;
   request.name = "odometry";
-  request.scenario = &scenario;
+  request.context = &context;
   const EstimatorEntry& entry = FindEstimator("odometry");
   EXPECT_EQ(entry.resolved_parameters(request), nlohmann::json::object());
   auto estimator = entry.make_online(request);
@@ -71,9 +72,10 @@ TEST(OdometryEntry, DeadReckonsTheScenario) {
 
 TEST(OdometryEntry, RejectsParticlesAndParameters) {
   const datasets::Scenario scenario = TwoStepScenario();
+  const filters::EstimatorContext context = scenario.PublicContext();
   EstimatorRequest request;
   request.name = "odometry";
-  request.scenario = &scenario;
+  request.context = &context;
   request.particles = 10;
   const EstimatorEntry& entry = FindEstimator("odometry");
   EXPECT_THROW(entry.resolved_parameters(request), std::invalid_argument);
@@ -81,7 +83,7 @@ TEST(OdometryEntry, RejectsParticlesAndParameters) {
   request.overrides = {{"hypotheses", 3}};
   EXPECT_THROW(entry.resolved_parameters(request), std::invalid_argument);
   request.overrides = nlohmann::json::object();
-  request.scenario = nullptr;
+  request.context = nullptr;
   EXPECT_THROW(entry.make_online(request), std::invalid_argument);
 }
 
@@ -114,8 +116,9 @@ TEST(MrptEkfPostProcessed, RunsTheSameFilterAndReportsASubsetOfItsMap) {
   o.landmarks = 40;
   o.corridor_half_width = 60.0;
   const datasets::Scenario scenario = datasets::GenerateScenario(o, 3);
+  const filters::EstimatorContext context = scenario.PublicContext();
   EstimatorRequest request;
-  request.scenario = &scenario;
+  request.context = &context;
   request.name = "mrpt-ekf";
   auto raw = FindEstimator("mrpt-ekf").make_online(request);
   request.name = "mrpt-ekf-postprocessed";

@@ -43,7 +43,7 @@ void ValidatePlan(const MonteCarloPlan& plan) {
     if (!names.insert(s.entry.name).second) {
       throw std::invalid_argument("estimator '" + s.entry.name + "' is listed twice");
     }
-    if (s.entry.batch ? !s.entry.make_batch : !s.entry.make_online) {
+    if (!s.entry.HasFactory()) {
       throw std::invalid_argument("estimator '" + s.entry.name + "' has no factory");
     }
     const std::vector<int>& particles = ParticlesOf(plan, s);
@@ -271,11 +271,12 @@ MonteCarloReport RunMonteCarlo(const MonteCarloPlan& plan, const MonteCarloSetti
       const datasets::Scenario scenario = plan.scenario.make(job.seed);
       progress.RunStarted(scenario.steps.size());
       WriteTruthFiles(settings.out, scenario, std::to_string(i));
+      const filters::EstimatorContext context = scenario.PublicContext();
       EstimatorRequest request;
       request.name = selection.entry.name;
       request.particles = job.particles;
       request.stream_seed = identity.at("stream_seed").get<std::uint64_t>();
-      request.scenario = &scenario;
+      request.context = &context;
       request.scenario_name = plan.scenario.name;
       request.overrides = selection.overrides;
       const RunRecord record = RunEstimator(

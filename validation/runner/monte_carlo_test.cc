@@ -117,8 +117,10 @@ EstimatorEntry StillEntry(const std::uint64_t* failing_seed) {
   EstimatorEntry e;
   e.name = "still";
   e.description = "stands at the initial pose";
-  e.make_online = [failing_seed](const EstimatorRequest& r) {
-    return std::make_unique<StillEstimator>(*r.scenario, *failing_seed);
+  // It fails on one seed, so it reads the scenario's seed: a truth-reading entry.
+  e.reads_truth = true;
+  e.make_online_with_truth = [failing_seed](const EstimatorRequest&, const datasets::Scenario& s) {
+    return std::make_unique<StillEstimator>(s, *failing_seed);
   };
   e.resolved_parameters = [](const EstimatorRequest& r) {
     return ApplyOverrides(nlohmann::json{{"speed", 0.0}}, r.overrides, "still");
@@ -130,8 +132,8 @@ EstimatorEntry StillEntry(const std::uint64_t* failing_seed) {
 // on threads or job order would show in the results.
 class RandomWalkEstimator final : public filters::OnlineEstimator {
  public:
-  RandomWalkEstimator(const datasets::Scenario& s, std::uint64_t stream_seed, int particles)
-      : pose_(s.initial_pose), stream_(stream_seed), particles_(particles) {}
+  RandomWalkEstimator(const filters::EstimatorContext& c, std::uint64_t stream_seed, int particles)
+      : pose_(c.initial_pose), stream_(stream_seed), particles_(particles) {}
   filters::StepOutput Step(const datasets::StepData&) override {
     pose_ += Pose(stream_.Normal(), stream_.Normal(), 0.01 * stream_.Normal());
     filters::StepOutput out;
@@ -159,7 +161,7 @@ EstimatorEntry RandomWalkEntry() {
   e.name = "walk";
   e.description = "random walk from the estimator's stream";
   e.make_online = [](const EstimatorRequest& r) {
-    return std::make_unique<RandomWalkEstimator>(*r.scenario, r.stream_seed, r.particles);
+    return std::make_unique<RandomWalkEstimator>(*r.context, r.stream_seed, r.particles);
   };
   e.resolved_parameters = [](const EstimatorRequest&) { return nlohmann::json::object(); };
   return e;

@@ -8,8 +8,10 @@
 #include "src/core/random.h"
 #include "src/filters/estimator.h"
 #include "src/filters/pose_prediction.h"
+#include "src/filters/resampling.h"
 #include "src/filters/sc_phd_slam.h"
 #include "validation/runner/results_io.h"
+#include "validation/runner/scenario_defaults.h"
 
 namespace phdslam::validation {
 namespace {
@@ -23,6 +25,30 @@ double EffectiveSampleSize(const std::vector<double>& w) {
 nlohmann::json PoseJson(const Pose& p) { return {p.x(), p.y(), p.z()}; }
 
 }  // namespace
+
+std::vector<ParentWeighting> CompareParentWeights(std::span<const Pose> parent_poses,
+                                                  const phd::GmPhdMap& predicted_map,
+                                                  std::span<const Measurement> measurements,
+                                                  const models::SensorModel& sensor,
+                                                  const phd::MapParams& params) {
+  phd::MapParams single_cluster = params;
+  single_cluster.reference_omit_missed_detection_mass = false;
+  phd::MapParams rb_phd = params;
+  rb_phd.reference_omit_missed_detection_mass = true;
+  std::vector<double> log_sc;
+  std::vector<double> log_rb;
+  for (const Pose& x : parent_poses) {
+    phd::GmPhdMap a = predicted_map;
+    log_sc.push_back(filters::UpdateDaughterMap(a, x, measurements, sensor, single_cluster, true, nullptr));
+    phd::GmPhdMap b = predicted_map;
+    log_rb.push_back(filters::UpdateDaughterMap(b, x, measurements, sensor, rb_phd, true, nullptr));
+  }
+  const std::vector<double> w_sc = filters::NormalisedWeights(log_sc);
+  const std::vector<double> w_rb = filters::NormalisedWeights(log_rb);
+  std::vector<ParentWeighting> out(w_sc.size());
+  for (std::size_t i = 0; i < w_sc.size(); ++i) out[i] = {w_sc[i], w_rb[i], log_sc[i], log_rb[i]};
+  return out;
+}
 
 ParentWeights CompareParentWeightingAtStep(const datasets::Scenario& scenario,
                                            const ParentWeightsSettings& settings) {
@@ -45,8 +71,9 @@ ParentWeights CompareParentWeightingAtStep(const datasets::Scenario& scenario,
     throw std::invalid_argument("parent weights: step " + std::to_string(k) +
                                 " has no measurements; choose another --step");
   }
-  const filters::EstimatorContext context = filters::EstimatorContext::FromScenario(scenario);
-  filters::ScPhdSlamParams params = filters::ScPhdSlamParams::ForScenario(scenario.name);
+  const filters::EstimatorContext context = scenario.PublicContext();
+  filters::ScPhdSlamParams params;
+  filters::ApplyJson(ScenarioParameterDefaults(scenario.name, "scphd"), params);
   params.particles = 1;
   filters::ScPhdSlam filter(context, params, DeriveSeed(settings.stream_seed, 1));
   for (std::size_t j = 0; j < k; ++j) filter.Step(scenario.steps[j].data);
@@ -72,7 +99,7 @@ ParentWeights CompareParentWeightingAtStep(const datasets::Scenario& scenario,
     const Vec3 xi(rng.Normal(), rng.Normal(), rng.Normal());
     w.poses.push_back(w.predicted_mean + root * xi);
   }
-  for (const filters::ParentWeighting& p : filters::CompareParentWeights(
+  for (const ParentWeighting& p : CompareParentWeights(
            w.poses, parent.map, scan.measurements, context.sensor, params.map)) {
     w.single_cluster.push_back(p.single_cluster);
     w.rb_phd.push_back(p.rb_phd);

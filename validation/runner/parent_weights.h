@@ -1,19 +1,44 @@
 // The single-cluster vs RB-PHD-SLAM parent weighting figure (Lee, Clark & Salvi 2012, Fig. 4):
 // one predicted state, many parent poses drawn from it, one scan, and the normalised parent
-// weights under both likelihoods (filters::CompareParentWeights).
+// weights under both likelihoods (CompareParentWeights).
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "datasets/scenario.h"
 #include "src/core/types.h"
+#include "src/models/sensor_model.h"
+#include "src/phd/gm_phd_map.h"
+#include "src/phd/map_params.h"
 
 namespace phdslam::validation {
+
+/// One parent under the two weightings of CompareParentWeights.
+struct ParentWeighting {
+  double single_cluster = 0.0;  ///< normalised weight, single-cluster likelihood
+  double rb_phd = 0.0;          ///< normalised weight, RB-PHD-SLAM weighting (46)
+  /// The log-likelihood increments themselves (unnormalised); log_rb_phd - log_single_cluster is
+  /// the parent's missed-detection mass sum pD w.
+  double log_single_cluster = 0.0;
+  double log_rb_phd = 0.0;
+};
+
+/// For the report's weighting figure: parents with the same predicted map at the poses
+/// `parent_poses` and equal prior weights, updated with one scan. Returns, per parent, its
+/// weight under the single-cluster likelihood, with the missed-detection term exp(-sum pD w),
+/// and under the RB-PHD-SLAM weighting (46), sum_j log(lambda_c + ...) alone.
+/// `params` supplies the gate; its two reference_* likelihood options are overridden.
+std::vector<ParentWeighting> CompareParentWeights(std::span<const Pose> parent_poses,
+                                                  const phd::GmPhdMap& predicted_map,
+                                                  std::span<const Measurement> measurements,
+                                                  const models::SensorModel& sensor,
+                                                  const phd::MapParams& params);
 
 struct ParentWeightsSettings {
   std::size_t step = 100;  ///< the scan whose update is compared (0-based step index)

@@ -6,6 +6,7 @@
 #include "reference/ceres/filter_association.h"
 #include "reference/ceres/smoother_params_json.h"
 #include "src/filters/phd_slam_family.h"
+#include "src/filters/phd_slam_params_json.h"
 #include "validation/runner/estimator_registry.h"
 
 namespace phdslam::validation {
@@ -21,11 +22,7 @@ reference::SmootherOptions ResolveSmoother(const EstimatorRequest& r,
     throw std::invalid_argument("estimator '" + r.name + "': " + e.what());
   }
   o.association = mode;
-  if (mode == reference::AssociationMode::kKnown && RequestScenarioName(r) == "victoria-park") {
-    throw std::invalid_argument("estimator '" + r.name +
-                                "' needs the hidden landmark identities, which scenario "
-                                "'victoria-park' does not have");
-  }
+  if (mode == reference::AssociationMode::kKnown) RequireKnownOrigins(r);
   return o;
 }
 
@@ -35,21 +32,24 @@ EstimatorEntry SmootherEntry(const std::string& name, reference::AssociationMode
   e.name = name;
   e.description = description;
   e.batch = true;
+  e.reads_truth = mode == reference::AssociationMode::kKnown;
   e.resolved_parameters = [mode](const EstimatorRequest& r) {
     return reference::ToJson(ResolveSmoother(r, mode));
   };
-  e.make_batch = [mode](const EstimatorRequest& r) -> std::unique_ptr<filters::BatchEstimator> {
+  e.make_batch = [mode](const EstimatorRequest& r) -> std::unique_ptr<datasets::BatchEstimator> {
     reference::SmootherOptions o = ResolveSmoother(r, mode);
     if (mode != reference::AssociationMode::kFilter) {
       return std::make_unique<reference::BatchSmoother>(std::move(o));
     }
     // The association of a single-particle PHD-SLAM 3.0 run with the paper's parameters, drawn
     // from this run's own stream.
-    const datasets::Scenario& scenario = RequireScenario(r);
-    filters::PhdSlamParams params = filters::PhdSlamParams::ForScenario(scenario.name);
-    params.particles = 1;
+    EstimatorRequest phd3 = r;
+    phd3.name = "phd3";
+    phd3.overrides = nlohmann::json::object();
+    phd3.particles = 1;
+    const filters::PhdSlamParams params = ResolveParameters(phd3, filters::PhdSlamParamsTable());
     return std::make_unique<reference::FilterThenSmooth>(
-        filters::MakePhdSlam("phd3", filters::EstimatorContext::FromScenario(scenario), params,
+        filters::MakePhdSlam("phd3", RequireContext(r), params,
                              r.stream_seed),
         std::move(o));
   };

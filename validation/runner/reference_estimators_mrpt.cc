@@ -36,7 +36,7 @@ EstimatorEntry MrptEkfEntry() {
   };
   e.make_online = [](const EstimatorRequest& r) -> std::unique_ptr<filters::OnlineEstimator> {
     return std::make_unique<reference::MrptEkfSlam>(
-        filters::EstimatorContext::FromScenario(RequireScenario(r)), ResolveMrptEkf(r));
+        RequireContext(r), ResolveMrptEkf(r));
   };
   return e;
 }
@@ -63,7 +63,7 @@ EstimatorEntry MrptEkfPostProcessedEntry() {
       "times (not part of MRPT's filter; trajectory identical to mrpt-ekf)";
   e.make_online = [](const EstimatorRequest& r) -> std::unique_ptr<filters::OnlineEstimator> {
     return std::make_unique<PostProcessedMrptEkf>(std::make_unique<reference::MrptEkfSlam>(
-        filters::EstimatorContext::FromScenario(RequireScenario(r)), ResolveMrptEkf(r)));
+        RequireContext(r), ResolveMrptEkf(r)));
   };
   return e;
 }
@@ -99,7 +99,7 @@ EstimatorEntry FastSlamEntry(const std::string& name, reference::FastSlamProposa
   e.make_online =
       [proposal](const EstimatorRequest& r) -> std::unique_ptr<filters::OnlineEstimator> {
     return std::make_unique<reference::FastSlam>(
-        filters::EstimatorContext::FromScenario(RequireScenario(r)), r.particles, r.stream_seed,
+        RequireContext(r), r.particles, r.stream_seed,
         ResolveFastSlam(r, proposal));
   };
   return e;

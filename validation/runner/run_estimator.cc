@@ -18,10 +18,15 @@ void RunOnline(const EstimatorEntry& entry, const EstimatorRequest& request,
                const datasets::Scenario& scenario,
                const std::function<void(std::size_t)>& on_steps_done, bool record_particles,
                RunRecord& record) {
-  if (!entry.make_online) {
+  if (!entry.HasFactory()) {
     throw std::logic_error("estimator '" + entry.name + "' has no online factory");
   }
-  std::unique_ptr<filters::OnlineEstimator> estimator = entry.make_online(request);
+  std::unique_ptr<filters::OnlineEstimator> estimator =
+      entry.reads_truth ? entry.make_online_with_truth(request, scenario)
+                        : entry.make_online(request);
+  if (!estimator) {
+    throw std::logic_error("estimator '" + entry.name + "' has no online factory");
+  }
   const std::size_t n = scenario.steps.size();
   record.poses.reserve(n);
   record.pose_covs.reserve(n);
@@ -54,9 +59,11 @@ void RunBatch(const EstimatorEntry& entry, const EstimatorRequest& request,
   if (!entry.make_batch) {
     throw std::logic_error("estimator '" + entry.name + "' has no batch factory");
   }
-  std::unique_ptr<filters::BatchEstimator> estimator = entry.make_batch(request);
+  std::unique_ptr<datasets::BatchEstimator> estimator = entry.make_batch(request);
   const Clock::time_point start = Clock::now();
-  filters::BatchResult result = estimator->Solve(scenario);
+  // The hidden origin labels reach only a batch estimator that declares it reads them.
+  datasets::BatchResult result =
+      entry.reads_truth ? estimator->Solve(scenario) : estimator->Solve(WithoutTruth(scenario));
   record.total_ms = MillisecondsSince(start);
   if (result.poses.size() != scenario.steps.size()) {
     throw std::runtime_error("estimator '" + entry.name + "' returned " +
@@ -78,6 +85,13 @@ void RunBatch(const EstimatorEntry& entry, const EstimatorRequest& request,
 }
 
 }  // namespace
+
+datasets::Scenario WithoutTruth(const datasets::Scenario& scenario) {
+  datasets::Scenario public_part = scenario;
+  for (datasets::ScenarioStep& step : public_part.steps) step.origin.clear();
+  public_part.truth = {};
+  return public_part;
+}
 
 RunRecord RunEstimator(const EstimatorEntry& entry, const EstimatorRequest& request,
                        const datasets::Scenario& scenario,

@@ -18,6 +18,9 @@ namespace phdslam::validation {
 /// and once after a batch solve with n = the number of steps (progress reporting). With
 /// `record_particles`, an online estimator's ParticleStates() are kept after every step (outside
 /// the timed Step call); the record keeps none when the estimator exposes none.
+/// A copy of `scenario` without its hidden parts: no origin labels and no ground truth.
+datasets::Scenario WithoutTruth(const datasets::Scenario& scenario);
+
 RunRecord RunEstimator(const EstimatorEntry& entry, const EstimatorRequest& request,
                        const datasets::Scenario& scenario,
                        const std::function<void(std::size_t)>& on_steps_done = {},

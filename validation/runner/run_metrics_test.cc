@@ -268,11 +268,11 @@ TEST(RunMetricsJson, RoundTripsTheSufficientStatistics) {
 }
 
 // A batch estimator returning fixed poses, for RunEstimator.
-class FixedBatch final : public filters::BatchEstimator {
+class FixedBatch final : public datasets::BatchEstimator {
  public:
   explicit FixedBatch(std::size_t poses) : poses_(poses) {}
-  filters::BatchResult Solve(const datasets::Scenario&) override {
-    filters::BatchResult r;
+  datasets::BatchResult Solve(const datasets::Scenario&) override {
+    datasets::BatchResult r;
     r.poses.assign(poses_, Pose(1.0, 2.0, 3.0));
     r.map.means = {Landmark(5.0, 5.0)};
     r.iterations = 17;
@@ -291,7 +291,6 @@ TEST(RunEstimator, RecordsBatchResultsAndChecksTheirLength) {
   std::size_t poses = 3;
   entry.make_batch = [&](const EstimatorRequest&) { return std::make_unique<FixedBatch>(poses); };
   EstimatorRequest request;
-  request.scenario = &s;
   std::size_t reported = 0;
   const RunRecord r = RunEstimator(entry, request, s, [&](std::size_t n) { reported += n; });
   EXPECT_EQ(reported, 3u);
@@ -376,7 +375,7 @@ TEST(RunEstimator, RecordsParticlesOnlyWhenAsked) {
   EstimatorEntry entry;
   entry.name = "two";
   entry.make_online = [](const EstimatorRequest&) { return std::make_unique<TwoParticles>(); };
-  const EstimatorRequest request{"two", 2, 0, &s, {}};
+  const EstimatorRequest request{"two", 2, 0, s.name, {}, nullptr};
   EXPECT_TRUE(RunEstimator(entry, request, s).particle_states.empty());
   const RunRecord r = RunEstimator(entry, request, s, {}, true);
   ASSERT_EQ(r.particle_states.size(), 3u);
@@ -384,15 +383,17 @@ TEST(RunEstimator, RecordsParticlesOnlyWhenAsked) {
   EXPECT_EQ(r.particle_states[2][1].first(0), -3.0);
   EXPECT_EQ(r.particle_states[2][1].second, -1.0);
   // An estimator without particles records none.
-  EXPECT_TRUE(RunEstimator(FindEstimator("odometry"), EstimatorRequest{"odometry", 1, 0, &s, {}}, s,
-                           {}, true)
+  const filters::EstimatorContext context = s.PublicContext();
+  EXPECT_TRUE(RunEstimator(FindEstimator("odometry"),
+                           EstimatorRequest{"odometry", 1, 0, s.name, {}, &context}, s, {}, true)
                   .particle_states.empty());
 }
 
 TEST(RunEstimator, StepsAnOnlineEstimatorAndTimesEachStep) {
   const datasets::Scenario s = TruthScenario();
-  const RunRecord r =
-      RunEstimator(FindEstimator("odometry"), EstimatorRequest{"odometry", 1, 0, &s, {}}, s);
+  const filters::EstimatorContext context = s.PublicContext();
+  const RunRecord r = RunEstimator(FindEstimator("odometry"),
+                                   EstimatorRequest{"odometry", 1, 0, s.name, {}, &context}, s);
   ASSERT_EQ(r.poses.size(), 3u);
   EXPECT_NEAR(r.poses[2](0), 2.0, 1e-12);  // 1 m/s straight for two steps
   EXPECT_EQ(r.diagnostics.size(), 3u);

@@ -16,6 +16,8 @@
 #include "src/core/angles.h"
 #include "src/core/log_sum_exp.h"
 #include "src/models/velocity_motion_model.h"
+#include "validation/runner/parent_weights.h"
+#include "validation/runner/scenario_defaults.h"
 
 namespace phdslam::filters {
 namespace {
@@ -120,7 +122,9 @@ TEST(ScPhdSlamParams, DefaultsAreThePapers) {
   EXPECT_FALSE(p.map.reference_omit_missed_detection_mass);
   EXPECT_EQ(p.pose_regularisation, Mat3(Vec3(1e-9, 1e-9, 1e-18).asDiagonal()));
   EXPECT_DOUBLE_EQ(p.map.merge_threshold, 50.0);
-  EXPECT_DOUBLE_EQ(ScPhdSlamParams::ForScenario("victoria-park").map.merge_threshold, 10.0);
+  ScPhdSlamParams vp;
+  ApplyJson(validation::ScenarioParameterDefaults("victoria-park", "scphd"), vp);
+  EXPECT_DOUBLE_EQ(vp.map.merge_threshold, 10.0);
 }
 
 TEST(ScPhdSlamParams, JsonRoundTripAndErrors) {
@@ -165,16 +169,16 @@ TEST(ScPhdSlam, RejectsBadConfiguration) {
   const datasets::Scenario s = SmallScenario(1, 5);
   ScPhdSlamParams p;
   p.shotgun = 0;
-  EXPECT_THROW(ScPhdSlam(EstimatorContext::FromScenario(s), p, 1), std::invalid_argument);
+  EXPECT_THROW(ScPhdSlam(s.PublicContext(), p, 1), std::invalid_argument);
   p = ScPhdSlamParams();
-  EstimatorContext c = EstimatorContext::FromScenario(s);
+  EstimatorContext c = s.PublicContext();
   c.control_noise_cov(0, 0) = -1.0;
   EXPECT_THROW(ScPhdSlam(c, p, 1), std::invalid_argument);
-  c = EstimatorContext::FromScenario(s);
+  c = s.PublicContext();
   c.motion = nullptr;
   EXPECT_THROW(ScPhdSlam(c, p, 1), std::invalid_argument);
-  ScPhdSlam f(EstimatorContext::FromScenario(s), p, 1);
-  datasets::StepData bad;
+  ScPhdSlam f(s.PublicContext(), p, 1);
+  StepData bad;
   bad.times = {0.0, 1.0};
   EXPECT_THROW(f.Step(bad), std::invalid_argument);
 }
@@ -228,7 +232,7 @@ TEST(CompareParentWeights, DiffersFromRbPhdByTheMissedDetectionTerm) {
   const std::vector<Pose> poses = {Pose(0.5, -0.2, 0.05), Pose(0.0, 0.0, std::numbers::pi),
                                    Pose(0.3, 0.1, 0.04)};
   const std::vector<Measurement> z = {Measurement(19.6, 0.06), Measurement(20.9, 0.118)};
-  const auto w = CompareParentWeights(poses, map, z, sensor, phd::MapParams{});
+  const auto w = validation::CompareParentWeights(poses, map, z, sensor, phd::MapParams{});
   ASSERT_EQ(w.size(), 3u);
   std::vector<double> sc;
   std::vector<double> rb;
@@ -288,7 +292,7 @@ TEST(CardinalityMapEstimate, TakesTheRoundedExpectedNumberOfBestComponents) {
 // run with the same births, update and reduction.
 TEST(ScPhdSlam, OneParentOneChildIsDeadReckoningPlusAGmPhdMap) {
   const datasets::Scenario s = SmallScenario(4);
-  EstimatorContext context = EstimatorContext::FromScenario(s);
+  EstimatorContext context = s.PublicContext();
   context.control_noise_cov.setZero();
   ScPhdSlamParams params;
   params.shotgun = 1;
@@ -338,7 +342,7 @@ TEST(ScPhdSlam, OneParentOneChildWithNoiseRunsTheMapAtItsSampledPoses) {
   const datasets::Scenario s = SmallScenario(5, 30);
   ScPhdSlamParams params;
   params.shotgun = 1;
-  ScPhdSlam filter(EstimatorContext::FromScenario(s), params, 21);
+  ScPhdSlam filter(s.PublicContext(), params, 21);
   const models::VelocityMotionModel motion;
   Pose dead_reckoning = s.initial_pose;
   GmPhdMap map;
@@ -368,10 +372,10 @@ TEST(ScPhdSlam, ChildWeightsAreSingleClusterLikelihoodsAndPruningKeepsTheBest) {
   ScPhdSlamParams params;
   params.particles = 3;
   params.shotgun = 4;
-  ScPhdSlam filter(EstimatorContext::FromScenario(s), params, 33);
+  ScPhdSlam filter(s.PublicContext(), params, 33);
   int distinct_parents_seen = 0;
   for (std::size_t k = 0; k < s.steps.size(); ++k) {
-    const datasets::StepData& st = s.steps[k].data;
+    const StepData& st = s.steps[k].data;
     std::vector<ScParent> before = filter.parents();
     for (ScParent& p : before) {
       if (!p.births.empty()) p.map.AddBirths(p.pose, p.births, s.sensor.noise_cov, params.map);
@@ -418,7 +422,7 @@ TEST(ScPhdSlam, PoseIsTheWeightedMeanAndMapComesFromTheBestParent) {
   const datasets::Scenario s = SmallScenario(7, 30);
   ScPhdSlamParams params;
   params.particles = 5;
-  ScPhdSlam filter(EstimatorContext::FromScenario(s), params, 44);
+  ScPhdSlam filter(s.PublicContext(), params, 44);
   double min_ess = 5.0;
   for (const datasets::ScenarioStep& st : s.steps) {
     const StepOutput out = filter.Step(st.data);
@@ -460,7 +464,7 @@ TEST(ScPhdSlam, SameSeedSameResultsOtherSeedOtherResults) {
   ScPhdSlamParams params;
   params.particles = 4;
   const auto run = [&](std::uint64_t seed) {
-    ScPhdSlam f(EstimatorContext::FromScenario(s), params, seed);
+    ScPhdSlam f(s.PublicContext(), params, seed);
     std::vector<Pose> poses;
     for (const auto& st : s.steps) poses.push_back(f.Step(st.data).pose);
     return std::make_pair(poses, f.Map());
@@ -485,7 +489,7 @@ TEST(ScPhdSlam, ChildSpreadMatchesThePropagatedCovariance) {
   const auto j = motion.Jacobians(x0, u, 1.0);
   const Mat3 expected = j.fx * qn * j.fx.transpose() + j.fu * qu * j.fu.transpose();
   const Pose expected_mean = motion.Predict(x0, u, 1.0);
-  datasets::StepData st;
+  StepData st;
   st.times = {0.0, 1.0};
   st.controls = {u};
   for (ScPredictionSampling mode :

@@ -33,7 +33,7 @@ struct Trace {
 
 Trace RunFilter(const std::string& variant, PhdSlamParams params, std::uint64_t seed) {
   const datasets::Scenario& s = PaperScenario();
-  auto filter = MakePhdSlam(variant, EstimatorContext::FromScenario(s), params, seed);
+  auto filter = MakePhdSlam(variant, s.PublicContext(), params, seed);
   Trace t;
   for (const auto& step : s.steps) {
     const StepOutput out = filter->Step(step.data);
@@ -57,7 +57,7 @@ void ExpectIdentical(const Trace& a, const Trace& b) {
 }
 
 PhdSlamParams Params(int particles) {
-  PhdSlamParams p = PhdSlamParams::ForScenario("paper-synthetic");
+  PhdSlamParams p;
   p.particles = particles;
   return p;
 }
@@ -115,7 +115,7 @@ TEST(RbPhdSlam, WithoutResamplingWeightsStayUnnormalised) {
   PhdSlamParams p = Params(5);
   p.resampling = false;
   const datasets::Scenario& s = PaperScenario();
-  auto filter = MakePhdSlam("phd3", EstimatorContext::FromScenario(s), p, 3);
+  auto filter = MakePhdSlam("phd3", s.PublicContext(), p, 3);
   for (int k = 0; k < 20; ++k) EXPECT_FALSE(filter->Step(s.steps[k].data).diag.resampled);
   std::vector<double> log_w;
   for (const auto& particle : filter->particles()) log_w.push_back(particle.log_weight);

@@ -186,7 +186,7 @@ TEST(JointIplDensity, UsesTheBestAssignmentAndProposesThePoseMarginal) {
                                       models::PredictMeasurement(truth, landmarks[0]),
                                       models::PredictMeasurement(truth, landmarks[2])};
   const PhdSlamParams params;
-  const ProposalInput input{mu0, PriorCov(), &map, z, &sensor};
+  const ProposalInput input{mu0, PriorCov(), map.active(), z, &sensor, {}};
   const ProposalOutput out = JointIplDensity(params).Build(input);
   ASSERT_EQ(out.mixture.size(), 1u);
   EXPECT_EQ(out.mixture.log_weights[0], 0.0);
@@ -234,7 +234,7 @@ TEST(JointIplDensity, InnovationGuardRejectsAnInconsistentBestAssociation) {
   EXPECT_GT(nu.dot(s.inverse() * nu), ChiSquareUpperQuantileEvenDof(6, 1e-6));
 
   const PhdSlamParams params;
-  const ProposalInput input{mu0, sigma0, &map, z, &sensor};
+  const ProposalInput input{mu0, sigma0, map.active(), z, &sensor, {}};
   const ProposalOutput guarded = JointIplDensity(params).Build(input);
   EXPECT_EQ(guarded.best_association, (std::vector<int>{0, 1, 2}));
   ASSERT_EQ(guarded.mixture.size(), 1u);
@@ -251,14 +251,14 @@ TEST(JointIplDensity, WithoutAnAssociationTheProposalIsThePrior) {
   phd::GmPhdMap map;
   const std::vector<Measurement> z = {Measurement(50.0, 0.2)};
   // Empty map.
-  ProposalOutput out = JointIplDensity(params).Build({PriorMean(), PriorCov(), &map, z, &sensor});
+  ProposalOutput out = JointIplDensity(params).Build({PriorMean(), PriorCov(), map.active(), z, &sensor, {}});
   ASSERT_EQ(out.mixture.size(), 1u);
   EXPECT_EQ(out.mixture.means[0], PriorMean());
   EXPECT_EQ(out.mixture.covs[0], PriorCov());
   EXPECT_EQ(out.best_association, std::vector<int>{-1});
   // A component that gates nothing.
   map.SetActive({{Landmark(340.0, 410.0), Mat2::Identity() * 0.2, 0.0}});
-  out = JointIplDensity(params).Build({PriorMean(), PriorCov(), &map, z, &sensor});
+  out = JointIplDensity(params).Build({PriorMean(), PriorCov(), map.active(), z, &sensor, {}});
   ASSERT_EQ(out.mixture.size(), 1u);
   EXPECT_EQ(out.mixture.means[0], PriorMean());
   EXPECT_EQ(out.mixture.covs[0], PriorCov());
@@ -312,7 +312,7 @@ TEST(MergedEkfDensity, ASingleDominantPairGivesTheEkfPosterior) {
   const Pose mu0 = PriorMean();
   const Mat3 sigma0 = PriorCov();
   const ProposalOutput out =
-      MergedEkfDensity(PhdSlamParams{}).Build({mu0, sigma0, &map, zs, &sensor});
+      MergedEkfDensity(PhdSlamParams{}).Build({mu0, sigma0, map.active(), zs, &sensor, {}});
   ASSERT_EQ(out.mixture.size(), 1u);
   EXPECT_EQ(out.best_association, std::vector<int>{0});
 
@@ -340,7 +340,7 @@ TEST(MergedEkfDensity, WithoutAGatedPairTheProposalIsThePrior) {
                  {Landmark(250.0, 400.0), Mat2::Identity() * 0.3, 0.0}});  // behind: pD = 0
   const std::vector<Measurement> zs = {Measurement(90.0, -0.8), Measurement(60.0, 3.1)};
   const ProposalOutput out =
-      MergedEkfDensity(PhdSlamParams{}).Build({PriorMean(), PriorCov(), &map, zs, &sensor});
+      MergedEkfDensity(PhdSlamParams{}).Build({PriorMean(), PriorCov(), map.active(), zs, &sensor, {}});
   ASSERT_EQ(out.mixture.size(), 1u);
   EXPECT_EQ(out.mixture.log_weights[0], 0.0);
   EXPECT_EQ(out.mixture.means[0], PriorMean());
@@ -366,7 +366,7 @@ TEST(MergedEkfDensity, MergesThePairConditionalsWithTheDocumentedWeights) {
       models::PredictMeasurement(mu0, comps[2].mean) + Measurement(0.6, -0.004),
       Measurement(130.0, 1.3)};
   const ProposalOutput out =
-      MergedEkfDensity(PhdSlamParams{}).Build({mu0, sigma0, &map, zs, &sensor});
+      MergedEkfDensity(PhdSlamParams{}).Build({mu0, sigma0, map.active(), zs, &sensor, {}});
   ASSERT_EQ(out.mixture.size(), 1u);
 
   const double pd = sensor.pd_max;
@@ -438,9 +438,9 @@ TEST_P(PaperScenarioRun, TracksTheTruthWithTenParticles) {
   datasets::SyntheticOptions options;
   options.steps = 300;
   const datasets::Scenario scenario = datasets::MakePaperSyntheticScenario(env, 3, options);
-  PhdSlamParams params = PhdSlamParams::ForScenario("paper-synthetic");
+  PhdSlamParams params;
   params.particles = 10;
-  const auto filter = MakePhdSlam(GetParam(), EstimatorContext::FromScenario(scenario), params,
+  const auto filter = MakePhdSlam(GetParam(), scenario.PublicContext(), params,
                                   DeriveSeed(HashName(GetParam()), 3));
   double max_error = 0.0;
   double sum_squared = 0.0;

@@ -1,0 +1,111 @@
+#include "src/core/parameter_table.h"
+
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+#include <string>
+
+namespace phdslam::params {
+namespace {
+
+enum class Mode { kFast, kExact };
+
+struct Inner {
+  double gate = 9.0;
+  bool strict = false;
+};
+
+struct Settings {
+  int count = 3;
+  double rate = 0.5;
+  Mode mode = Mode::kFast;
+  Eigen::Matrix3d noise = Eigen::Vector3d(1.0, 2.0, 3.0).asDiagonal();
+  double threshold = 1.0;
+  Inner inner;
+};
+
+const ParameterTable<Inner>& InnerTable() {
+  static const ParameterTable<Inner> table({
+      NumberField<Inner>("gate", [](auto& p) -> auto& { return p.gate; }, Above(0.0)),
+      BoolField<Inner>("strict", [](auto& p) -> auto& { return p.strict; }),
+  });
+  return table;
+}
+
+const ParameterTable<Settings>& Table() {
+  using S = Settings;
+  static const ParameterTable<S> table(Rows<S>({
+      {IntField<S>("count", [](auto& p) -> auto& { return p.count; }, AtLeast(1)),
+       NumberField<S>("rate", [](auto& p) -> auto& { return p.rate; }, Probability()),
+       EnumField<S, Mode>("mode", [](auto& p) -> auto& { return p.mode; },
+                          {{Mode::kFast, "fast"}, {Mode::kExact, "exact"}}),
+       DiagonalField<S, 3>("noise", [](auto& p) -> auto& { return p.noise; }, AtLeast(0.0)),
+       NumberOrAutomaticField<S>("threshold", [](auto& p) -> auto& { return p.threshold; },
+                                 "auto")},
+      Embed<S>(InnerTable(), [](auto& p) -> auto& { return p.inner; }),
+  }));
+  return table;
+}
+
+std::string ErrorOf(const nlohmann::json& overrides) {
+  Settings s;
+  try {
+    Table().Apply(overrides, s);
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(ParameterTable, WritesEveryRowByKey) {
+  const nlohmann::json j = Table().ToJson(Settings{});
+  EXPECT_EQ(j, nlohmann::json::parse(R"({"count": 3, "rate": 0.5, "mode": "fast",
+      "noise": [1.0, 2.0, 3.0], "threshold": 1.0, "gate": 9.0, "strict": false})"));
+}
+
+TEST(ParameterTable, AppliesOverridesAndRoundTrips) {
+  Settings s;
+  Table().Apply(nlohmann::json::parse(R"({"count": 7, "rate": 1, "mode": "exact",
+      "noise": [0, 0.5, 4], "threshold": "auto", "gate": 2.5, "strict": true})"),
+                s);
+  EXPECT_EQ(s.count, 7);
+  EXPECT_EQ(s.rate, 1.0);
+  EXPECT_EQ(s.mode, Mode::kExact);
+  EXPECT_EQ(s.noise, Eigen::Matrix3d(Eigen::Vector3d(0.0, 0.5, 4.0).asDiagonal()));
+  EXPECT_TRUE(std::isnan(s.threshold));
+  EXPECT_EQ(s.inner.gate, 2.5);
+  EXPECT_TRUE(s.inner.strict);
+  Settings t;
+  Table().Apply(Table().ToJson(s), t);
+  EXPECT_EQ(Table().ToJson(t), Table().ToJson(s));
+  EXPECT_EQ(Table().ToJson(s)["threshold"], "auto");
+}
+
+TEST(ParameterTable, ErrorsNameTheKeyAndTheRule) {
+  EXPECT_EQ(ErrorOf({{"cuont", 1}}),
+            "unknown parameter 'cuont' (known: count, rate, mode, noise, threshold, gate, "
+            "strict)");
+  EXPECT_EQ(ErrorOf({{"count", 0}}), "parameter 'count': must be >= 1, got 0");
+  EXPECT_EQ(ErrorOf({{"count", 2.5}}), "parameter 'count': expected an integer, got 2.5");
+  EXPECT_EQ(ErrorOf({{"count", "3"}}), "parameter 'count': expected an integer, got \"3\"");
+  EXPECT_EQ(ErrorOf({{"rate", 1.5}}), "parameter 'rate': must be >= 0 and <= 1, got 1.5");
+  EXPECT_EQ(ErrorOf({{"gate", 0}}), "parameter 'gate': must be > 0, got 0");
+  EXPECT_EQ(ErrorOf({{"strict", 1}}), "parameter 'strict': expected true or false, got 1");
+  EXPECT_EQ(ErrorOf({{"mode", "slow"}}),
+            "parameter 'mode': expected one of \"fast\", \"exact\", got \"slow\"");
+  EXPECT_EQ(ErrorOf({{"noise", {1, 2}}}),
+            "parameter 'noise': expected an array of 3 numbers, got [1,2]");
+  EXPECT_EQ(ErrorOf({{"noise", {1, -2, 3}}}), "parameter 'noise': must be >= 0, got -2");
+  EXPECT_EQ(ErrorOf({{"threshold", "automatic"}}),
+            "parameter 'threshold': expected a number, got \"automatic\"");
+  EXPECT_EQ(ErrorOf(nlohmann::json::array()), "parameters: expected an object, got []");
+  EXPECT_EQ(ErrorOf({{"count", 1e12}}), "parameter 'count': expected an integer, got 1000000000000.0");
+}
+
+TEST(ParameterTable, RejectsNonFiniteNumbers) {
+  EXPECT_EQ(ErrorOf({{"rate", std::numeric_limits<double>::infinity()}}),
+            "parameter 'rate': not finite");
+}
+
+}  // namespace
+}  // namespace phdslam::params

@@ -1,0 +1,260 @@
+// The one Rao-Blackwellised particle-filter skeleton of the suite. A filter is its map model (the
+// per-particle map type with its prediction, update and estimate), its importance density and its
+// parameters; PHD-SLAM 1.0/2.0a/2.0b/3.0 (GM-PHD maps, phd_map_model.h) and the oracle RBPF
+// (known-association landmark EKFs, oracle/) are instances.
+//
+// One recursion (reference notes sections 4, 10, 14):
+//   1. draw N uniforms (component choice) and 3N standard normals (pose draw), in that order;
+//   2. for each particle in index order:
+//      a. Model::BeforePrediction (e.g. births from the previous scan), then the pose Gaussian is
+//         predicted over the step (pose_prediction.h);
+//      b. the importance density is built from the predicted Gaussian, the map's landmark view
+//         and the scan; consecutive copies of one resampled parent share it when
+//         reuse_parent_proposal is set (they have equal predictions, so results do not change);
+//      c. a component t is picked with the particle's uniform and x = mu_t + chol(Sigma_t) xi is
+//         drawn; unless the proposal is the prior itself, log N(x; mu0, Sigma0) - log q(x) is added
+//         to the log-weight; without a Cholesky factor the pose stays at the predicted mean;
+//      d. Model::Update adds the measurement likelihood to the log-weight and updates the map at x;
+//   3. the estimate is the highest-weight particle (first on ties), before resampling; its map is
+//      kept as a snapshot (Model::Snapshot);
+//   4. ESS of the normalised weights, the weighted particle spread about the estimate as pose
+//      covariance, and stratified resampling (N more uniforms) when N > 1, resampling is on and
+//      ESS <= threshold (relative: threshold N; absolute: threshold).
+// Every random number comes from the one stream seeded by the constructor.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <memory>
+#include <utility>
+#include <vector>
+
+#include "src/core/gaussian.h"
+#include "src/core/random.h"
+#include "src/core/step_data.h"
+#include "src/filters/estimator.h"
+#include "src/filters/importance_density.h"
+#include "src/filters/particle_filter_params.h"
+#include "src/filters/pose_prediction.h"
+#include "src/filters/resampling.h"
+
+namespace phdslam::filters {
+
+/// One particle: a pose sample, its log-weight and its map.
+template <class Map>
+struct Particle {
+  Pose pose = Pose::Zero();
+  Mat3 cov = Mat3::Zero();  ///< non-zero only between prediction and sampling
+  double log_weight = 0.0;
+  int parent = 0;  ///< source index after resampling; -1: compute own proposal
+  Map map;
+};
+
+/// What the importance density reads of a particle's map at one step.
+struct MapView {
+  LandmarkView landmarks;
+  std::span<const int> known_association;  ///< empty unless the model knows the association
+};
+
+/// The skeleton over a map model. Model provides:
+///   using Map; using Snapshot;
+///   Map InitialMap() const;
+///   void BeginStep(const StepData&);                      // per-step checks and bookkeeping
+///   void BeforePrediction(Map&, const Pose& pose) const;  // at the pose before prediction
+///   MapView View(const Map&);                             // valid until the next View call
+///   void Update(Map&, const Pose&, const StepData&, double& log_weight) const;
+///   Snapshot Estimate(const Map&) const;                  // the map estimate of the best particle
+///   MapEstimate ToMapEstimate(const Snapshot&) const;
+///   int ComponentCount(const Map&) const;                 // for the step diagnostics
+template <class Model>
+class ParticleFilter final : public OnlineEstimator {
+ public:
+  using MapType = typename Model::Map;
+  using ParticleType = Particle<MapType>;
+
+  ParticleFilter(EstimatorContext context, ParticleFilterParams params, Model model,
+                 std::unique_ptr<ImportanceDensity> density, std::uint64_t stream_seed)
+      : context_(std::move(context)),
+        params_(std::move(params)),
+        model_(std::move(model)),
+        density_(std::move(density)),
+        rng_(stream_seed) {
+    const int n = std::max(1, params_.particles);
+    particles_.resize(n);
+    for (ParticleType& p : particles_) {
+      p.pose = context_.initial_pose;
+      p.log_weight = -std::log(static_cast<double>(n));
+      p.parent = 0;  // every particle starts as a copy of one parent
+      p.map = model_.InitialMap();
+    }
+  }
+
+  StepOutput Step(const StepData& step) override;
+  [[nodiscard]] MapEstimate Map() const override { return model_.ToMapEstimate(snapshot_); }
+  [[nodiscard]] std::vector<std::pair<Pose, double>> ParticleStates() const override {
+    std::vector<std::pair<Pose, double>> states;
+    states.reserve(particles_.size());
+    for (const ParticleType& p : particles_) states.emplace_back(p.pose, p.log_weight);
+    return states;
+  }
+
+  [[nodiscard]] const std::vector<ParticleType>& particles() const { return particles_; }
+  /// Index (before resampling) of the particle the last estimate came from.
+  [[nodiscard]] int best_particle() const { return best_; }
+  /// The top-ranked association of the last step's best particle (measurement -> landmark-view
+  /// index before the update, -1 for none), when the importance density provides one.
+  [[nodiscard]] const std::vector<int>& best_association() const { return best_association_; }
+  [[nodiscard]] const Model& model() const { return model_; }
+
+ private:
+  /// Steps 2a-2d for one particle; returns the size of the proposal it used.
+  void Propagate(int idx, const StepData& step, double uniform, const Vec3& normal);
+  void Resample(const std::vector<double>& weights);
+
+  EstimatorContext context_;
+  ParticleFilterParams params_;
+  Model model_;
+  std::unique_ptr<ImportanceDensity> density_;
+  RandomStream rng_;
+  std::vector<ParticleType> particles_;
+  int best_ = 0;
+  std::vector<int> best_association_;
+  typename Model::Snapshot snapshot_{};
+
+  // Per-step state shared between particles (proposal reuse and association bookkeeping).
+  PreparedProposal proposal_;
+  int proposal_parent_ = -2;
+  long hypotheses_total_ = 0;
+  std::vector<int> association_owner_;
+  std::vector<std::vector<int>> associations_;
+  std::vector<std::vector<Landmark>> associated_means_;
+};
+
+template <class Model>
+void ParticleFilter<Model>::Propagate(int idx, const StepData& step, double uniform,
+                                      const Vec3& normal) {
+  ParticleType& p = particles_[idx];
+  // 2a. Predict.
+  model_.BeforePrediction(p.map, p.pose);
+  PredictPoseGaussian(context_, step, params_.pose_regularisation, p.pose, p.cov);
+  const Pose mu0 = p.pose;
+  const Mat3 sigma0 = p.cov;
+  // 2b. Proposal, shared by consecutive copies of one parent.
+  const bool reuse =
+      params_.reuse_parent_proposal && p.parent >= 0 && p.parent == proposal_parent_;
+  if (!reuse) {
+    const MapView view = model_.View(p.map);
+    const ProposalInput input{mu0,           sigma0,           view.landmarks, step.measurements,
+                              &context_.sensor, view.known_association};
+    ProposalOutput built = density_->Build(input);
+    proposal_ = PrepareProposal(std::move(built.mixture));
+    std::vector<Landmark> means;
+    if (!built.best_association.empty()) {
+      means.assign(built.best_association.size(), Landmark::Constant(std::nan("")));
+      for (std::size_t j = 0; j < means.size(); ++j) {
+        const int c = built.best_association[j];
+        if (c >= 0) means[j] = view.landmarks[c].mean;
+      }
+    }
+    associated_means_.push_back(std::move(means));
+    associations_.push_back(std::move(built.best_association));
+    proposal_parent_ = p.parent;
+  }
+  association_owner_[idx] = static_cast<int>(associations_.size()) - 1;
+  hypotheses_total_ += static_cast<long>(proposal_.mixture.size());
+  // 2c. Sample and add log f - log q.
+  const int t = PickComponent(proposal_, uniform);
+  if (proposal_.chol[t]) {
+    const Pose x = proposal_.mixture.means[t] + *proposal_.chol[t] * normal;
+    // log f - log q, exactly 0 when the proposal is the prior itself (the bootstrap case).
+    const bool is_prior = proposal_.mixture.size() == 1 && proposal_.mixture.means[0] == mu0 &&
+                          proposal_.mixture.covs[0] == sigma0;
+    if (!is_prior) {
+      const auto log_prior = LogNormalPdf<3>(x, mu0, sigma0);
+      if (log_prior) p.log_weight += *log_prior - density_->LogDensity(proposal_, x);
+    }
+    p.pose = x;
+  } else {
+    p.pose = mu0;
+  }
+  p.cov.setZero();
+  p.parent = -1;
+  // 2d. Measurement likelihood and map update at the sampled pose.
+  model_.Update(p.map, p.pose, step, p.log_weight);
+}
+
+template <class Model>
+StepOutput ParticleFilter<Model>::Step(const StepData& step) {
+  model_.BeginStep(step);
+  const int n = static_cast<int>(particles_.size());
+  // 1. The step's random numbers: one uniform and three standard normals per particle.
+  std::vector<double> uniforms(n);
+  std::vector<Vec3> normals(n);
+  for (double& u : uniforms) u = rng_.Uniform();
+  for (Vec3& xi : normals) xi << rng_.Normal(), rng_.Normal(), rng_.Normal();
+
+  proposal_parent_ = -2;
+  hypotheses_total_ = 0;
+  association_owner_.assign(n, -1);
+  associations_.clear();
+  associated_means_.clear();
+  // 2. Predict, sample, weight and update every particle.
+  for (int idx = 0; idx < n; ++idx) Propagate(idx, step, uniforms[idx], normals[idx]);
+
+  // 3. Estimate from the highest-weight particle (first on ties), before resampling.
+  best_ = 0;
+  for (int i = 1; i < n; ++i) {
+    if (particles_[i].log_weight > particles_[best_].log_weight) best_ = i;
+  }
+  best_association_ =
+      associations_.empty() ? std::vector<int>{} : associations_[association_owner_[best_]];
+  snapshot_ = model_.Estimate(particles_[best_].map);
+  StepOutput out;
+  out.pose = particles_[best_].pose;
+  if (!associated_means_.empty()) {
+    out.association = std::move(associated_means_[association_owner_[best_]]);
+  }
+  out.diag.map_components = model_.ComponentCount(particles_[best_].map);
+  out.diag.hypotheses = static_cast<int>(std::lround(static_cast<double>(hypotheses_total_) / n));
+
+  // 4. ESS and resampling.
+  std::vector<double> log_w(n);
+  for (int i = 0; i < n; ++i) log_w[i] = particles_[i].log_weight;
+  const std::vector<double> w = NormalisedWeights(log_w);
+  if (n > 1) {
+    Mat3 spread = Mat3::Zero();
+    for (int i = 0; i < n; ++i) {
+      const Vec3 d = particles_[i].pose - out.pose;
+      spread += w[i] * d * d.transpose();
+    }
+    out.pose_cov = spread;
+  }
+  out.diag.ess = n == 1 ? 1.0 : EffectiveSampleSize(w);
+  const double threshold = params_.ess_threshold_kind == EssThresholdKind::kRelative
+                               ? params_.ess_threshold * n
+                               : params_.ess_threshold;
+  if (n > 1 && params_.resampling && out.diag.ess <= threshold) {
+    Resample(w);
+    out.diag.resampled = true;
+  }
+  return out;
+}
+
+template <class Model>
+void ParticleFilter<Model>::Resample(const std::vector<double>& weights) {
+  const int n = static_cast<int>(particles_.size());
+  std::vector<double> r(n);
+  for (double& u : r) u = rng_.Uniform();
+  const std::vector<int> sources = StratifiedResample(weights, r);
+  std::vector<ParticleType> next;
+  next.reserve(n);
+  const double log_uniform = -std::log(static_cast<double>(n));
+  for (int s : sources) {
+    next.push_back(particles_[s]);
+    next.back().log_weight = log_uniform;
+    next.back().parent = s;
+  }
+  particles_ = std::move(next);
+}
+
+}  // namespace phdslam::filters
