@@ -113,8 +113,8 @@ filters::MapView OracleMapModel::View(const Map& map) {
   return {view_, view_association_};
 }
 
-void OracleMapModel::Update(Map& map, const Pose& pose, const StepData& step,
-                            double& log_weight) const {
+void OracleMapModel::Update(Map& map, const Pose& pose, const StepData& step, double& log_weight,
+                            filters::InnovationStats& nis) const {
   const std::vector<int>& origin = *origin_;
   // Landmark likelihoods and EKF updates at the sampled pose, then first sightings.
   for (int j : by_landmark_) {
@@ -128,6 +128,7 @@ void OracleMapModel::Update(Map& map, const Pose& pose, const StepData& step,
     Symmetrize(s);
     const auto log_lik = LogNormalPdf<2>(nu, Vec2::Zero(), s);
     if (log_lik) log_weight += *log_lik;
+    nis.Add(nu, s);
     const Mat2 k = pht * s.inverse();
     lm.mean += k * nu;
     lm.cov -= k * s * k.transpose();
@@ -204,8 +205,7 @@ std::unique_ptr<OracleRbpf> MakeOracle(const datasets::Scenario& scenario, Oracl
                                        std::uint64_t stream_seed) {
   std::vector<std::vector<int>> origins = ScenarioOrigins(scenario);
   try {
-    return MakeOracle(scenario.PublicContext(), std::move(origins), std::move(params),
-                      stream_seed);
+    return MakeOracle(scenario.PublicContext(), std::move(origins), std::move(params), stream_seed);
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument("scenario '" + scenario.name + "': " + e.what());
   }

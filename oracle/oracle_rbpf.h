@@ -11,6 +11,10 @@
 //   - update: for each re-observed landmark add log N(z; h(m, x), Hm P Hm^T + R) (bearing residual
 //     wrapped) and apply the EKF update at x; initialise first sightings with the inverse model at
 //     x (covariance G R G^T);
+//   - consistency outputs: the Rao-Blackwellised pose covariance is the mixture over particles of
+//     their partitioned-IPL proposals (the prior for a particle without re-observed landmarks)
+//     with the carried-in weights (particle_filter.h); NIS per re-observed landmark with the S of
+//     its likelihood term, for the estimate's particle;
 //   - proposals are not shared between copies of one parent (reuse_parent_proposal is off).
 // Clutter measurements are discarded and missed detections are simply absent, so neither touches
 // the weights or the random stream: removing clutter from a scenario leaves the result unchanged.
@@ -23,6 +27,7 @@
 #include "datasets/scenario.h"
 #include "src/core/types.h"
 #include "src/filters/estimator.h"
+#include "src/filters/innovation_stats.h"
 #include "src/filters/particle_filter.h"
 #include "src/phd/gaussian_component.h"
 
@@ -75,7 +80,14 @@ class OracleMapModel {
   /// The re-observed landmarks (seen before) in ascending landmark order, with the known
   /// association of every measurement into that list.
   [[nodiscard]] filters::MapView View(const Map& map);
-  void Update(Map& map, const Pose& pose, const StepData& step, double& log_weight) const;
+  /// Also adds to `nis` the NIS of every re-observed landmark's measurement with the S of its
+  /// likelihood term (Hm P Hm^T + R at the sampled pose).
+  void Update(Map& map, const Pose& pose, const StepData& step, double& log_weight,
+              filters::InnovationStats& nis) const;
+  void Update(Map& map, const Pose& pose, const StepData& step, double& log_weight) const {
+    filters::InnovationStats unused;
+    Update(map, pose, step, log_weight, unused);
+  }
   [[nodiscard]] Snapshot Estimate(const Map& map) const { return map.landmarks; }
   /// Every initialised landmark in landmark order, with log-weight 0.
   [[nodiscard]] filters::MapEstimate ToMapEstimate(const Snapshot& snapshot) const;

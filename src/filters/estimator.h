@@ -24,15 +24,25 @@ struct EstimatorContext {
 
 /// Diagnostics of one step, kept in the run record.
 struct StepDiagnostics {
-  double ess = 1.0;          ///< effective sample size after the update (before resampling)
+  double ess = 1.0;  ///< effective sample size after the update (before resampling)
   bool resampled = false;
-  int hypotheses = 0;        ///< components of the importance density (mean over particles)
-  int map_components = 0;    ///< GM-PHD components (active + passive) of the best particle
+  int hypotheses = 0;      ///< components of the importance density (mean over particles)
+  int map_components = 0;  ///< GM-PHD components (active + passive) of the best particle
+  /// NIS of the estimate's associated measurements (innovation_stats.h): the sum of
+  /// nu' S^-1 nu over them and their count, with the S the filter used; 0 / 0 when the
+  /// estimator reports none.
+  double nis_sum = 0.0;
+  int nis_count = 0;
 };
 
 struct StepOutput {
   Pose pose = Pose::Zero();
   std::optional<Mat3> pose_cov;  ///< set by estimators that carry a pose covariance
+  /// Rao-Blackwellised pose posterior of the step, where the estimator provides one: the moments
+  /// of the mixture over particles of each particle's own pose Gaussian before sampling, weighted
+  /// by the weights carried into the step (each estimator's documentation says which Gaussian).
+  std::optional<Pose> pose_mean_rb;
+  std::optional<Mat3> pose_cov_rb;
   StepDiagnostics diag;
   /// Data association of the estimate, for association-accuracy metrics: for each measurement
   /// of the step, the mean of the map landmark it was associated with, or NaN for

@@ -20,6 +20,18 @@
 //   4. ESS of the normalised weights, the weighted particle spread about the estimate as pose
 //      covariance, and stratified resampling (N more uniforms) when N > 1, resampling is on and
 //      ESS <= threshold (relative: threshold N; absolute: threshold).
+// Consistency outputs (no random numbers, no effect on poses or weights):
+//   - the Rao-Blackwellised pose posterior (StepOutput::pose_mean_rb / pose_cov_rb): in 2b/2c
+//     each particle's proposal is moment-matched (pose_mixture_moments.h; its components with
+//     their normalised weights) and, after the loop, these Gaussians are moment-matched across
+//     particles with the log-weights carried into the step (after the previous resampling,
+//     before this step's log f - log q and likelihood terms). Those are the weights under which
+//     the particles are a sample of the previous posterior, so the mixture is the distribution
+//     this step draws the poses from. It is the pose posterior as far as the proposal is the
+//     optimal importance density: for PHD-SLAM 3.0 and the oracle the IPL mixture, for 2.0a/2.0b
+//     their EKF/IPL conditional, for PHD-SLAM 1.0 (the prior as proposal) the predicted Gaussian;
+//   - NIS of the estimate's particle (StepDiagnostics::nis_sum / nis_count) when Model::Update
+//     takes a filters::InnovationStats& as fifth argument.
 // Every random number comes from the one stream seeded by the constructor.
 #pragma once
 
@@ -34,7 +46,9 @@
 #include "src/core/step_data.h"
 #include "src/filters/estimator.h"
 #include "src/filters/importance_density.h"
+#include "src/filters/innovation_stats.h"
 #include "src/filters/particle_filter_params.h"
+#include "src/filters/pose_mixture_moments.h"
 #include "src/filters/pose_prediction.h"
 #include "src/filters/resampling.h"
 
@@ -46,8 +60,16 @@ struct Particle {
   Pose pose = Pose::Zero();
   Mat3 cov = Mat3::Zero();  ///< non-zero only between prediction and sampling
   double log_weight = 0.0;
-  int parent = 0;  ///< source index after resampling; -1: compute own proposal
+  int parent = 0;       ///< source index after resampling; -1: compute own proposal
+  InnovationStats nis;  ///< of this step's update (when the model reports it)
   Map map;
+};
+
+/// A map model whose Update also reports the NIS of the measurements it associated.
+template <class Model>
+concept ReportsInnovations = requires(const Model& m, typename Model::Map& map, const Pose& x,
+                                      const StepData& step, double& w, InnovationStats& nis) {
+  m.Update(map, x, step, w, nis);
 };
 
 /// What the importance density reads of a particle's map at one step.
@@ -128,6 +150,8 @@ class ParticleFilter final : public OnlineEstimator {
   std::vector<int> association_owner_;
   std::vector<std::vector<int>> associations_;
   std::vector<std::vector<Landmark>> associated_means_;
+  PoseMoments proposal_moments_;         ///< moments of proposal_
+  std::vector<PoseMoments> rb_moments_;  ///< per particle: proposal moments, carried-in weight
 };
 
 template <class Model>
@@ -140,12 +164,11 @@ void ParticleFilter<Model>::Propagate(int idx, const StepData& step, double unif
   const Pose mu0 = p.pose;
   const Mat3 sigma0 = p.cov;
   // 2b. Proposal, shared by consecutive copies of one parent.
-  const bool reuse =
-      params_.reuse_parent_proposal && p.parent >= 0 && p.parent == proposal_parent_;
+  const bool reuse = params_.reuse_parent_proposal && p.parent >= 0 && p.parent == proposal_parent_;
   if (!reuse) {
     const MapView view = model_.View(p.map);
-    const ProposalInput input{mu0,           sigma0,           view.landmarks, step.measurements,
-                              &context_.sensor, view.known_association};
+    const ProposalInput input{
+        mu0, sigma0, view.landmarks, step.measurements, &context_.sensor, view.known_association};
     ProposalOutput built = density_->Build(input);
     proposal_ = PrepareProposal(std::move(built.mixture));
     std::vector<Landmark> means;
@@ -159,7 +182,10 @@ void ParticleFilter<Model>::Propagate(int idx, const StepData& step, double unif
     associated_means_.push_back(std::move(means));
     associations_.push_back(std::move(built.best_association));
     proposal_parent_ = p.parent;
+    proposal_moments_ = ProposalMoments(proposal_, mu0);
   }
+  rb_moments_[idx] = proposal_moments_;
+  rb_moments_[idx].log_weight = p.log_weight;
   association_owner_[idx] = static_cast<int>(associations_.size()) - 1;
   hypotheses_total_ += static_cast<long>(proposal_.mixture.size());
   // 2c. Sample and add log f - log q.
@@ -180,7 +206,12 @@ void ParticleFilter<Model>::Propagate(int idx, const StepData& step, double unif
   p.cov.setZero();
   p.parent = -1;
   // 2d. Measurement likelihood and map update at the sampled pose.
-  model_.Update(p.map, p.pose, step, p.log_weight);
+  if constexpr (ReportsInnovations<Model>) {
+    p.nis = InnovationStats{};
+    model_.Update(p.map, p.pose, step, p.log_weight, p.nis);
+  } else {
+    model_.Update(p.map, p.pose, step, p.log_weight);
+  }
 }
 
 template <class Model>
@@ -198,6 +229,7 @@ StepOutput ParticleFilter<Model>::Step(const StepData& step) {
   association_owner_.assign(n, -1);
   associations_.clear();
   associated_means_.clear();
+  rb_moments_.resize(n);
   // 2. Predict, sample, weight and update every particle.
   for (int idx = 0; idx < n; ++idx) Propagate(idx, step, uniforms[idx], normals[idx]);
 
@@ -216,6 +248,12 @@ StepOutput ParticleFilter<Model>::Step(const StepData& step) {
   }
   out.diag.map_components = model_.ComponentCount(particles_[best_].map);
   out.diag.hypotheses = static_cast<int>(std::lround(static_cast<double>(hypotheses_total_) / n));
+  out.diag.nis_sum = particles_[best_].nis.nis_sum;
+  out.diag.nis_count = particles_[best_].nis.count;
+  if (const std::optional<PoseMoments> rb = MatchMoments(rb_moments_)) {
+    out.pose_mean_rb = rb->mean;
+    out.pose_cov_rb = rb->cov;
+  }
 
   // 4. ESS and resampling.
   std::vector<double> log_w(n);

@@ -61,12 +61,12 @@ StepData MoveStep() {
   return s;
 }
 
-std::unique_ptr<ParticleFilter<ToyModel>> Filter(ParticleFilterParams params,
-                                                 std::uint64_t seed, double variance = 1.0) {
+std::unique_ptr<ParticleFilter<ToyModel>> Filter(ParticleFilterParams params, std::uint64_t seed,
+                                                 double variance = 1.0) {
   ToyModel model;
   model.likelihood_variance = variance;
-  return std::make_unique<ParticleFilter<ToyModel>>(
-      Context(), params, model, std::make_unique<TransitionDensity>(), seed);
+  return std::make_unique<ParticleFilter<ToyModel>>(Context(), params, model,
+                                                    std::make_unique<TransitionDensity>(), seed);
 }
 
 TEST(ParticleFilter, DrawsTheUniformsThenTheNormalsOfEveryParticle) {
@@ -173,6 +173,62 @@ TEST(ParticleFilter, ASingleTimeStampStepKeepsThePose) {
   // No propagation: the predicted covariance is zero, has no Cholesky factor, and the pose stays.
   EXPECT_EQ(out.pose, Context().initial_pose);
   EXPECT_EQ(filter->particles()[0].map.updates, 1);
+}
+
+/// A density with one fixed component offset from the prediction (a stand-in for a conditional).
+class ShiftedDensity final : public ImportanceDensity {
+ public:
+  [[nodiscard]] ProposalOutput Build(const ProposalInput& input) const override {
+    ProposalOutput out;
+    out.mixture.Add(0.0, input.predicted_mean + Vec3(0.1, -0.2, 0.01),
+                    Vec3(0.02, 0.03, 0.001).asDiagonal());
+    return out;
+  }
+};
+
+TEST(ParticleFilter, WithOneParticleTheRbCovarianceIsThatParticlesProposal) {
+  ParticleFilterParams params;
+  params.particles = 1;
+  // The transition density: the predicted Gaussian.
+  auto prior = Filter(params, 5);
+  Pose mu0 = Context().initial_pose;
+  Mat3 sigma0 = Mat3::Zero();
+  PredictPoseGaussian(Context(), MoveStep(), params.pose_regularisation, mu0, sigma0);
+  const StepOutput a = prior->Step(MoveStep());
+  ASSERT_TRUE(a.pose_cov_rb.has_value());
+  EXPECT_EQ(*a.pose_mean_rb, mu0);
+  EXPECT_TRUE(a.pose_cov_rb->isApprox(sigma0, 1e-14)) << *a.pose_cov_rb;
+  EXPECT_FALSE(a.pose_cov.has_value());  // no particle spread with one particle
+  // Another density: its component.
+  ParticleFilter<ToyModel> shifted(Context(), params, ToyModel{},
+                                   std::make_unique<ShiftedDensity>(), 5);
+  const StepOutput b = shifted.Step(MoveStep());
+  EXPECT_TRUE(b.pose_mean_rb->isApprox(mu0 + Vec3(0.1, -0.2, 0.01), 1e-14));
+  EXPECT_EQ(*b.pose_cov_rb, Mat3(Vec3(0.02, 0.03, 0.001).asDiagonal()));
+}
+
+TEST(ParticleFilter, RbMomentsMixTheParticlesWithTheCarriedInWeights) {
+  ParticleFilterParams params;
+  params.particles = 4;
+  params.resampling = false;
+  auto filter = Filter(params, 11, 0.05);
+  filter->Step(MoveStep());
+  // The weights and poses carried into the second step, and each particle's predicted Gaussian.
+  std::vector<PoseMoments> expected;
+  for (const auto& p : filter->particles()) {
+    Pose mu = p.pose;
+    Mat3 sigma = Mat3::Zero();
+    PredictPoseGaussian(Context(), MoveStep(), params.pose_regularisation, mu, sigma);
+    expected.push_back({p.log_weight, mu, sigma});
+  }
+  const auto m = MatchMoments(expected);
+  ASSERT_TRUE(m.has_value());
+  const StepOutput out = filter->Step(MoveStep());
+  ASSERT_TRUE(out.pose_cov_rb.has_value());
+  EXPECT_TRUE(out.pose_mean_rb->isApprox(m->mean, 1e-12));
+  EXPECT_TRUE(out.pose_cov_rb->isApprox(m->cov, 1e-12));
+  // The mixture is wider than any one predicted Gaussian (the particles are spread).
+  EXPECT_GT(out.pose_cov_rb->trace(), expected[0].cov.trace());
 }
 
 }  // namespace

@@ -38,6 +38,7 @@ GpsErrors ComputeGpsErrors(const std::vector<double>& step_times,
 
   GpsErrors out;
   out.error_m.assign(step_times.size(), std::numeric_limits<double>::quiet_NaN());
+  out.fix_index.assign(step_times.size(), -1);
   if (gps.empty()) return out;
   for (std::size_t k = 0; k < step_times.size(); ++k) {
     const double t = step_times[k];
@@ -53,6 +54,7 @@ GpsErrors ComputeGpsErrors(const std::vector<double>& step_times,
     }
     if (!(std::abs(nearest->t - t) <= window + kGpsTimeSlack)) continue;
     out.error_m[k] = (nearest->position - estimates[k].head<2>()).norm();
+    out.fix_index[k] = static_cast<int>(std::distance(gps.begin(), nearest));
     ++out.matched;
   }
   return out;

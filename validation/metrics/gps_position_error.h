@@ -14,6 +14,8 @@ struct GpsErrors {
   /// One entry per step: ||gps - estimated (x, y)|| (m), NaN where no fix is close enough.
   std::vector<double> error_m;
   std::size_t matched = 0;  ///< number of finite entries
+  /// One entry per step: index into the GPS track of the matched fix, -1 where unmatched.
+  std::vector<int> fix_index;
 };
 
 /// Slack on the time window (s). Victoria Park clocks tick in whole milliseconds, so a fix exactly

@@ -37,6 +37,14 @@ double LandmarkNees(const Landmark& truth, const Landmark& estimate, const Mat2&
   return Nees<2>(truth - estimate, cov, "LandmarkNees");
 }
 
+double EllipsoidThreshold(int dim, double level) {
+  if (dim < 1 || !(level > 0.0 && level < 1.0)) {
+    throw std::invalid_argument("EllipsoidThreshold: dim = " + std::to_string(dim) + ", level = " +
+                                std::to_string(level) + "; expected dim >= 1 and 0 < level < 1");
+  }
+  return ChiSquareQuantile(level, static_cast<double>(dim));
+}
+
 NeesBounds AveragedNeesBounds(int dim, int runs, double alpha) {
   if (dim < 1 || runs < 1) {
     throw std::invalid_argument("AveragedNeesBounds: dim = " + std::to_string(dim) +

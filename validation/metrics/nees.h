@@ -15,6 +15,11 @@ namespace phdslam::validation {
 double PoseNees(const Pose& truth, const Pose& estimate, const Mat3& cov);
 double LandmarkNees(const Landmark& truth, const Landmark& estimate, const Mat2& cov);
 
+/// chi-square_dim quantile at `level`: a NEES at or below it puts the truth inside the
+/// estimator's `level` confidence ellipsoid. Throws std::invalid_argument unless dim >= 1 and
+/// 0 < level < 1.
+double EllipsoidThreshold(int dim, double level = 0.95);
+
 struct NeesBounds {
   double lower = 0.0;
   double upper = 0.0;

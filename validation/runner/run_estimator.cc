@@ -39,6 +39,8 @@ void RunOnline(const EstimatorEntry& entry, const EstimatorRequest& request,
     const double ms = MillisecondsSince(start);
     record.poses.push_back(out.pose);
     record.pose_covs.push_back(out.pose_cov);
+    record.pose_means_rb.push_back(out.pose_mean_rb);
+    record.pose_covs_rb.push_back(out.pose_cov_rb);
     record.diagnostics.push_back(out.diag);
     record.associations.push_back(std::move(out.association));
     record.step_ms.push_back(ms);

@@ -41,13 +41,20 @@ std::vector<datasets::MapPoint> MapPoints(const filters::MapEstimate& map) {
 
 std::string StepsCsv(const RunRecord& record, const datasets::Scenario& scenario,
                      const RunEvaluation& evaluation) {
-  std::string text =
-      CsvRow({"step", "t", "x", "y", "theta", "x_true", "y_true", "theta_true", "pos_err_m",
-              "heading_err_deg", "ess", "resampled", "hypotheses", "map_components", "ms", "nees"});
+  std::string text = CsvRow({"step",       "t",
+                             "x",          "y",
+                             "theta",      "x_true",
+                             "y_true",     "theta_true",
+                             "pos_err_m",  "heading_err_deg",
+                             "ess",        "resampled",
+                             "hypotheses", "map_components",
+                             "ms",         "nees",
+                             "nees_rb",    "nis_sum",
+                             "nis_count",  "gps_nees_rb"});
   const bool has_truth = scenario.truth.poses.size() == record.poses.size();
   const bool has_diag = record.diagnostics.size() == record.poses.size();
   const bool has_ms = record.step_ms.size() == record.poses.size();
-  std::vector<std::string> cells(16);
+  std::vector<std::string> cells(20);
   for (std::size_t k = 0; k < record.poses.size(); ++k) {
     const Pose& p = record.poses[k];
     cells[0] = FormatInteger(static_cast<std::int64_t>(k));
@@ -76,6 +83,13 @@ std::string StepsCsv(const RunRecord& record, const datasets::Scenario& scenario
     cells[14] = has_ms ? FormatNumber(record.step_ms[k]) : std::string();
     cells[15] =
         k < evaluation.pose_nees.size() ? FormatNumber(evaluation.pose_nees[k]) : std::string();
+    cells[16] = k < evaluation.pose_nees_rb.size() ? FormatNumber(evaluation.pose_nees_rb[k])
+                                                   : std::string();
+    const bool has_nis = has_diag && record.diagnostics[k].nis_count > 0;
+    cells[17] = has_nis ? FormatNumber(record.diagnostics[k].nis_sum) : std::string();
+    cells[18] = has_nis ? FormatInteger(record.diagnostics[k].nis_count) : std::string();
+    cells[19] =
+        k < evaluation.gps_nees_rb.size() ? FormatNumber(evaluation.gps_nees_rb[k]) : std::string();
     text += CsvRow(cells);
   }
   return text;

@@ -16,7 +16,8 @@ namespace phdslam::validation {
 
 /// The steps.csv text: header
 /// step,t,x,y,theta,x_true,y_true,theta_true,pos_err_m,heading_err_deg,ess,resampled,hypotheses,
-/// map_components,ms,nees and one row per step (cells empty where a value is unknown).
+/// map_components,ms,nees,nees_rb,nis_sum,nis_count,gps_nees_rb and one row per step (cells
+/// empty where a value is unknown).
 std::string StepsCsv(const RunRecord& record, const datasets::Scenario& scenario,
                      const RunEvaluation& evaluation);
 

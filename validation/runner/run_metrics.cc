@@ -19,6 +19,58 @@ namespace {
 constexpr double kRadToDeg = 180.0 / std::numbers::pi;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
+// NEES of one step, NaN when the covariance is absent, not positive definite or the value is
+// not finite (a covariance that passes the Cholesky test can still be so close to singular that
+// e'P^-1 e overflows: collapsed particles without resampling).
+template <int N>
+double StepNees(const Eigen::Matrix<double, N, 1>& truth, const Eigen::Matrix<double, N, 1>& mean,
+                const std::optional<Eigen::Matrix<double, N, N>>& cov) {
+  if (!cov || !CholeskyLower<N>(*cov)) return kNaN;
+  try {
+    double nees = 0.0;
+    if constexpr (N == 3) {
+      nees = PoseNees(truth, mean, *cov);
+    } else {
+      nees = LandmarkNees(truth, mean, *cov);
+    }
+    return std::isfinite(nees) ? nees : kNaN;
+  } catch (const std::invalid_argument&) {
+    return kNaN;  // not symmetric positive definite by the NEES test
+  }
+}
+
+// The Rao-Blackwellised pose NEES against the true poses, with ellipsoid coverage.
+void EvaluateRbNees(const RunRecord& record, const datasets::Scenario& scenario,
+                    RunEvaluation& ev) {
+  const std::size_t n = record.poses.size();
+  const double threshold = EllipsoidThreshold(3);
+  for (std::size_t k = 0; k < n && k < record.pose_covs_rb.size(); ++k) {
+    if (!record.pose_means_rb[k]) continue;
+    const double nees =
+        StepNees<3>(scenario.truth.poses[k], *record.pose_means_rb[k], record.pose_covs_rb[k]);
+    if (std::isnan(nees)) continue;
+    ev.pose_nees_rb[k] = nees;
+    ev.metrics.pose_nees_rb.Add(nees);
+    if (nees <= threshold) ++ev.metrics.pose_coverage_rb_inside;
+  }
+}
+
+// The Rao-Blackwellised (x, y) NEES against the matched GPS fixes, with ellipse coverage.
+void EvaluateGpsNees(const RunRecord& record, const datasets::Scenario& scenario,
+                     const std::vector<int>& fix_index, RunEvaluation& ev) {
+  const double threshold = EllipsoidThreshold(2);
+  for (std::size_t k = 0; k < fix_index.size() && k < record.pose_covs_rb.size(); ++k) {
+    if (fix_index[k] < 0 || !record.pose_means_rb[k] || !record.pose_covs_rb[k]) continue;
+    const Vec2 gps = scenario.truth.gps[static_cast<std::size_t>(fix_index[k])].position;
+    const std::optional<Mat2> cov = record.pose_covs_rb[k]->topLeftCorner<2, 2>().eval();
+    const double nees = StepNees<2>(gps, record.pose_means_rb[k]->head<2>().eval(), cov);
+    if (std::isnan(nees)) continue;
+    ev.gps_nees_rb[k] = nees;
+    ev.metrics.gps_nees_rb.Add(nees);
+    if (nees <= threshold) ++ev.metrics.gps_coverage_rb_inside;
+  }
+}
+
 void EvaluateTrajectory(const RunRecord& record, const datasets::Scenario& scenario,
                         const MetricSettings& settings, RunEvaluation& ev) {
   const std::size_t n = record.poses.size();
@@ -40,16 +92,19 @@ void EvaluateTrajectory(const RunRecord& record, const datasets::Scenario& scena
         if (!std::isfinite(nees)) continue;
         ev.pose_nees[k] = nees;
         ev.metrics.pose_nees.Add(nees);
+        if (nees <= EllipsoidThreshold(3)) ++ev.metrics.pose_coverage_inside;
       } catch (const std::invalid_argument&) {
         // Not symmetric positive definite by PoseNees' test: this step has no NEES.
       }
     }
+    EvaluateRbNees(record, scenario, ev);
   } else if (!truth.gps.empty()) {
     const GpsErrors errors =
         ComputeGpsErrors(record.step_times, record.poses, truth.gps, settings.gps_window_s);
     ev.position_error_m = errors.error_m;
     for (double e : errors.error_m) ev.metrics.position_m.Add(e);
     ev.metrics.gps_matched_steps = errors.matched;
+    EvaluateGpsNees(record, scenario, errors.fix_index, ev);
   }
 }
 
@@ -95,6 +150,8 @@ void EvaluateDiagnostics(const RunRecord& record, RunMetrics& m) {
     resampled += d.resampled ? 1.0 : 0.0;
     hypotheses += d.hypotheses;
     components += d.map_components;
+    m.nis_sum += d.nis_sum;
+    m.nis_count += static_cast<std::size_t>(d.nis_count);
   }
   const double steps = static_cast<double>(n);
   m.ess_pct = 100.0 * ess / steps;
@@ -147,6 +204,8 @@ RunEvaluation EvaluateRun(const RunRecord& record, const datasets::Scenario& sce
   ev.position_error_m.assign(n, kNaN);
   ev.heading_error_deg.assign(n, kNaN);
   ev.pose_nees.assign(n, kNaN);
+  ev.pose_nees_rb.assign(n, kNaN);
+  ev.gps_nees_rb.assign(n, kNaN);
   EvaluateTrajectory(record, scenario, settings, ev);
   EvaluateMap(record, scenario, settings, ev.metrics);
   EvaluateDiagnostics(record, ev.metrics);

@@ -52,6 +52,20 @@ struct RunMetrics {
   ErrorMoments pose_nees;
   /// Landmark NEES of the final map over the GOSPA-matched pairs (maps with covariances).
   ErrorMoments landmark_nees;
+  /// Steps of pose_nees with NEES <= chi-square_3(0.95): the true pose inside the 95 % ellipsoid.
+  std::size_t pose_coverage_inside = 0;
+  /// Pose NEES with the Rao-Blackwellised mean and covariance (StepOutput::pose_mean_rb /
+  /// pose_cov_rb), over the steps where that covariance is positive definite and truth is known.
+  ErrorMoments pose_nees_rb;
+  std::size_t pose_coverage_rb_inside = 0;  ///< steps of pose_nees_rb <= chi-square_3(0.95)
+  /// Position NEES of the Rao-Blackwellised mean and (x, y) covariance against the matched GPS
+  /// fix (data with GPS only; the GPS error itself is not in the covariance).
+  ErrorMoments gps_nees_rb;
+  std::size_t gps_coverage_rb_inside = 0;  ///< steps of gps_nees_rb <= chi-square_2(0.95)
+  /// NIS of the estimate's associated measurements summed over every step, and their count
+  /// (StepDiagnostics::nis_sum / nis_count); 2 per measurement for a consistent filter.
+  double nis_sum = 0.0;
+  std::size_t nis_count = 0;
   /// Data-association confusion counts over every step (metrics/association_accuracy.h, the
   /// landmark identity alone: no distance limit). nullopt for batch estimators and for scenarios
   /// without origin labels and a true map (real data). An online estimator that never reports an
@@ -72,6 +86,11 @@ struct RunEvaluation {
   /// difference); NaN without true poses, without a covariance, or when the covariance is not
   /// positive definite (zero or singular, e.g. at the first step of a particle filter).
   std::vector<double> pose_nees;
+  /// Per step: pose NEES of the Rao-Blackwellised mean and covariance; NaN as for pose_nees.
+  std::vector<double> pose_nees_rb;
+  /// Per step (data with GPS only): (x, y) NEES of the Rao-Blackwellised mean and covariance
+  /// against the matched GPS fix; NaN where unmatched or unavailable.
+  std::vector<double> gps_nees_rb;
 };
 
 /// Evaluates a run against its scenario's truth. Throws std::invalid_argument when the record

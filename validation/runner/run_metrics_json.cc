@@ -126,6 +126,20 @@ nlohmann::json ToJson(const RunMetrics& m) {
   j["landmark_nees_mean"] = OrNull(m.landmark_nees.Mean());
   j["landmark_nees_count"] = m.landmark_nees.count;
   j["landmark_nees_sum"] = m.landmark_nees.sum;
+  j["pose_coverage_inside"] = m.pose_coverage_inside;
+  j["pose_nees_rb_mean"] = OrNull(m.pose_nees_rb.Mean());
+  j["pose_nees_rb_count"] = m.pose_nees_rb.count;
+  j["pose_nees_rb_sum"] = m.pose_nees_rb.sum;
+  j["pose_coverage_rb_inside"] = m.pose_coverage_rb_inside;
+  j["gps_nees_rb_mean"] = OrNull(m.gps_nees_rb.Mean());
+  j["gps_nees_rb_count"] = m.gps_nees_rb.count;
+  j["gps_nees_rb_sum"] = m.gps_nees_rb.sum;
+  j["gps_coverage_rb_inside"] = m.gps_coverage_rb_inside;
+  j["nis_sum"] = m.nis_sum;
+  j["nis_count"] = m.nis_count;
+  j["nis_mean"] =
+      OrNull(m.nis_count > 0 ? std::optional<double>(m.nis_sum / static_cast<double>(m.nis_count))
+                             : std::nullopt);
   const std::optional<AssociationCounts>& da = m.association;
   const auto da_count = [&](long AssociationCounts::*member) {
     return da ? nlohmann::json((*da).*member) : nlohmann::json(nullptr);
@@ -177,6 +191,18 @@ RunMetrics RunMetricsFromJson(const nlohmann::json& j, const std::string& source
   m.pose_nees.sum = nees_sum("pose_nees_sum");
   m.landmark_nees.count = r.Count("landmark_nees_count");
   m.landmark_nees.sum = nees_sum("landmark_nees_sum");
+  // Consistency fields: absent in folders written before they existed (read as none).
+  if (j.contains("pose_nees_rb_count")) {
+    m.pose_coverage_inside = r.Count("pose_coverage_inside");
+    m.pose_nees_rb.count = r.Count("pose_nees_rb_count");
+    m.pose_nees_rb.sum = nees_sum("pose_nees_rb_sum");
+    m.pose_coverage_rb_inside = r.Count("pose_coverage_rb_inside");
+    m.gps_nees_rb.count = r.Count("gps_nees_rb_count");
+    m.gps_nees_rb.sum = nees_sum("gps_nees_rb_sum");
+    m.gps_coverage_rb_inside = r.Count("gps_coverage_rb_inside");
+    m.nis_sum = nees_sum("nis_sum");
+    m.nis_count = r.Count("nis_count");
+  }
   // Association counts: absent in folders written before they existed, null when not scored.
   if (j.contains("da_tp") && !j.at("da_tp").is_null()) {
     AssociationCounts da;

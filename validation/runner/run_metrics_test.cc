@@ -316,11 +316,48 @@ TEST(StepsCsv, HasANeesColumnEmptyWhereThereIsNone) {
   const RunRecord r = HandRecord();
   const std::string csv = StepsCsv(r, s, EvaluateRun(r, s));
   const CsvTable table = ParseCsv(csv, "steps.csv");
-  ASSERT_EQ(table.header.back(), "nees");
+  const std::optional<std::size_t> nees = table.FindColumn("nees");
+  ASSERT_TRUE(nees);
+  ASSERT_EQ(*nees, 15u);  // the existing columns keep their places; new ones follow
   ASSERT_EQ(table.rows.size(), 3u);
-  EXPECT_EQ(table.rows[0].back(), "");
-  EXPECT_EQ(table.rows[1].back(), "25.01");
-  EXPECT_EQ(table.rows[2].back(), "");
+  EXPECT_EQ(table.rows[0][*nees], "");
+  EXPECT_EQ(table.rows[1][*nees], "25.01");
+  EXPECT_EQ(table.rows[2][*nees], "");
+}
+
+TEST(StepsCsv, HasRbNeesAndNisColumnsAndMetricsRoundTrip) {
+  const datasets::Scenario s = TruthScenario();
+  RunRecord r = HandRecord();
+  r.pose_means_rb = {std::nullopt, Pose(4.0, 4.0, 0.1), Pose(2.0, 1.0, 0.0)};
+  r.pose_covs_rb = {std::nullopt, Mat3(2.0 * Mat3::Identity()), Mat3::Zero()};
+  r.diagnostics[1].nis_sum = 3.0;
+  r.diagnostics[1].nis_count = 2;
+  const RunEvaluation ev = EvaluateRun(r, s);
+  const CsvTable table = ParseCsv(StepsCsv(r, s, ev), "steps.csv");
+  const auto column = [&](const std::string& name) {
+    const std::optional<std::size_t> c = table.FindColumn(name);
+    EXPECT_TRUE(c) << name;
+    return c.value_or(0);
+  };
+  EXPECT_EQ(table.rows[0][column("nees_rb")], "");
+  EXPECT_EQ(table.rows[1][column("nees_rb")], "12.505");  // the identity case halved
+  EXPECT_EQ(table.rows[2][column("nees_rb")], "");
+  EXPECT_EQ(table.rows[0][column("nis_sum")], "");
+  EXPECT_EQ(table.rows[1][column("nis_sum")], "3");
+  EXPECT_EQ(table.rows[1][column("nis_count")], "2");
+  EXPECT_EQ(table.rows[1][column("gps_nees_rb")], "");
+  // 12.505 > chi-square_3(0.95) = 7.81: outside the ellipsoid; 25.01 too.
+  EXPECT_EQ(ev.metrics.pose_nees_rb.count, 1u);
+  EXPECT_EQ(ev.metrics.pose_coverage_rb_inside, 0u);
+  EXPECT_EQ(ev.metrics.pose_coverage_inside, 0u);
+  EXPECT_EQ(ev.metrics.nis_count, 2u);
+  EXPECT_EQ(ev.metrics.nis_sum, 3.0);
+  const RunMetrics back = RunMetricsFromJson(ToJson(ev.metrics), "test");
+  EXPECT_EQ(back.pose_nees_rb.count, 1u);
+  EXPECT_EQ(back.pose_nees_rb.sum, ev.metrics.pose_nees_rb.sum);
+  EXPECT_NEAR(back.pose_nees_rb.sum, 12.505, 1e-12);
+  EXPECT_EQ(back.nis_count, 2u);
+  EXPECT_EQ(back.nis_sum, 3.0);
 }
 
 TEST(RunFiles, WritesACovarianceThatIsNotFiniteAsNotAvailable) {

@@ -23,6 +23,10 @@ struct RunRecord {
   std::vector<Pose> poses;
   /// Per step, where the estimator carries one (may be empty: no covariances at all).
   std::vector<std::optional<Mat3>> pose_covs;
+  /// Per step, the Rao-Blackwellised pose mean and covariance (StepOutput::pose_mean_rb,
+  /// pose_cov_rb); empty for estimators without them.
+  std::vector<std::optional<Pose>> pose_means_rb;
+  std::vector<std::optional<Mat3>> pose_covs_rb;
   /// Per step for online estimators; empty for batch estimators.
   std::vector<filters::StepDiagnostics> diagnostics;
   /// Per step for online estimators: StepOutput::association (per measurement the associated

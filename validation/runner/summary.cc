@@ -43,30 +43,58 @@ void ReadIdentity(const nlohmann::json& j, const std::filesystem::path& path, T&
   }
 }
 
-// The `nees` column of a steps.csv (NaN for empty cells); empty when the file or the column is
-// missing (results written before the column existed).
-std::vector<double> ReadStepNees(const std::filesystem::path& path) {
-  if (!std::filesystem::exists(path)) return {};
-  const CsvTable table = ReadCsvFile(path);
-  const std::optional<std::size_t> column = table.FindColumn("nees");
+// A numeric column of a steps.csv (`empty` for empty cells); empty when the column is missing
+// (results written before the column existed).
+std::vector<double> ReadStepColumn(const CsvTable& table, const std::filesystem::path& path,
+                                   const std::string& name, double empty) {
+  const std::optional<std::size_t> column = table.FindColumn(name);
   if (!column) return {};
-  std::vector<double> nees;
-  nees.reserve(table.rows.size());
+  std::vector<double> values;
+  values.reserve(table.rows.size());
   for (std::size_t i = 0; i < table.rows.size(); ++i) {
     const std::string& cell = table.rows[i][*column];
     if (cell.empty()) {
-      nees.push_back(std::numeric_limits<double>::quiet_NaN());
+      values.push_back(empty);
       continue;
     }
     char* end = nullptr;
     const double value = std::strtod(cell.c_str(), &end);
     if (end != cell.c_str() + cell.size()) {
-      throw std::runtime_error(path.string() + ":" + std::to_string(i + 2) + ": nees '" + cell +
-                               "' is not a number");
+      throw std::runtime_error(path.string() + ":" + std::to_string(i + 2) + ": " + name + " '" +
+                               cell + "' is not a number");
     }
-    nees.push_back(value);
+    values.push_back(value);
   }
-  return nees;
+  return values;
+}
+
+// The per-step consistency series of a run, read only where the run's metrics have values.
+void ReadStepSeries(const std::filesystem::path& path, RunResult& r) {
+  const RunMetrics& m = r.metrics;
+  if (m.pose_nees.count == 0 && m.pose_nees_rb.count == 0 && m.nis_count == 0) return;
+  if (!std::filesystem::exists(path)) return;
+  const CsvTable table = ReadCsvFile(path);
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  if (m.pose_nees.count > 0) r.step_nees = ReadStepColumn(table, path, "nees", kNaN);
+  if (m.pose_nees_rb.count > 0) r.step_nees_rb = ReadStepColumn(table, path, "nees_rb", kNaN);
+  if (m.nis_count > 0) {
+    r.step_nis_sum = ReadStepColumn(table, path, "nis_sum", 0.0);
+    r.step_nis_count = ReadStepColumn(table, path, "nis_count", 0.0);
+  }
+}
+
+double Median(std::vector<double> values) {
+  const std::size_t mid = values.size() / 2;
+  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(mid), values.end());
+  const double upper = values[mid];
+  if (values.size() % 2 == 1) return upper;
+  return 0.5 * (upper + *std::max_element(values.begin(),
+                                          values.begin() + static_cast<std::ptrdiff_t>(mid)));
+}
+
+std::optional<double> Fraction(std::size_t inside, std::size_t total) {
+  if (total == 0) return std::nullopt;
+  return static_cast<double>(inside) / static_cast<double>(total);
 }
 
 std::optional<double> StepWeightedMean(const std::vector<const RunResult*>& runs,
@@ -116,6 +144,13 @@ std::string Count(std::size_t v) { return FormatInteger(static_cast<std::int64_t
 std::string DaRate(const std::optional<AssociationCounts>& counts,
                    double (AssociationCounts::*rate)() const) {
   return counts ? Num(((*counts).*rate)()) : std::string();
+}
+
+// Two-sided bound of the mean of M landmark NEES values (2 dof each): chi-square_{2M}(p) / M.
+std::string LandmarkBound(const ErrorMoments& nees, double p) {
+  if (nees.count == 0) return std::string();
+  const double m = static_cast<double>(nees.count);
+  return Num(ChiSquareQuantile(p, 2.0 * m) / m);
 }
 
 const std::vector<Column<GroupSummary>>& SummaryColumns() {
@@ -171,6 +206,30 @@ const std::vector<Column<GroupSummary>>& SummaryColumns() {
                     : std::string();
        }},
       {"solver_iterations_mean", [](const G& g) { return Num(g.solver_iterations.Mean()); }},
+      {"nees_median", [](const G& g) { return g.nees ? Num(g.nees->median) : std::string(); }},
+      {"coverage", [](const G& g) { return Num(g.coverage); }},
+      {"nees_rb_mean", [](const G& g) { return g.nees_rb ? Num(g.nees_rb->mean) : std::string(); }},
+      {"nees_rb_median",
+       [](const G& g) { return g.nees_rb ? Num(g.nees_rb->median) : std::string(); }},
+      {"nees_rb_lower_95",
+       [](const G& g) { return g.nees_rb ? Num(g.nees_rb->lower) : std::string(); }},
+      {"nees_rb_upper_95",
+       [](const G& g) { return g.nees_rb ? Num(g.nees_rb->upper) : std::string(); }},
+      {"nees_rb_fraction_inside",
+       [](const G& g) { return g.nees_rb ? Num(g.nees_rb->fraction_inside) : std::string(); }},
+      {"nees_rb_steps",
+       [](const G& g) { return g.nees_rb ? Count(g.nees_rb->steps) : std::string(); }},
+      {"pose_nees_rb_mean", [](const G& g) { return Num(g.pose_nees_rb.Mean()); }},
+      {"coverage_rb", [](const G& g) { return Num(g.coverage_rb); }},
+      {"nis_mean", [](const G& g) { return g.nis ? Num(g.nis->mean) : std::string(); }},
+      {"nis_median", [](const G& g) { return g.nis ? Num(g.nis->median) : std::string(); }},
+      {"nis_fraction_inside",
+       [](const G& g) { return g.nis ? Num(g.nis->fraction_inside) : std::string(); }},
+      {"nis_steps", [](const G& g) { return g.nis ? Count(g.nis->steps) : std::string(); }},
+      {"landmark_nees_lower_95", [](const G& g) { return LandmarkBound(g.landmark_nees, 0.025); }},
+      {"landmark_nees_upper_95", [](const G& g) { return LandmarkBound(g.landmark_nees, 0.975); }},
+      {"gps_nees_rb_mean", [](const G& g) { return Num(g.gps_nees_rb.Mean()); }},
+      {"gps_coverage_rb", [](const G& g) { return Num(g.gps_coverage_rb); }},
   };
   return columns;
 }
@@ -223,6 +282,27 @@ const std::vector<Column<RunResult>>& RunColumns() {
        [](const R& r) {
          return r.metrics.solver_iterations ? Count(*r.metrics.solver_iterations) : std::string();
        }},
+      {"coverage",
+       [](const R& r) {
+         return Num(Fraction(r.metrics.pose_coverage_inside, r.metrics.pose_nees.count));
+       }},
+      {"pose_nees_rb_mean", [](const R& r) { return Num(r.metrics.pose_nees_rb.Mean()); }},
+      {"coverage_rb",
+       [](const R& r) {
+         return Num(Fraction(r.metrics.pose_coverage_rb_inside, r.metrics.pose_nees_rb.count));
+       }},
+      {"nis_mean",
+       [](const R& r) {
+         return r.metrics.nis_count > 0
+                    ? Num(r.metrics.nis_sum / static_cast<double>(r.metrics.nis_count))
+                    : std::string();
+       }},
+      {"nis_count", [](const R& r) { return Count(r.metrics.nis_count); }},
+      {"gps_nees_rb_mean", [](const R& r) { return Num(r.metrics.gps_nees_rb.Mean()); }},
+      {"gps_coverage_rb",
+       [](const R& r) {
+         return Num(Fraction(r.metrics.gps_coverage_rb_inside, r.metrics.gps_nees_rb.count));
+       }},
   };
   return columns;
 }
@@ -244,7 +324,7 @@ ResultsInventory ReadResults(const std::filesystem::path& out) {
         RunResult r;
         ReadIdentity(j, metrics_path, r);
         r.metrics = RunMetricsFromJson(j, metrics_path.string());
-        if (r.metrics.pose_nees.count > 0) r.step_nees = ReadStepNees(run.path() / kStepsFile);
+        ReadStepSeries(run.path() / kStepsFile, r);
         inventory.runs.push_back(std::move(r));
       } else if (std::filesystem::exists(error_path)) {
         const nlohmann::json j = ReadJsonFile(error_path);
@@ -295,8 +375,76 @@ std::optional<GroupNees> SummariseGroupNees(const std::vector<const std::vector<
   }
   g.mean = total / static_cast<double>(averaged.size());
   g.fraction_inside = static_cast<double>(inside) / static_cast<double>(averaged.size());
+  g.median = Median(std::move(averaged));
   return g;
 }
+
+std::optional<GroupNis> SummariseGroupNis(const std::vector<const std::vector<double>*>& sums,
+                                          const std::vector<const std::vector<double>*>& counts) {
+  std::size_t steps = 0;
+  for (const std::vector<double>* c : counts) steps = std::max(steps, c->size());
+  const auto at = [](const std::vector<double>* v, std::size_t k) {
+    return k < v->size() ? (*v)[k] : 0.0;
+  };
+  std::vector<double> averaged;
+  double total_sum = 0.0;
+  double total_count = 0.0;
+  std::size_t inside = 0;
+  for (std::size_t k = 0; k < steps; ++k) {
+    double sum = 0.0;
+    double count = 0.0;
+    for (std::size_t r = 0; r < sums.size() && r < counts.size(); ++r) {
+      sum += at(sums[r], k);
+      count += at(counts[r], k);
+    }
+    if (count <= 0.0) continue;
+    const double a = sum / count;
+    const double lower = ChiSquareQuantile(0.025, 2.0 * count) / count;
+    const double upper = ChiSquareQuantile(0.975, 2.0 * count) / count;
+    if (a >= lower && a <= upper) ++inside;
+    averaged.push_back(a);
+    total_sum += sum;
+    total_count += count;
+  }
+  if (averaged.empty()) return std::nullopt;
+  GroupNis g;
+  g.mean = total_sum / total_count;
+  g.steps = averaged.size();
+  g.fraction_inside = static_cast<double>(inside) / static_cast<double>(averaged.size());
+  g.median = Median(std::move(averaged));
+  return g;
+}
+
+namespace {
+
+// The Rao-Blackwellised NEES, NIS and coverage of a group.
+void SummariseConsistency(const std::vector<const RunResult*>& runs, GroupSummary& g) {
+  std::size_t inside = 0;
+  std::size_t inside_rb = 0;
+  std::size_t inside_gps = 0;
+  for (const RunResult* r : runs) {
+    inside += r->metrics.pose_coverage_inside;
+    inside_rb += r->metrics.pose_coverage_rb_inside;
+    inside_gps += r->metrics.gps_coverage_rb_inside;
+  }
+  g.coverage = Fraction(inside, g.pose_nees.count);
+  g.coverage_rb = Fraction(inside_rb, g.pose_nees_rb.count);
+  g.gps_coverage_rb = Fraction(inside_gps, g.gps_nees_rb.count);
+  if (g.pose_nees_rb.count > 0) {
+    std::vector<const std::vector<double>*> nees;
+    for (const RunResult* r : runs) nees.push_back(&r->step_nees_rb);
+    g.nees_rb = SummariseGroupNees(nees);
+  }
+  std::vector<const std::vector<double>*> sums;
+  std::vector<const std::vector<double>*> counts;
+  for (const RunResult* r : runs) {
+    sums.push_back(&r->step_nis_sum);
+    counts.push_back(&r->step_nis_count);
+  }
+  g.nis = SummariseGroupNis(sums, counts);
+}
+
+}  // namespace
 
 std::vector<GroupSummary> SummariseGroups(const ResultsInventory& inventory) {
   std::map<std::pair<std::string, int>, std::vector<const RunResult*>> runs_by_group;
@@ -329,6 +477,8 @@ std::vector<GroupSummary> SummariseGroups(const ResultsInventory& inventory) {
       }
       g.map_size.Add(static_cast<double>(m.map_size));
       g.pose_nees.Merge(m.pose_nees);
+      g.pose_nees_rb.Merge(m.pose_nees_rb);
+      g.gps_nees_rb.Merge(m.gps_nees_rb);
       g.landmark_nees.Merge(m.landmark_nees);
       if (m.association) {
         if (!g.association) g.association = AssociationCounts{};
@@ -348,6 +498,7 @@ std::vector<GroupSummary> SummariseGroups(const ResultsInventory& inventory) {
       for (const RunResult* r : runs) nees.push_back(&r->step_nees);
       g.nees = SummariseGroupNees(nees);
     }
+    SummariseConsistency(runs, g);
     groups.push_back(std::move(g));
   }
   return groups;

@@ -22,6 +22,11 @@ struct RunResult {
   /// Per-step pose NEES (the `nees` column of steps.csv; NaN where empty), read only for runs
   /// with pose NEES values (metrics.pose_nees.count > 0); empty otherwise.
   std::vector<double> step_nees;
+  /// The `nees_rb`, `nis_sum` and `nis_count` columns of steps.csv (NaN / 0 where empty), read
+  /// only for runs with such values; empty otherwise.
+  std::vector<double> step_nees_rb;
+  std::vector<double> step_nis_sum;
+  std::vector<double> step_nis_count;
 };
 
 /// Consistency of a group's pose estimates over the steps where every run has a pose NEES:
@@ -33,6 +38,17 @@ struct GroupNees {
   double lower = 0.0;            ///< chi-square_{3 runs}(0.025) / runs
   double upper = 0.0;            ///< chi-square_{3 runs}(0.975) / runs
   double fraction_inside = 0.0;  ///< used steps with lower <= run-averaged NEES <= upper
+  std::size_t steps = 0;         ///< steps used
+  double median = 0.0;           ///< median over the used steps of the run-averaged NEES
+};
+
+/// Consistency of a group's NIS: at each step with associated measurements in some run, the
+/// run-averaged NIS per measurement, sum_r nis_sum / sum_r nis_count (C measurements in all),
+/// against the two-sided 95 % bounds chi-square_{2C}(0.025) / C and chi-square_{2C}(0.975) / C.
+struct GroupNis {
+  double mean = 0.0;    ///< NIS per measurement pooled over every step and run (2 expected)
+  double median = 0.0;  ///< median over the used steps of the run-averaged NIS
+  double fraction_inside = 0.0;  ///< used steps inside their bounds
   std::size_t steps = 0;         ///< steps used
 };
 
@@ -74,15 +90,30 @@ struct GroupSummary {
   /// Association counts summed over the runs that were scored; nullopt when none was.
   std::optional<AssociationCounts> association;
   ErrorMoments step_ms;
-  ErrorMoments run_ms;             ///< total wall time per run
-  ErrorMoments solver_iterations;  ///< batch estimators' solver iterations, one value per run
-  std::optional<GroupNees> nees;   ///< nullopt when no step has a NEES in every run
+  ErrorMoments run_ms;               ///< total wall time per run
+  ErrorMoments solver_iterations;    ///< batch estimators' solver iterations, one value per run
+  std::optional<GroupNees> nees;     ///< nullopt when no step has a NEES in every run
+  std::optional<GroupNees> nees_rb;  ///< the same for the Rao-Blackwellised pose NEES
+  std::optional<GroupNis> nis;       ///< nullopt when no run reports NIS
+  /// Fraction of steps (pooled over the runs) whose true pose lies inside the 95 % ellipsoid of
+  /// the particle-spread / Rao-Blackwellised covariance, and of GPS fixes inside the RB (x, y)
+  /// ellipse; nullopt without such steps.
+  std::optional<double> coverage;
+  std::optional<double> coverage_rb;
+  std::optional<double> gps_coverage_rb;
+  ErrorMoments pose_nees_rb;
+  ErrorMoments gps_nees_rb;
 };
 
 /// GroupNees of runs' per-step NEES series (NaN = no NEES at that step); steps beyond the
 /// shortest series are not used. nullopt when no runs are given or no step has a finite NEES in
 /// every run.
 std::optional<GroupNees> SummariseGroupNees(const std::vector<const std::vector<double>*>& runs);
+
+/// GroupNis of runs' per-step NIS sums and counts (steps beyond a run's series count as 0 / 0).
+/// nullopt when no step has a measurement in any run.
+std::optional<GroupNis> SummariseGroupNis(const std::vector<const std::vector<double>*>& sums,
+                                          const std::vector<const std::vector<double>*>& counts);
 
 /// Reads <out>/runs/<estimator>-N<particles>/seed-<seed>/{metrics.json,error.json}, and the
 /// `nees` column of steps.csv for runs with pose NEES values. Folders without either JSON file
