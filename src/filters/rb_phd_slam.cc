@@ -22,10 +22,12 @@ void PhdMapModel::BeforePrediction(Map& map, const Pose& pose) const {
   map.births.clear();
 }
 
-void PhdMapModel::Update(Map& map, const Pose& pose, const StepData& step,
-                         double& log_weight) const {
+void PhdMapModel::Update(Map& map, const Pose& pose, const StepData& step, double& log_weight,
+                         InnovationStats& nis) const {
   const phd::PhdUpdateResult update = map.gm.Update(pose, step.measurements, sensor_, map_params_);
   log_weight += update.log_likelihood;
+  nis.nis_sum += update.nis_sum;
+  nis.count += update.nis_count;
   map.births.clear();
   for (int j : update.ungated) map.births.push_back(step.measurements[j]);
   // Hypothesis reduction and active/passive bookkeeping.

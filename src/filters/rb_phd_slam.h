@@ -1,6 +1,14 @@
 // Rao-Blackwellised PHD-SLAM: the particle-filter skeleton (particle_filter.h) over per-particle
 // GM-PHD maps; the family members differ only in their ImportanceDensity (reference notes
 // sections 6-14).
+//
+// Pose covariances in StepOutput: pose_cov is the weighted particle spread about the estimate
+// (the classical particle NEES); pose_cov_rb / pose_mean_rb the Rao-Blackwellised mixture
+// (particle_filter.h) of each particle's proposal with the carried-in weights, i.e. for
+// PHD-SLAM 3.0 its GM IPL density, for 2.0a the moment-matched EKF conditional, for 2.0b the
+// joint-IPL pose marginal and for 1.0 the predicted Gaussian (its proposal is the prior, so its
+// RB covariance ignores the step's measurements). NIS: StepDiagnostics::nis_sum of the estimate's
+// particle, from its GM-PHD update (phd::PhdUpdateResult::nis_sum).
 #pragma once
 
 #include <cstdint>
@@ -39,14 +47,19 @@ class PhdMapModel {
   void BeginStep(const StepData& /*step*/) {}
   void BeforePrediction(Map& map, const Pose& pose) const;
   [[nodiscard]] MapView View(const Map& map) const { return {map.gm.active(), {}}; }
-  void Update(Map& map, const Pose& pose, const StepData& step, double& log_weight) const;
+  /// Also adds the NIS of the GM-PHD update (phd::PhdUpdateResult::nis_sum: per measurement the
+  /// best-explaining component, when it beats clutter) to `nis`.
+  void Update(Map& map, const Pose& pose, const StepData& step, double& log_weight,
+              InnovationStats& nis) const;
+  void Update(Map& map, const Pose& pose, const StepData& step, double& log_weight) const {
+    InnovationStats unused;
+    Update(map, pose, step, log_weight, unused);
+  }
   [[nodiscard]] Snapshot Estimate(const Map& map) const {
     return map.gm.Estimate(estimate_threshold_);
   }
   [[nodiscard]] MapEstimate ToMapEstimate(const Snapshot& snapshot) const;
-  [[nodiscard]] int ComponentCount(const Map& map) const {
-    return static_cast<int>(map.gm.size());
-  }
+  [[nodiscard]] int ComponentCount(const Map& map) const { return static_cast<int>(map.gm.size()); }
 
  private:
   models::SensorModel sensor_;

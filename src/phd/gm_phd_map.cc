@@ -57,8 +57,9 @@ PhdUpdateResult GmPhdMap::Update(const Pose& pose, std::span<const Measurement> 
     const Mat2 gain = ph * s_inv;
     Mat2 cov_post = c.cov - gain * s * gain.transpose();
     Symmetrize(cov_post);
-    predicted.push_back({i, pd, models::PredictMeasurement(pose, c.mean), s_inv, gain, cov_post,
-                         std::log(pd) + c.log_weight - log_two_pi - 0.5 * std::log(s.determinant())});
+    predicted.push_back(
+        {i, pd, models::PredictMeasurement(pose, c.mean), s_inv, gain, cov_post,
+         std::log(pd) + c.log_weight - log_two_pi - 0.5 * std::log(s.determinant())});
   }
 
   // Gated detection terms l_ij, grouped by measurement (one flat list with offsets).
@@ -66,6 +67,7 @@ PhdUpdateResult GmPhdMap::Update(const Pose& pose, std::span<const Measurement> 
     int component;  // index into `predicted`
     double log_gain;
     Vec2 innovation;
+    double nis;  // nu' S^-1 nu
   };
   std::vector<Detection> detections;
   std::vector<int> first(num_z + 1, 0);
@@ -78,7 +80,7 @@ PhdUpdateResult GmPhdMap::Update(const Pose& pose, std::span<const Measurement> 
       nu(1) = WrapAngle(nu(1));
       const double d2 = nu.dot(pc.s_inv * nu);
       if (d2 < params.gate_threshold) {
-        detections.push_back({p, pc.log_norm - 0.5 * d2, nu});
+        detections.push_back({p, pc.log_norm - 0.5 * d2, nu, d2});
       }
     }
   }
@@ -98,14 +100,22 @@ PhdUpdateResult GmPhdMap::Update(const Pose& pose, std::span<const Measurement> 
       continue;
     }
     double c_j = log_clutter;
-    for (int d = first[j]; d < first[j + 1]; ++d) c_j = LogAddExp(c_j, detections[d].log_gain);
+    int best = -1;
+    for (int d = first[j]; d < first[j + 1]; ++d) {
+      c_j = LogAddExp(c_j, detections[d].log_gain);
+      if (best < 0 || detections[d].log_gain > detections[best].log_gain) best = d;
+    }
     result.log_likelihood += c_j;
+    if (detections[best].log_gain > log_clutter) {
+      result.nis_sum += detections[best].nis;
+      ++result.nis_count;
+    }
     for (int d = first[j]; d < first[j + 1]; ++d) {
       const Predicted& pc = predicted[detections[d].component];
       // The prior mean: the misdetected copy at pc.index kept it, only its weight changed.
       const Landmark prior_mean = active_[pc.index].mean;
-      active_.push_back(
-          {prior_mean + pc.gain * detections[d].innovation, pc.cov_post, detections[d].log_gain - c_j});
+      active_.push_back({prior_mean + pc.gain * detections[d].innovation, pc.cov_post,
+                         detections[d].log_gain - c_j});
     }
   }
   if (!params.reference_omit_missed_detection_mass) result.log_likelihood -= missed_mass;

@@ -23,6 +23,11 @@ struct PhdUpdateResult {
   double log_likelihood = 0.0;
   /// Indices of the measurements that gated with no component with pD > 0 (the next births).
   std::vector<int> ungated;
+  /// NIS of the measurements the update explains best by a landmark: for each measurement whose
+  /// largest detection term pD w N(z; z_hat, S) exceeds the clutter intensity, nu' S^-1 nu of that
+  /// component (its S at this pose); the sum over those measurements and their count.
+  double nis_sum = 0.0;
+  int nis_count = 0;
 };
 
 class GmPhdMap {
