@@ -11,16 +11,22 @@
 // is. The iteration count is fixed, so every benchmark times exactly the same steps. Step() is
 // single-threaded: on a shared machine read the CPU column, since the wall time also counts
 // waiting for a core. Counters: mean proposal components, map components, resampling rate.
+//
+// RbMoments/N times the Rao-Blackwellised pose moments alone (particle_filter.h: per particle
+// the moments of its proposal, then the weighted match over the particles) for N particles with
+// `components`-component proposals, to be read as a ratio to Step/phd3/N of the same run.
 #include <benchmark/benchmark.h>
 
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "datasets/data_dir.h"
 #include "datasets/paper_synthetic.h"
 #include "src/core/random.h"
 #include "src/filters/phd_slam_family.h"
+#include "src/filters/pose_mixture_moments.h"
 
 namespace phdslam::benchmarks {
 namespace {
@@ -41,9 +47,8 @@ void BenchmarkStep(benchmark::State& state, const std::string& variant, int part
   const datasets::Scenario& scenario = PaperScenario();
   filters::PhdSlamParams params;
   params.particles = particles;
-  const auto filter =
-      filters::MakePhdSlam(variant, scenario.PublicContext(), params,
-                           DeriveSeed(HashName(variant), 1));
+  const auto filter = filters::MakePhdSlam(variant, scenario.PublicContext(), params,
+                                           DeriveSeed(HashName(variant), 1));
   std::size_t k = 0;
   for (; k < kWarmupSteps; ++k) filter->Step(scenario.steps[k].data);
   double components = 0.0;
@@ -59,6 +64,28 @@ void BenchmarkStep(benchmark::State& state, const std::string& variant, int part
   state.counters["map_components"] = components / n;
   state.counters["hypotheses"] = hypotheses / n;
   state.counters["resampled_pct"] = 100.0 * resampled / n;
+}
+
+void BenchmarkRbMoments(benchmark::State& state, int particles, int components) {
+  RandomStream rng(3);
+  std::vector<filters::PreparedProposal> proposals;
+  for (int i = 0; i < particles; ++i) {
+    filters::GaussianMixtureProposal g;
+    for (int t = 0; t < components; ++t) {
+      g.Add(rng.Normal(), Pose(rng.Normal(), rng.Normal(), 0.1 * rng.Normal()),
+            Vec3(0.01, 0.02, 1e-4).asDiagonal());
+    }
+    proposals.push_back(filters::PrepareProposal(std::move(g)));
+  }
+  std::vector<filters::PoseMoments> moments(static_cast<std::size_t>(particles));
+  const Pose fallback = Pose::Zero();
+  for (auto _ : state) {
+    for (int i = 0; i < particles; ++i) {
+      moments[i] = filters::ProposalMoments(proposals[i], fallback);
+      moments[i].log_weight = -0.01 * i;
+    }
+    benchmark::DoNotOptimize(filters::MatchMoments(moments));
+  }
 }
 
 void Register(const std::string& variant, int particles) {
@@ -81,6 +108,14 @@ int main(int argc, char** argv) {
   Register("phd1", 10);
   Register("phd2a", 10);
   Register("phd2b", 10);
+  for (const int n : {1, 10, 100}) {
+    for (const int c : {1, 4}) {
+      const std::string name =
+          "RbMoments/N:" + std::to_string(n) + "/components:" + std::to_string(c);
+      benchmark::RegisterBenchmark(name.c_str(), phdslam::benchmarks::BenchmarkRbMoments, n, c)
+          ->Unit(benchmark::kMicrosecond);
+    }
+  }
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
   return 0;
