@@ -23,6 +23,7 @@ struct Expected {
   double log_gain;
   Vec2 mean;
   Mat2 cov;
+  double nis;  // nu' S^-1 nu
 };
 Expected DetectionTerm(const Pose& x, const GaussianComponent& c, const Measurement& z,
                        const Mat2& r, double pd) {
@@ -38,7 +39,7 @@ Expected DetectionTerm(const Pose& x, const GaussianComponent& c, const Measurem
   const Mat2 k = c.cov * h.transpose() * s.inverse();
   return {std::log(pd) + c.log_weight - std::log(2 * std::numbers::pi) -
               0.5 * std::log(s.determinant()) - 0.5 * d2,
-          c.mean + k * nu, (Mat2::Identity() - k * h) * c.cov};
+          c.mean + k * nu, (Mat2::Identity() - k * h) * c.cov, d2};
 }
 
 TEST(GmPhdMapUpdate, TwoComponentExampleMatchesHandComputation) {
@@ -76,6 +77,12 @@ TEST(GmPhdMapUpdate, TwoComponentExampleMatchesHandComputation) {
   // Detection weights of one measurement plus clutter share sum to one.
   EXPECT_NEAR(std::exp(act[2].log_weight) + std::exp(act[3].log_weight) + lc / std::exp(c0), 1.0,
               1e-12);
+  // NIS: z0 is explained best by the component with the larger detection term, which beats
+  // clutter here; z1 gated with nothing and is not counted.
+  const Expected& best = ea.log_gain > eb.log_gain ? ea : eb;
+  ASSERT_GT(best.log_gain, std::log(lc));
+  EXPECT_EQ(res.nis_count, 1);
+  EXPECT_NEAR(res.nis_sum, best.nis, 1e-9);
 }
 
 TEST(GmPhdMapUpdate, EmptyScanChangesNothingAndOutOfFovComponentsAreUntouched) {

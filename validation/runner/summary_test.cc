@@ -263,12 +263,31 @@ TEST(SummariseGroupNees, AveragesOverRunsAtStepsWhereEveryRunHasANees) {
   EXPECT_NEAR(g->lower, 0.6186721228956014, 1e-9);
   EXPECT_NEAR(g->upper, 7.22468766772396, 1e-9);
   EXPECT_DOUBLE_EQ(g->fraction_inside, 2.0 / 3.0);
+  EXPECT_DOUBLE_EQ(g->median, 3.0);
 
   const std::vector<double> none = {kNaN, kNaN};
   EXPECT_FALSE(SummariseGroupNees({&r1, &none}).has_value());
   EXPECT_FALSE(SummariseGroupNees({}).has_value());
   const std::vector<double> empty;
   EXPECT_FALSE(SummariseGroupNees({&r1, &empty}).has_value());
+}
+
+TEST(SummariseGroupNis, PoolsTheMeasurementsOfEveryRunPerStep) {
+  // Step 0 has no measurement; step 1: 4 / 2 measurements; step 2 (first run only): 30 / 1.
+  const std::vector<double> s1 = {0.0, 2.0, 30.0};
+  const std::vector<double> c1 = {0.0, 1.0, 1.0};
+  const std::vector<double> s2 = {0.0, 2.0};
+  const std::vector<double> c2 = {0.0, 1.0};
+  const std::optional<GroupNis> g = SummariseGroupNis({&s1, &s2}, {&c1, &c2});
+  ASSERT_TRUE(g.has_value());
+  EXPECT_EQ(g->steps, 2u);
+  EXPECT_DOUBLE_EQ(g->mean, 34.0 / 3.0);
+  EXPECT_DOUBLE_EQ(g->median, 16.0);  // of 2 and 30
+  // Step 1: 2 inside [chi2_4(0.025), chi2_4(0.975)] / 2 = [0.242, 5.572]; step 2: 30 above
+  // chi2_2(0.975) = 7.378.
+  EXPECT_DOUBLE_EQ(g->fraction_inside, 0.5);
+  const std::vector<double> zero = {0.0, 0.0};
+  EXPECT_FALSE(SummariseGroupNis({&zero}, {&zero}).has_value());
 }
 
 TEST(Summary, NeesColumnsComeFromTheStepsFiles) {
