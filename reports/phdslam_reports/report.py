@@ -300,22 +300,21 @@ class ReportBuilder:
                               "are shown.")
         return Section(sid, title, body=body)
 
-    def nees_section(self, sid: str, prefix: str, folder: ResultsFolder) -> Section:
-        """Run-averaged pose NEES with 95 % chi-square bounds, when steps.csv has 'nees'."""
-        title = "Pose NEES (consistency)"
+    def _nees_series(self, folder: ResultsFolder, column: str) -> list:
+        """Run-averaged series of one NEES column of steps.csv, per group that has it."""
         series = []
         for group in folder.groups():
             seeds = folder.seeds(group)
-            if not seeds or not folder.steps(group, seeds[0]).has("nees"):
+            if not seeds or not folder.steps(group, seeds[0]).has(column):
                 continue
             matrix_rows = []
             for seed in seeds:
                 steps = folder.steps(group, seed)
-                if not steps.has("nees"):
+                if not steps.has(column):
                     raise ResultsFormatError(
-                        f"{steps.path}: column 'nees' is missing (seed {seeds[0]} of the same "
-                        "group has it)")
-                matrix_rows.append(steps.num("nees"))
+                        f"{steps.path}: column '{column}' is missing (seed {seeds[0]} of the "
+                        "same group has it)")
+                matrix_rows.append(steps.num(column))
             folder.forget_steps()
             width = max(len(r) for r in matrix_rows)
             matrix = np.full((len(matrix_rows), width), np.nan)
@@ -324,19 +323,42 @@ class ReportBuilder:
             s = nees_series(group.estimator, group.particles, matrix)
             if s is not None:
                 series.append(s)
-        if not series:
-            return Section(sid, title, skipped_note="steps.csv has no 'nees' column")
+        return series
+
+    def _nees_table(self, series: list) -> str:
         rows = [[(self._name(s.estimator), "name"), (str(s.particles), ""), (str(s.runs), ""),
                  (f"[{s.low:.3f}, {s.high:.3f}]", ""),
                  (format_value(float(np.nanmean(s.mean))), ""),
-                 (f"{100 * s.inside:.1f} %", "")] for s in series]
+                 (format_value(s.median), ""),
+                 (f"{100 * s.inside:.1f} %", ""),
+                 (f"{100 * s.coverage:.1f} %" if np.isfinite(s.coverage) else "-", "")]
+                for s in series]
+        return table_html(["Estimator", "N", "runs", "95 % bounds", "mean NEES", "median",
+                           "steps inside", "coverage"], rows)
+
+    def nees_section(self, sid: str, prefix: str, folder: ResultsFolder) -> Section:
+        """Run-averaged pose NEES with 95 % chi-square bounds: the particle-spread NEES ('nees'
+        of steps.csv) and, when present, the Rao-Blackwellised one ('nees_rb')."""
+        title = "Pose NEES (consistency)"
+        series = self._nees_series(folder, "nees")
+        series_rb = self._nees_series(folder, "nees_rb")
+        if not series and not series_rb:
+            return Section(sid, title, skipped_note="steps.csv has no 'nees' column")
         body = ("<p>Pose NEES averaged over runs at each step (steps where every run has a "
-                "value). Bounds: chi2.ppf(0.025 and 0.975, 3 \u00d7 runs) / runs.</p>"
-                + table_html(["Estimator", "N", "runs", "95 % bounds", "mean NEES",
-                              "steps inside"], rows)
-                + self._figure(plot_nees(series, self._name), f"{prefix}nees.png",
-                               "Run-averaged pose NEES and its two-sided 95 % chi-square "
-                               "bounds."))
+                "value). Bounds: chi2.ppf(0.025 and 0.975, 3 \u00d7 runs) / runs. Coverage: "
+                "fraction of all steps of all runs whose NEES is at most chi2.ppf(0.95, 3), "
+                "i.e. the true pose lies inside the 95 % ellipsoid (0.95 expected).</p>")
+        if series:
+            body += ("<h4>Particle-spread covariance</h4>" + self._nees_table(series)
+                     + self._figure(plot_nees(series, self._name), f"{prefix}nees.png",
+                                    "Run-averaged pose NEES and its two-sided 95 % chi-square "
+                                    "bounds."))
+        if series_rb:
+            body += ("<h4>Rao-Blackwellised covariance (mixture of the particles' proposals)</h4>"
+                     + self._nees_table(series_rb)
+                     + self._figure(plot_nees(series_rb, self._name), f"{prefix}nees-rb.png",
+                                    "Run-averaged Rao-Blackwellised pose NEES and its two-sided "
+                                    "95 % chi-square bounds."))
         return Section(sid, title, body=body)
 
     def scaling_section(self, sid: str, prefix: str, folder: ResultsFolder) -> Section:

@@ -94,6 +94,8 @@ class FullReportTest(unittest.TestCase):
         body = self.report.section("nees").body
         # chi2.ppf(0.025 / 0.975, 9) / 3 = 2.700 / 3 and 19.023 / 3
         self.assertIn("[0.900, 6.341]", body)
+        self.assertIn("<th>coverage</th>", body)
+        self.assertIn("<th>median</th>", body)
 
     def test_scaling_exponents(self):
         body = self.report.section("scaling").body

@@ -12,6 +12,8 @@ from ..stats import fraction_inside, nees_bounds
 from ..style import estimator_colour, new_figure
 
 POSE_DOF = 3
+#: chi2.ppf(0.95, 3): a pose NEES at or below it puts the truth inside the 95 % ellipsoid.
+COVERAGE_THRESHOLD = 7.814727903251178
 
 
 @dataclass
@@ -24,6 +26,13 @@ class NeesSeries:
     mean: np.ndarray
     low: float
     high: float
+    coverage: float = float("nan")
+
+    @property
+    def median(self) -> float:
+        """Median over the used steps of the run-averaged NEES."""
+        used = self.mean[np.isfinite(self.mean)]
+        return float(np.median(used)) if used.size else float("nan")
 
     @property
     def inside(self) -> float:
@@ -41,7 +50,9 @@ def nees_series(estimator: str, particles: int, matrix: np.ndarray) -> NeesSerie
     mean = np.full(matrix.shape[1], np.nan)
     mean[complete] = np.mean(matrix[:, complete], axis=0)
     low, high = nees_bounds(runs, POSE_DOF)
-    return NeesSeries(estimator, particles, runs, mean, low, high)
+    values = matrix[np.isfinite(matrix)]
+    coverage = float(np.mean(values <= COVERAGE_THRESHOLD))
+    return NeesSeries(estimator, particles, runs, mean, low, high, coverage)
 
 
 def plot_nees(series: list[NeesSeries], display_name: Callable[[str], str] = str) -> Figure | None:
