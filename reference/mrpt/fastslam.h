@@ -15,6 +15,10 @@
 //            the landmark EKFs, landmark creation and the existence counter, the ESS test, the
 //            estimates (best particle, weighted pose spread) and every random draw except
 //            resampling.
+//   Covariances: StepOutput::pose_cov is the weighted particle spread (the classical
+//            particle NEES). No Rao-Blackwellised covariance (pose_cov_rb) and no NIS are
+//            reported yet: the FastSLAM 2.0 conditional and the predicted Gaussian of 1.0 are
+//            available per particle inside the MRPT-based step but are not collected.
 #pragma once
 
 #include <cstdint>
