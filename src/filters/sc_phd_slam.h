@@ -24,14 +24,14 @@
 //     child index), kept in child order, and their log-weights normalised. This is selection,
 //     not resampling: weights are kept, so StepDiagnostics::resampled is always false.
 //  5. Map reduction (GmPhdMap::Reduce) of the survivors at their poses.
-//  Covariances: pose_cov is the weighted spread of the parents about the estimate; no
-//     Rao-Blackwellised covariance and no NIS are reported (not implemented: the children are
-//     drawn from each parent's predicted Gaussian, which would be the mixture's components).
 //  6. Estimates: the pose is the expected a posteriori pose, the weighted mean of the parents;
 //     the heading is averaged as an unwrapped number because headings are never wrapped in this
 //     project. The map comes from the highest-weight parent (first on ties): its
 //     round(sum of component weights) highest-weight components, active and passive.
 // Every random number comes from one RandomStream seeded by the constructor's stream seed.
+// Covariances: pose_cov is the weighted spread of the parents about the estimate; no
+// Rao-Blackwellised covariance and no NIS are reported (not implemented: the children are drawn
+// from each parent's predicted Gaussian, which would be the mixture's components).
 #pragma once
 
 #include <cstdint>
