@@ -158,7 +158,7 @@ TEST(ExperimentFile, RejectsBadValues) {
   expect_error(base + "seeds: 1\nparticles: [1.5]\n", "not an integer");
   expect_error(base + "seeds: 1\nsteps: -3\n", "'steps'");
   expect_error(base + "seeds: 1\nsteps: many\n", "not an integer");
-  expect_error(base + "seeds: 1\nscenario_options: {pd: high}\n", "not a number");
+  expect_error(base + "seeds: 1\nscenario_options: {pd: high}\n", "'pd': expected a number");
   expect_error(base + "seeds: 1\njobs: -1\n", "'jobs'");
   expect_error(base + "seeds: 1\nscenario_options: {clutter_rate: [1]}\n", "expected a number");
   expect_error(base + "seeds: 1\nsweep: {parameter: pd, values: [[1, 2]]}\n", "expected numbers");

@@ -71,11 +71,11 @@ TEST(PlanExperiment, GridsOverScenarioOptionsEstimatorParametersAndParticles) {
   x.estimators = {{"phd3", {{"resampling", true}}, {5}}};
   x.scenario_settings = {{"speed", 2.0}};
   x.sweep = {ExperimentSweep{"landmarks", {10, 30}}, ExperimentSweep{"particles", {1, 4}},
-             ExperimentSweep{"phd3:map.merge_threshold", {2, 8}}};
+             ExperimentSweep{"phd3:merge_threshold", {2, 8}}};
   const std::vector<ExperimentPart> parts = PlanExperiment(x, "/r", EstimatorTable());
   ASSERT_EQ(parts.size(), 8u);
-  EXPECT_EQ(parts[0].out, fs::path("/r/sweep-landmarks-10-particles-1-phd3.map.merge_threshold-2"));
-  EXPECT_EQ(parts[7].out, fs::path("/r/sweep-landmarks-30-particles-4-phd3.map.merge_threshold-8"));
+  EXPECT_EQ(parts[0].out, fs::path("/r/sweep-landmarks-10-particles-1-phd3.merge_threshold-2"));
+  EXPECT_EQ(parts[7].out, fs::path("/r/sweep-landmarks-30-particles-4-phd3.merge_threshold-8"));
   const ExperimentPart& p = parts[5];  // landmarks 30, particles 1, merge threshold 8
   EXPECT_EQ(p.sweep_point, SweepPoint({30, 1, 8}));
   EXPECT_EQ(p.plan.scenario.options.at("landmarks"), 30);
@@ -84,7 +84,7 @@ TEST(PlanExperiment, GridsOverScenarioOptionsEstimatorParametersAndParticles) {
   ASSERT_EQ(p.plan.estimators.size(), 1u);
   EXPECT_TRUE(p.plan.estimators[0].particles.empty());
   EXPECT_EQ(p.plan.estimators[0].overrides,
-            (nlohmann::json{{"resampling", true}, {"map", {{"merge_threshold", 8}}}}));
+            (nlohmann::json{{"resampling", true}, {"merge_threshold", 8}}));
 }
 
 TEST(PlanExperiment, ErrorsNameTheExperimentFile) {
@@ -92,7 +92,7 @@ TEST(PlanExperiment, ErrorsNameTheExperimentFile) {
   x.estimators.push_back({"nosuch", nlohmann::json::object(), {}});
   EXPECT_NE(ErrorOf(x, "/r").find("unknown estimator 'nosuch'"), std::string::npos);
   x.source = {{"path", "experiments/t.yaml"}};
-  const std::string e = ErrorOf(x, "/r");
+  std::string e = ErrorOf(x, "/r");
   EXPECT_EQ(e.rfind("experiments/t.yaml: unknown estimator 'nosuch' (known: ", 0), 0u) << e;
 
   x = OdometryExperiment();
@@ -100,7 +100,7 @@ TEST(PlanExperiment, ErrorsNameTheExperimentFile) {
   x.sweep = {ExperimentSweep{"pd", {0.5}}};
   EXPECT_NE(ErrorOf(x, "/r").find("'pd' is swept"), std::string::npos);
   x.sweep = {ExperimentSweep{"spede", {0.5}}};
-  std::string e = ErrorOf(x, "/r");
+  e = ErrorOf(x, "/r");
   EXPECT_NE(e.find("sweep parameter 'spede' (value 0.5) is not particles"), std::string::npos)
       << e;
   EXPECT_NE(e.find("speed"), std::string::npos) << e;  // the scenario's options are listed
