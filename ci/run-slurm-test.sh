@@ -25,6 +25,10 @@ chmod 755 "$tmp"
 pids=()
 stop_daemons() {
   local status=$?
+  if [[ -n "${SLURM_CONF:-}" ]]; then  # this cluster's jobs first, so no job step outlives it
+    scancel --full --user="$(id -un)" 2>/dev/null || true
+    for _ in $(seq 50); do [[ -z "$(squeue -h 2>/dev/null)" ]] && break; sleep 0.1; done
+  fi
   for pid in "${pids[@]}"; do kill "$pid" 2>/dev/null || true; done
   for pid in "${pids[@]}"; do
     for _ in $(seq 50); do kill -0 "$pid" 2>/dev/null || break; sleep 0.1; done
