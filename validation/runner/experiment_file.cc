@@ -204,8 +204,8 @@ ExperimentSweep ReadSweepDimension(const YAML::Node& node, const FileErrors& err
     }
     for (const nlohmann::json& earlier : sweep.values) {
       if (earlier == value) {
-        errors.Fail(v, "'sweep.values' of '" + sweep.parameter + "': " + value.dump() +
-                           " is listed twice");
+        errors.Fail(
+            v, "'sweep.values' of '" + sweep.parameter + "': " + value.dump() + " is listed twice");
       }
     }
     sweep.values.push_back(value);
@@ -283,7 +283,8 @@ Experiment ParseExperimentYaml(std::string_view text, const std::string& source,
   return x;
 }
 
-void SetScenarioOption(Experiment& experiment, const std::string& key, const nlohmann::json& value) {
+void SetScenarioOption(Experiment& experiment, const std::string& key,
+                       const nlohmann::json& value) {
   if (key.empty()) throw std::invalid_argument("a scenario option key is empty");
   const bool pd = key == kSweepParameterPd;
   if (pd || key == kSweepParameterClutterRate) {

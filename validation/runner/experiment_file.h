@@ -41,9 +41,9 @@ struct Experiment {
   std::vector<ExperimentEstimator> estimators;
   std::vector<int> particles = {1};
   std::vector<std::uint64_t> seeds;
-  int steps = 0;                        ///< 0 = the scenario's full length
-  std::optional<double> pd;             ///< detection probability override
-  std::optional<double> clutter_rate;   ///< clutter rate override
+  int steps = 0;                       ///< 0 = the scenario's full length
+  std::optional<double> pd;            ///< detection probability override
+  std::optional<double> clutter_rate;  ///< clutter rate override
   /// Other scenario options by key (`scenario_options`, `--scenario-set`), checked against the
   /// scenario's option table when the experiment is planned.
   nlohmann::json scenario_settings = nlohmann::json::object();

@@ -69,11 +69,10 @@ void CheckEstimatorSweep(const Experiment& point, const ExperimentSweep& dimensi
   }
   std::string options;
   for (const ScenarioOptionHelp& o : scenario.option_keys) options += ", " + o.key;
-  throw std::invalid_argument("sweep parameter '" + dimension.parameter + "' (value " +
-                              dimension.values.front().dump() +
-                              ") is not particles, steps, pd, an option of scenario '" +
-                              scenario.name + "' (" + options.substr(2) +
-                              ") or a parameter of the estimators: " + errors);
+  throw std::invalid_argument(
+      "sweep parameter '" + dimension.parameter + "' (value " + dimension.values.front().dump() +
+      ") is not particles, steps, pd, an option of scenario '" + scenario.name + "' (" +
+      options.substr(2) + ") or a parameter of the estimators: " + errors);
 }
 
 std::vector<std::string> OptionKeys(const ScenarioEntry& scenario) {
@@ -84,8 +83,8 @@ std::vector<std::string> OptionKeys(const ScenarioEntry& scenario) {
 
 bool IsEstimatorSweep(const ExperimentSweep& d, const std::vector<std::string>& options) {
   const std::string& p = d.parameter;
-  return p != kSweepParameterParticles && p != kSweepParameterSteps &&
-         p != kSweepParameterPd && p != kSweepParameterClutterRate &&
+  return p != kSweepParameterParticles && p != kSweepParameterSteps && p != kSweepParameterPd &&
+         p != kSweepParameterClutterRate &&
          std::find(options.begin(), options.end(), p) == options.end();
 }
 

@@ -101,8 +101,7 @@ TEST(PlanExperiment, ErrorsNameTheExperimentFile) {
   EXPECT_NE(ErrorOf(x, "/r").find("'pd' is swept"), std::string::npos);
   x.sweep = {ExperimentSweep{"spede", {0.5}}};
   e = ErrorOf(x, "/r");
-  EXPECT_NE(e.find("sweep parameter 'spede' (value 0.5) is not particles"), std::string::npos)
-      << e;
+  EXPECT_NE(e.find("sweep parameter 'spede' (value 0.5) is not particles"), std::string::npos) << e;
   EXPECT_NE(e.find("speed"), std::string::npos) << e;  // the scenario's options are listed
   x = OdometryExperiment();
   x.sweep = {ExperimentSweep{"landmarks", {10, 20.5}}};  // wrong type, found before any run

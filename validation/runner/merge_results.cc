@@ -12,11 +12,11 @@
 #include <system_error>
 #include <utility>
 
-#include "validation/runner/sweep.h"
 #include "validation/runner/results_config.h"
 #include "validation/runner/results_io.h"
 #include "validation/runner/results_layout.h"
 #include "validation/runner/summary.h"
+#include "validation/runner/sweep.h"
 
 namespace phdslam::validation {
 namespace {

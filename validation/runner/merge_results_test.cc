@@ -144,8 +144,7 @@ TEST(MergeResults, ShardedGridsMergePointByPoint) {
   Experiment other = x;
   other.sweep[1].values = {5, 10};
   RunExperiment(other, Quiet(base / "other", {1, 4}));
-  EXPECT_THROW(MergeResults(base / "m2", {base / "shard1", base / "other"}),
-               std::invalid_argument);
+  EXPECT_THROW(MergeResults(base / "m2", {base / "shard1", base / "other"}), std::invalid_argument);
 }
 
 TEST(MergeResults, RefusesConflictingFoldersBeforeCopying) {

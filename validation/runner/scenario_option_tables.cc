@@ -6,8 +6,8 @@
 namespace phdslam::validation {
 namespace {
 
-using params::AtLeast;
 using params::Above;
+using params::AtLeast;
 using params::Between;
 using params::Field;
 using params::IntField;
@@ -62,14 +62,18 @@ Field<T> PoseField(std::string key, Access access) {
 template <class T>
 std::vector<Field<T>> SensorRows() {
   return {
-      NumberField<T>("fov_range", [](auto& o) -> auto& { return o.fov_range; }, Above(0.0)),
+      NumberField<T>(
+          "fov_range", [](auto& o) -> auto& { return o.fov_range; }, Above(0.0)),
       NumberField<T>("fov_half_angle", [](auto& o) -> auto& { return o.fov_half_angle; },
                      {0.0, std::numbers::pi, true, false}),
-      NumberField<T>("range_buffer", [](auto& o) -> auto& { return o.range_buffer; }, AtLeast(0.0)),
-      NumberField<T>("angle_buffer", [](auto& o) -> auto& { return o.angle_buffer; }, AtLeast(0.0)),
-      CovarianceField<T>("measurement_noise_cov",
-                         [](auto& o) -> auto& { return o.measurement_noise_cov; }),
-      CovarianceField<T>("control_noise_cov", [](auto& o) -> auto& { return o.control_noise_cov; }),
+      NumberField<T>(
+          "range_buffer", [](auto& o) -> auto& { return o.range_buffer; }, AtLeast(0.0)),
+      NumberField<T>(
+          "angle_buffer", [](auto& o) -> auto& { return o.angle_buffer; }, AtLeast(0.0)),
+      CovarianceField<T>(
+          "measurement_noise_cov", [](auto& o) -> auto& { return o.measurement_noise_cov; }),
+      CovarianceField<T>(
+          "control_noise_cov", [](auto& o) -> auto& { return o.control_noise_cov; }),
   };
 }
 
@@ -80,7 +84,8 @@ std::vector<Field<T>> DetectionRows() {
       NumberField<T>("detection_probability",
                      [](auto& o) -> auto& { return o.detection_probability; },
                      {0.0, 1.0, true, false}),
-      NumberField<T>("clutter_rate", [](auto& o) -> auto& { return o.clutter_rate; }, AtLeast(0.0)),
+      NumberField<T>(
+          "clutter_rate", [](auto& o) -> auto& { return o.clutter_rate; }, AtLeast(0.0)),
   };
 }
 
@@ -103,8 +108,8 @@ const params::ParameterTable<datasets::VictoriaParkOptions>& VictoriaParkOptions
           NumberField<O>("detection_probability_nominal",
                          [](auto& o) -> auto& { return o.detection_probability_nominal; },
                          {0.0, 1.0, true, true}),
-          NumberField<O>("clutter_rate", [](auto& o) -> auto& { return o.clutter_rate; },
-                         AtLeast(0.0)),
+          NumberField<O>(
+              "clutter_rate", [](auto& o) -> auto& { return o.clutter_rate; }, AtLeast(0.0)),
       },
       SensorRows<O>(),
   }));
@@ -115,17 +120,22 @@ const params::ParameterTable<datasets::GeneratorOptions>& GeneratedOptionsTable(
   using O = datasets::GeneratorOptions;
   static const params::ParameterTable<O> table(params::Rows<O>({
       {
-          NumberField<O>("dt", [](auto& o) -> auto& { return o.dt; }, Above(0.0)),
-          NumberField<O>("speed", [](auto& o) -> auto& { return o.speed; }, AtLeast(0.0)),
-          NumberField<O>("turn_amplitude", [](auto& o) -> auto& { return o.turn_amplitude; },
-                         AtLeast(0.0)),
-          IntField<O>("landmarks", [](auto& o) -> auto& { return o.landmarks; }, AtLeast(0)),
-          NumberField<O>("corridor_half_width",
-                         [](auto& o) -> auto& { return o.corridor_half_width; }, Above(0.0)),
+          NumberField<O>(
+              "dt", [](auto& o) -> auto& { return o.dt; }, Above(0.0)),
+          NumberField<O>(
+              "speed", [](auto& o) -> auto& { return o.speed; }, AtLeast(0.0)),
+          NumberField<O>(
+              "turn_amplitude", [](auto& o) -> auto& { return o.turn_amplitude; }, AtLeast(0.0)),
+          IntField<O>(
+              "landmarks", [](auto& o) -> auto& { return o.landmarks; }, AtLeast(0)),
+          NumberField<O>(
+              "corridor_half_width", [](auto& o) -> auto& { return o.corridor_half_width; },
+              Above(0.0)),
       },
       DetectionRows<O>(),
       SensorRows<O>(),
-      {PoseField<O>("initial_pose", [](auto& o) -> auto& { return o.initial_pose; })},
+      {PoseField<O>(
+          "initial_pose", [](auto& o) -> auto& { return o.initial_pose; })},
   }));
   return table;
 }

@@ -63,8 +63,8 @@ struct ScenarioEntry {
   std::function<datasets::Scenario(std::uint64_t seed, const ScenarioOptions&, ScenarioCache&)>
       make;
   /// Every scenario setting after defaults and options (for config.json); throws
-  /// std::invalid_argument naming the key for an unknown key or an out-of-range option and std::runtime_error for a missing data
-  /// folder, so a bad request fails before any run starts.
+  /// std::invalid_argument naming the key for an unknown key or an out-of-range option and
+  /// std::runtime_error for a missing data folder, so a bad request fails before any run starts.
   std::function<nlohmann::json(const ScenarioOptions&)> resolved_options;
 };
 

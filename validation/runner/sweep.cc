@@ -142,8 +142,8 @@ void CheckSweepNotSet(const Experiment& x, const std::vector<std::string>& scena
   for (const ExperimentSweep& d : x.sweep) {
     const std::string& p = d.parameter;
     if (d.values.empty()) throw std::invalid_argument("sweep parameter '" + p + "' has no values");
-    bool set = (p == kSweepParameterPd && x.pd) || (p == kSweepParameterClutterRate &&
-                                                    x.clutter_rate) ||
+    bool set = (p == kSweepParameterPd && x.pd) ||
+               (p == kSweepParameterClutterRate && x.clutter_rate) ||
                x.scenario_settings.contains(p) || (p == kSweepParameterSteps && x.steps != 0);
     if (IsEstimatorParameter(p, scenario_options)) {
       const ParameterAssignment a = ParseParameterAssignment(p + "=0");
