@@ -103,8 +103,13 @@ std::vector<ExperimentPart> PlanSweep(const Experiment& experiment,
   }
   std::vector<ExperimentPart> parts;
   for (const SweepPoint& point : points) {
-    parts.push_back({point, out / SweepFolderName(experiment.sweep, point),
-                     BuildPlan(ApplySweepPoint(experiment, options, point), table)});
+    try {
+      parts.push_back({point, out / SweepFolderName(experiment.sweep, point),
+                       BuildPlan(ApplySweepPoint(experiment, options, point), table)});
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument("sweep point " + DescribeSweepPoint(experiment.sweep, point) +
+                                  ": " + e.what());
+    }
   }
   return parts;
 }
@@ -142,7 +147,11 @@ ExperimentReport RunExperiment(const Experiment& experiment, const ExperimentSet
     try {
       CheckMonteCarlo(part.plan, s);
     } catch (const std::invalid_argument& e) {
-      Rethrow(experiment, e);
+      if (part.sweep_point.empty()) Rethrow(experiment, e);
+      Rethrow(experiment,
+              std::invalid_argument("sweep point " +
+                                    DescribeSweepPoint(experiment.sweep, part.sweep_point) + ": " +
+                                    e.what()));
     }
     offset += PlanJobs(part.plan).size();
     part_settings.push_back(std::move(s));

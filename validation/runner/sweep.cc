@@ -128,6 +128,14 @@ std::string SweepFolderName(const std::vector<ExperimentSweep>& sweep, const Swe
   return name;
 }
 
+std::string DescribeSweepPoint(const std::vector<ExperimentSweep>& sweep, const SweepPoint& point) {
+  std::string text;
+  for (std::size_t i = 0; i < sweep.size() && i < point.size(); ++i) {
+    text += (i > 0 ? ", " : "") + sweep[i].parameter + " = " + SweepValueText(point[i]);
+  }
+  return text;
+}
+
 Experiment ApplySweepPoint(const Experiment& experiment,
                            const std::vector<std::string>& scenario_options,
                            const SweepPoint& point) {

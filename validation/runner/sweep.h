@@ -27,6 +27,9 @@ std::string SweepValueText(const nlohmann::json& value);
 /// '.'), e.g. "sweep-pd-0.3" or "sweep-clutter_rate-5-pd-0.9".
 std::string SweepFolderName(const std::vector<ExperimentSweep>& sweep, const SweepPoint& point);
 
+/// "<parameter> = <value>, ..." of a sweep point, for messages.
+std::string DescribeSweepPoint(const std::vector<ExperimentSweep>& sweep, const SweepPoint& point);
+
 /// The experiment of one sweep point: `experiment` with every swept parameter set to the point's
 /// value. `scenario_options` are the keys of the scenario's option table. A parameter is, in
 /// this order, `particles` (every estimator's count), `steps`, `pd` or `clutter_rate`, an option
