@@ -87,6 +87,23 @@ TEST(PlanExperiment, GridsOverScenarioOptionsEstimatorParametersAndParticles) {
             (nlohmann::json{{"resampling", true}, {"merge_threshold", 8}}));
 }
 
+TEST(PlanExperiment, StepsAndPdSweepsAndTheirClashes) {
+  Experiment x = OdometryExperiment();
+  x.steps = 0;
+  x.sweep = {ExperimentSweep{"steps", {10, 30}}, ExperimentSweep{"pd", {0.5}}};
+  const std::vector<ExperimentPart> parts = PlanExperiment(x, "/r", EstimatorTable());
+  ASSERT_EQ(parts.size(), 2u);
+  EXPECT_EQ(parts[1].out, fs::path("/r/sweep-steps-30-pd-0.5"));
+  EXPECT_EQ(parts[1].plan.scenario.options.at("steps"), 30);
+  EXPECT_EQ(parts[1].plan.scenario.options.at("detection_probability"), 0.5);
+  x.steps = 20;  // the swept step count is also set
+  EXPECT_NE(ErrorOf(x, "/r").find("'steps' is swept"), std::string::npos);
+  x = OdometryExperiment();
+  x.estimators = {{"phd3", {{"max_hypotheses", 7}}, {}}};
+  x.sweep = {ExperimentSweep{"max_hypotheses", {5}}};
+  EXPECT_NE(ErrorOf(x, "/r").find("'max_hypotheses' is swept"), std::string::npos);
+}
+
 TEST(PlanExperiment, ErrorsNameTheExperimentFile) {
   Experiment x = OdometryExperiment();
   x.estimators.push_back({"nosuch", nlohmann::json::object(), {}});
