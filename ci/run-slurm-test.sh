@@ -6,7 +6,7 @@
 # experiment in every non-timing column (ci/compare_results.py). Every daemon it started is
 # stopped on exit, also on failure.
 #
-#   ci/run-slurm-test.sh [PHDSLAM_BINARY]     (default: build/release/apps/phdslam/phdslam)
+#   ci/run-slurm-test.sh [PHDSLAM_BINARY]     (default: build/release/apps/phdslam)
 #
 # Needs root (the daemons run as root with a generated munge key in a temporary folder).
 # Environment: SLURM_TEST_TIMEOUT (seconds to wait for the jobs, default 600),
@@ -15,8 +15,11 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$(pwd)
 started=$(date +%s)
-program=$(realpath "${1:-build/release/apps/phdslam/phdslam}")
-[[ -x "$program" ]] || { echo "run-slurm-test: no program $program (build first)" >&2; exit 2; }
+program=$(realpath -m "${1:-build/release/apps/phdslam}")
+[[ -f "$program" && -x "$program" ]] || {
+  echo "run-slurm-test: no program $program (build first)" >&2
+  exit 2
+}
 [[ "$(id -u)" -eq 0 ]] || { echo "run-slurm-test: needs root" >&2; exit 2; }
 ci/install-deps.sh --slurm
 

@@ -18,7 +18,7 @@ cmake --build --preset release -j "$jobs"
 ctest --preset release
 # A single-node Slurm cluster runs an experiment as a job array (needs root to start daemons).
 if [[ "$(id -u)" -eq 0 ]]; then
-  ci/run-slurm-test.sh build/release/apps/phdslam/phdslam
+  ci/run-slurm-test.sh build/release/apps/phdslam
 else
   echo "run-tests: not root, Slurm test skipped (ci/run-slurm-test.sh)" >&2
 fi

@@ -15,7 +15,7 @@
 #   options     passed to every `phdslam run` (e.g. --steps 200 --seeds 1-20)
 #
 # Environment:
-#   PHDSLAM          the program (default: phdslam on PATH, else build/release/apps/phdslam/phdslam)
+#   PHDSLAM          the program (default: phdslam on PATH, else build/release/apps/phdslam)
 #   PHDSLAM_PYTHON   Python for the report (default: python3)
 #   PHDSLAM_CPUS     CPUs per array task, also its --jobs (default: 1)
 #   SBATCH_EXTRA     further sbatch options for both jobs, split on spaces (e.g.
@@ -41,9 +41,9 @@ root=$(cd "$(dirname "$0")/../.." && pwd)
 program=${PHDSLAM:-}
 if [[ -z "$program" ]]; then
   program=$(command -v phdslam || true)
-  [[ -n "$program" ]] || program="$root/build/release/apps/phdslam/phdslam"
+  [[ -n "$program" ]] || program="$root/build/release/apps/phdslam"
 fi
-[[ -x "$program" ]] || { echo "submit.sh: phdslam program '$program' not found (set PHDSLAM)" >&2; exit 2; }
+[[ -f "$program" && -x "$program" ]] || { echo "submit.sh: phdslam program '$program' not found (set PHDSLAM)" >&2; exit 2; }
 program=$(realpath "$program")
 python=${PHDSLAM_PYTHON:-python3}
 cpus=${PHDSLAM_CPUS:-1}
