@@ -503,10 +503,11 @@ class ReportBuilder:
             names = " \u00d7 ".join(table.parameters)
             if len(table.parameters) == 2:
                 fig = plot_sweep_heat_maps(table, self._name)
+                rows = "estimator" if "particles" in table.parameters else \
+                    "estimator and particle count"
                 caption = (f"Sweep over {names} ({table.root.name}): final-map GOSPA and "
-                           f"position RMSE at every grid point, one row per estimator and "
-                           f"particle count; rows {table.parameters[0]}, columns "
-                           f"{table.parameters[1]}.")
+                           f"position RMSE at every grid point, one row of panels per {rows}; "
+                           f"rows {table.parameters[0]}, columns {table.parameters[1]}.")
                 file_name = f"sweep{index + 1}-heat-map.png"
             else:
                 fig = plot_sweep_lines(table, self._name)
