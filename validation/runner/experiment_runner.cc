@@ -28,7 +28,21 @@ ScenarioOptions ToScenarioOptions(const Experiment& experiment) {
   return options;
 }
 
+// `pd` sets the detection probability options of the scenario; giving one of them as well would
+// leave one of the two values unused.
+void RequireSinglePd(const Experiment& experiment) {
+  if (!experiment.pd) return;
+  for (const char* key :
+       {"detection_probability", "detection_probability_max", "detection_probability_nominal"}) {
+    if (experiment.scenario_settings.contains(key)) {
+      throw std::invalid_argument("scenario options 'pd' and '" + std::string(key) +
+                                  "' both set the detection probability; give one");
+    }
+  }
+}
+
 MonteCarloPlan BuildPlan(const Experiment& experiment, const std::vector<EstimatorEntry>& table) {
+  RequireSinglePd(experiment);
   MonteCarloPlan plan;
   plan.experiment = experiment.name;
   plan.particles = experiment.particles;

@@ -102,6 +102,10 @@ TEST(PlanExperiment, StepsAndPdSweepsAndTheirClashes) {
   x.estimators = {{"phd3", {{"max_hypotheses", 7}}, {}}};
   x.sweep = {ExperimentSweep{"max_hypotheses", {5}}};
   EXPECT_NE(ErrorOf(x, "/r").find("'max_hypotheses' is swept"), std::string::npos);
+  x = OdometryExperiment();
+  x.pd = 0.8;
+  x.sweep = {ExperimentSweep{"detection_probability", {0.5}}};
+  EXPECT_NE(ErrorOf(x, "/r").find("'pd' and 'detection_probability' both set"), std::string::npos);
 }
 
 TEST(PlanExperiment, ErrorsNameTheExperimentFile) {
