@@ -60,7 +60,7 @@ from .results import (
 )
 from .stats import relative_difference, standard_error_of_values
 from .style import save_figure
-from .sweep_table import SweepTable, read_sweep_table, sweep_root_of
+from .sweep_table import SweepTable, read_sweep_table, sweep_point_of, sweep_root_of
 from .tables_shared import matched_paper_tables, ours_with_se, paper_table_rows
 
 FOLDER_SECTIONS = ("summary", "paper-tables", "fig1", "fig2", "fig3", "nees", "scaling",
@@ -557,9 +557,11 @@ class ReportBuilder:
                            "clutter_rate") if k in options)
         seeds = config.get("seeds") or []
         program = config.get("program") or {}
+        point = ", ".join(f"{name} = {value}" for name, value in sweep_point_of(folder.path))
         return (f"<p class=\"meta\">Results folder <code>{escape(folder.path)}</code>: scenario "
                 f"<b>{escape(folder.scenario_name or 'unknown')}</b>"
                 f"{' (' + escape(shown) + ')' if shown else ''}; "
+                f"{'sweep point ' + escape(point) + '; ' if point else ''}"
                 f"{len(seeds)} seed(s); estimators "
                 f"{escape(', '.join(sorted((config.get('estimators') or {}).keys())) or '?')}; "
                 f"experiment {escape(config.get('experiment', '?'))}; program "

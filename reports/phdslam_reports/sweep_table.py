@@ -106,3 +106,21 @@ def sweep_root_of(folder: Path) -> Path | None:
     except (OSError, ValueError, AttributeError):
         return None
     return parent if folder.name in folders else None
+
+
+def sweep_point_of(folder: Path) -> list[tuple[str, str]]:
+    """The (parameter, value) pairs of the sweep point ``folder`` holds, or [] when it is not a
+    point of a sweep root."""
+    root = sweep_root_of(folder)
+    if root is None:
+        return []
+    try:
+        names, values = _parameters(root)
+        folders = json.loads((root / SWEEP_JSON).read_text(encoding="utf-8"))["folders"]
+    except (ResultsFormatError, OSError, ValueError, KeyError, TypeError):
+        return []
+    points: list[tuple[str, ...]] = [()]
+    for options in values:
+        points = [p + (v,) for p in points for v in options]
+    index = folders.index(folder.name)
+    return list(zip(names, points[index])) if index < len(points) else []

@@ -80,6 +80,7 @@ class SweepGridTest(unittest.TestCase):
         html = (self.root / "report" / "index.html").read_text(encoding="utf-8")
         self.assertIn("Sensitivity: parameter sweeps", html)
         self.assertIn("clutter_rate \u00d7 landmarks", html)
+        self.assertIn("sweep point clutter_rate = 8, landmarks = 80;", html)
         self.assertTrue((self.root / "report" / "sweep1-heat-map.png").is_file())
         self.assertFalse((self.root / "report" / "fig5-sensitivity.png").exists())
 
