@@ -5,6 +5,8 @@
 #
 #   ci/install-deps.sh            build + tests + reports (everything but the browser)
 #   ci/install-deps.sh --browser  also Debian's chromium, for the report-rendering test
+#   ci/install-deps.sh --slurm    also slurm-wlm and munge, for the Slurm test (ci/run-slurm-test.sh)
+# (options may be combined)
 set -euo pipefail
 
 packages=(
@@ -17,9 +19,13 @@ packages=(
   python3 python3-matplotlib python3-numpy python3-scipy python3-yaml
   clang-format clang-tidy
 )
-if [[ "${1:-}" == "--browser" ]]; then
-  packages+=(chromium)
-fi
+for option in "$@"; do
+  case "$option" in
+    --browser) packages+=(chromium) ;;
+    --slurm) packages+=(slurm-wlm munge) ;;
+    *) echo "install-deps: unknown option '$option' (--browser, --slurm)" >&2; exit 2 ;;
+  esac
+done
 
 missing=()
 for p in "${packages[@]}"; do

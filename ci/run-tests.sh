@@ -4,11 +4,11 @@
 # runs every unit test with CTest, then the accuracy regression gates (the regression run and
 # bands of ci/thresholds.yaml). Exits non-zero on any failure.
 #
-#   ci/run-tests.sh              release build + unit tests + accuracy gates
+#   ci/run-tests.sh              release build + unit tests + Slurm test + accuracy gates
 #   ci/run-tests.sh --sanitize   also build and run the unit tests under ASan + UBSan
 set -euo pipefail
 cd "$(dirname "$0")/.."
-ci/install-deps.sh --browser
+ci/install-deps.sh --browser --slurm
 # The report-rendering test runs in headless Chromium; here a missing browser is a failure.
 export PHDSLAM_REQUIRE_CHROMIUM=1
 
@@ -16,6 +16,12 @@ jobs=$(nproc 2>/dev/null || echo 2)
 cmake --preset release >/dev/null
 cmake --build --preset release -j "$jobs"
 ctest --preset release
+# A single-node Slurm cluster runs an experiment as a job array (needs root to start daemons).
+if [[ "$(id -u)" -eq 0 ]]; then
+  ci/run-slurm-test.sh build/release/apps/phdslam
+else
+  echo "run-tests: not root, Slurm test skipped (ci/run-slurm-test.sh)" >&2
+fi
 
 if [[ "${1:-}" == "--sanitize" ]]; then
   cmake --preset sanitize >/dev/null

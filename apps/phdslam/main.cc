@@ -42,6 +42,7 @@
 #include "validation/runner/scenario_registry.h"
 #include "validation/runner/shard.h"
 #include "validation/runner/summary.h"
+#include "validation/runner/sweep.h"
 
 namespace phdslam::apps {
 namespace {
@@ -66,6 +67,7 @@ struct RunArguments {
   double detection_probability = 0.0;
   double clutter_rate = 0.0;
   std::vector<std::string> assignments;
+  std::vector<std::string> scenario_assignments;
   std::string shard;
   bool particles_trace = false;
   bool quiet = false;
@@ -120,8 +122,9 @@ void AddRunCommand(CLI::App& app, RunArguments& a) {
       "experiment file (--experiment; options given with it override the file's values). Each "
       "finished run is written to <out>/runs/<estimator>-N<particles>/seed-<seed>/; rerunning "
       "with the same --out skips finished runs. Ends with <out>/summary.csv, runs.csv, "
-      "config.json and timing.json; a sweep writes one such folder per value, "
-      "<out>/sweep-<parameter>-<value>/, and <out>/sweep.csv (layout: validation/README.md).");
+      "config.json and timing.json; a sweep writes one such folder per sweep point, "
+      "<out>/sweep-<parameter>-<value>[-<parameter>-<value>...]/, and <out>/sweep.csv (layout: "
+      "validation/README.md).");
   a.experiment_file_option =
       run->add_option("--experiment", a.experiment_file,
                       "Experiment file (YAML, e.g. validation/experiments/quick.yaml); "
@@ -162,6 +165,10 @@ void AddRunCommand(CLI::App& app, RunArguments& a) {
   run->add_option("--set", a.assignments,
                   "Estimator parameter override [estimator:]key=value (repeatable; dotted keys "
                   "reach nested parameters; the value is JSON when it parses, else a string)");
+  run->add_option("--scenario-set", a.scenario_assignments,
+                  "Scenario option key=value (repeatable; the keys of each scenario are listed "
+                  "by `phdslam list`; pd and clutter_rate as --pd and --clutter-rate; the value "
+                  "is JSON when it parses, else a string)");
   run->add_option("--shard", a.shard,
                   "Run only shard i of n: the jobs whose index in the experiment's job order is "
                   "i-1 modulo n (join the shards' folders with `phdslam merge`)");
@@ -264,6 +271,22 @@ void ApplyAssignments(const std::vector<std::string>& sets, v::Experiment& x) {
   }
 }
 
+// Applies the --scenario-set arguments (key=value) to the experiment's scenario options.
+void ApplyScenarioAssignments(const std::vector<std::string>& sets, v::Experiment& x) {
+  for (const std::string& text : sets) {
+    const v::ParameterAssignment assignment = v::ParseParameterAssignment(text);
+    if (!assignment.estimator.empty() || assignment.overrides.size() != 1 ||
+        assignment.overrides.begin()->is_object()) {
+      throw std::invalid_argument("--scenario-set '" + text + "': expected key=value");
+    }
+    try {
+      v::SetScenarioOption(x, assignment.overrides.begin().key(), *assignment.overrides.begin());
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument("--scenario-set '" + text + "': " + e.what());
+    }
+  }
+}
+
 // The experiment of a `run` command: the experiment file, if any, with every option given on
 // the command line taking precedence over the file's value.
 v::Experiment ResolveExperiment(const RunArguments& a) {
@@ -307,16 +330,20 @@ v::Experiment ResolveExperiment(const RunArguments& a) {
   if (a.data_dir_option->count() > 0) x.data_dir = a.data_dir;  // a machine setting
   if (!a.assignments.empty()) overridden.push_back("--set");
   ApplyAssignments(a.assignments, x);
+  if (!a.scenario_assignments.empty()) overridden.push_back("--scenario-set");
+  ApplyScenarioAssignments(a.scenario_assignments, x);
   if (from_file) x.source["command_line"] = overridden;
   return x;
 }
 
 void PrintRunReport(const v::ExperimentPart& part, const v::MonteCarloReport& report,
-                    const std::string& sweep_parameter, bool quiet) {
+                    const std::vector<v::ExperimentSweep>& sweep, bool quiet) {
   if (!quiet) {
-    if (part.sweep_value) {
-      std::cout << sweep_parameter << " = " << *part.sweep_value << ":\n";
+    for (std::size_t i = 0; i < part.sweep_point.size() && i < sweep.size(); ++i) {
+      std::cout << (i > 0 ? ", " : "") << sweep[i].parameter << " = "
+                << v::SweepValueText(part.sweep_point[i]);
     }
+    if (!part.sweep_point.empty()) std::cout << ":\n";
     std::cout << v::FormatSummaryTable(v::SummariseGroups(v::ReadResults(part.out)));
     std::cout << "runs: " << report.planned << " planned, " << report.skipped
               << " already finished, " << report.finished << " computed, " << report.failures.size()
@@ -340,13 +367,12 @@ int Run(const RunArguments& a) {
 
   std::size_t failures = 0;
   std::size_t attempted = 0;
-  const std::string parameter = experiment.sweep ? experiment.sweep->parameter : "";
   for (std::size_t i = 0; i < report.reports.size(); ++i) {
-    PrintRunReport(report.parts[i], report.reports[i], parameter, a.quiet);
+    PrintRunReport(report.parts[i], report.reports[i], experiment.sweep, a.quiet);
     failures += report.reports[i].failures.size();
     attempted += report.reports[i].planned - report.reports[i].skipped;
   }
-  if (experiment.sweep) {
+  if (!experiment.sweep.empty()) {
     std::cout << "sweep: " << (std::filesystem::path(a.out) / v::kSweepTableFile).string() << "\n";
   }
   // Each failure was reported on stderr as it happened; its error is kept in its error.json.
@@ -461,7 +487,12 @@ int List() {
     std::cout << "  " << name << std::string(width + 2 - name.size(), ' ') << description << "\n";
   };
   std::cout << "scenarios:\n";
-  for (const auto& s : v::ScenarioTable()) line(s.name, s.description);
+  for (const auto& s : v::ScenarioTable()) {
+    line(s.name, s.description);
+    for (const v::ScenarioOptionHelp& o : s.option_keys) {
+      std::cout << "  " << std::string(width + 2, ' ') << "  " << o.key << ": " << o.help << "\n";
+    }
+  }
   std::cout << "estimators:\n";
   for (const auto& e : v::EstimatorTable()) {
     line(e.name, e.description + (e.batch ? " [batch]" : ""));
@@ -483,7 +514,7 @@ int Main(int argc, char** argv) {
   AddCompareCommand(app, compare_arguments);
   AddEvaluateCommand(app, evaluate_arguments);
   AddParentWeightsCommand(app, parent_weights_arguments);
-  app.add_subcommand("list", "List the known scenarios and estimators");
+  app.add_subcommand("list", "List the known scenarios (with their options) and estimators");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -12,11 +12,11 @@
 #include <system_error>
 #include <utility>
 
-#include "validation/runner/experiment_runner.h"
 #include "validation/runner/results_config.h"
 #include "validation/runner/results_io.h"
 #include "validation/runner/results_layout.h"
 #include "validation/runner/summary.h"
+#include "validation/runner/sweep.h"
 
 namespace phdslam::validation {
 namespace {
@@ -217,22 +217,19 @@ void ExecuteFolderMerge(const fs::path& out, const std::vector<fs::path>& inputs
   ++report.folders;
 }
 
-struct SweepRoot {
-  std::string parameter;
-  std::vector<double> values;
-};
-
-std::optional<SweepRoot> ReadSweepRoot(const fs::path& folder) {
-  const fs::path path = folder / kSweepFile;
-  if (!fs::exists(path)) return std::nullopt;
-  const nlohmann::json j = ReadJsonObject(path);
-  try {
-    return SweepRoot{j.at("parameter").get<std::string>(),
-                     j.at("values").get<std::vector<double>>()};
-  } catch (const nlohmann::json::exception& e) {
-    throw std::runtime_error(path.string() + ": expected 'parameter' and 'values' (" + e.what() +
-                             ")");
+// True when two sweeps have the same parameters and values (numbers compared by value).
+bool SameSweep(const std::vector<ExperimentSweep>& a, const std::vector<ExperimentSweep>& b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (a[i].parameter != b[i].parameter || a[i].values.size() != b[i].values.size()) return false;
+    for (std::size_t k = 0; k < a[i].values.size(); ++k) {
+      const nlohmann::json& x = a[i].values[k];
+      const nlohmann::json& y = b[i].values[k];
+      const bool numbers = x.is_number() && y.is_number();
+      if (numbers ? x.get<double>() != y.get<double>() : x != y) return false;
+    }
   }
+  return true;
 }
 
 }  // namespace
@@ -244,27 +241,26 @@ MergeReport MergeResults(const fs::path& out, const std::vector<fs::path>& input
   for (const fs::path& input : inputs) RequireDistinct(out, input);
   MergeReport report;
 
-  const std::optional<SweepRoot> first_sweep = ReadSweepRoot(inputs.front());
+  const std::vector<ExperimentSweep> first_sweep = ReadSweepFile(inputs.front());
   std::vector<std::pair<fs::path, std::vector<fs::path>>> folders;  // (output, inputs)
-  if (first_sweep) {
+  if (!first_sweep.empty()) {
     for (const fs::path& input : inputs) {
-      const std::optional<SweepRoot> sweep = ReadSweepRoot(input);
-      if (!sweep) {
+      const std::vector<ExperimentSweep> sweep = ReadSweepFile(input);
+      if (sweep.empty()) {
         throw std::invalid_argument("merge: " + inputs.front().string() + " is a sweep but " +
                                     input.string() + " is not (no sweep.json)");
       }
-      if (sweep->parameter != first_sweep->parameter || sweep->values != first_sweep->values) {
+      if (!SameSweep(sweep, first_sweep)) {
         throw std::invalid_argument("merge: " + input.string() + " sweeps other values than " +
                                     inputs.front().string());
       }
     }
-    if (const std::optional<SweepRoot> existing = ReadSweepRoot(out);
-        existing && (existing->parameter != first_sweep->parameter ||
-                     existing->values != first_sweep->values)) {
+    if (const std::vector<ExperimentSweep> existing = ReadSweepFile(out);
+        !existing.empty() && !SameSweep(existing, first_sweep)) {
       throw std::invalid_argument("merge: " + out.string() + " sweeps other values");
     }
-    for (double value : first_sweep->values) {
-      const std::string name = SweepFolderName(first_sweep->parameter, value);
+    for (const SweepPoint& point : SweepPoints(first_sweep)) {
+      const std::string name = SweepFolderName(first_sweep, point);
       std::vector<fs::path> sub;
       for (const fs::path& input : inputs) {
         if (fs::exists(input / name / kConfigFile)) sub.push_back(input / name);
@@ -273,7 +269,7 @@ MergeReport MergeResults(const fs::path& out, const std::vector<fs::path>& input
     }
   } else {
     for (const fs::path& input : inputs) {
-      if (ReadSweepRoot(input)) {
+      if (!ReadSweepFile(input).empty()) {
         throw std::invalid_argument("merge: " + input.string() + " is a sweep but " +
                                     inputs.front().string() + " is not");
       }
@@ -286,7 +282,7 @@ MergeReport MergeResults(const fs::path& out, const std::vector<fs::path>& input
   for (std::size_t i = 0; i < folders.size(); ++i) {
     ExecuteFolderMerge(folders[i].first, folders[i].second, plans[i], report);
   }
-  if (first_sweep) WriteSweepFiles(out, first_sweep->parameter, first_sweep->values);
+  if (!first_sweep.empty()) WriteSweepFiles(out, first_sweep);
 
   std::vector<std::string> sources;
   for (const fs::path& input : inputs) sources.push_back(input.string());

@@ -5,6 +5,7 @@
 #include "datasets/data_dir.h"
 #include "datasets/scenario_check.h"
 #include "datasets/scenario_generator.h"
+#include "validation/runner/scenario_option_tables.h"
 
 namespace phdslam::validation {
 namespace {
@@ -16,12 +17,31 @@ void RequireNonNegativeSteps(const ScenarioOptions& options) {
   }
 }
 
+// Applies ScenarioOptions::settings through `table`, naming the scenario in errors.
+template <class T>
+void ApplySettings(const params::ParameterTable<T>& table, const ScenarioOptions& options,
+                   const std::string& scenario, T& o) {
+  try {
+    table.Apply(options.settings, o);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument("scenario '" + scenario + "' option: " + e.what());
+  }
+}
+
+template <class T>
+std::vector<ScenarioOptionHelp> OptionKeys(const params::ParameterTable<T>& table) {
+  std::vector<ScenarioOptionHelp> keys;
+  for (const params::Field<T>& f : table.fields()) keys.push_back({f.key, f.help});
+  return keys;
+}
+
 datasets::SyntheticOptions ToSyntheticOptions(const ScenarioOptions& options) {
   RequireNonNegativeSteps(options);
   datasets::SyntheticOptions o;
   o.steps = options.steps;
   if (options.detection_probability) o.detection_probability = *options.detection_probability;
   if (options.clutter_rate) o.clutter_rate = *options.clutter_rate;
+  ApplySettings(PaperSyntheticOptionsTable(), options, "paper-synthetic", o);
   o.Validate();
   return o;
 }
@@ -35,6 +55,7 @@ datasets::VictoriaParkOptions ToVictoriaParkOptions(const ScenarioOptions& optio
     o.detection_probability_nominal = *options.detection_probability;
   }
   if (options.clutter_rate) o.clutter_rate = *options.clutter_rate;
+  ApplySettings(VictoriaParkOptionsTable(), options, "victoria-park", o);
   o.Validate();
   return o;
 }
@@ -45,18 +66,15 @@ datasets::GeneratorOptions ToGeneratorOptions(const ScenarioOptions& options) {
   if (options.steps > 0) o.steps = options.steps;
   if (options.detection_probability) o.detection_probability = *options.detection_probability;
   if (options.clutter_rate) o.clutter_rate = *options.clutter_rate;
+  ApplySettings(GeneratedOptionsTable(), options, "generated", o);
   o.Validate();
   return o;
-}
-
-nlohmann::json MatrixJson(const Mat2& m) {
-  return nlohmann::json::array(
-      {nlohmann::json::array({m(0, 0), m(0, 1)}), nlohmann::json::array({m(1, 0), m(1, 1)})});
 }
 
 ScenarioEntry PaperSyntheticEntry() {
   ScenarioEntry e;
   e.name = "paper-synthetic";
+  e.option_keys = OptionKeys(PaperSyntheticOptionsTable());
   e.description =
       "the paper's synthetic scenario (Environment_SLAM.mat: 160 landmarks, 4000 "
       "steps of 1 s); truth poses and map; measurements drawn per seed";
@@ -67,18 +85,10 @@ ScenarioEntry PaperSyntheticEntry() {
   };
   e.resolved_options = [](const ScenarioOptions& options) {
     const datasets::SyntheticOptions o = ToSyntheticOptions(options);
-    return nlohmann::json{
-        {"data_dir", datasets::ResolveDataDir(options.data_dir).string()},
-        {"steps", o.steps},
-        {"detection_probability", o.detection_probability},
-        {"clutter_rate", o.clutter_rate},
-        {"fov_range", o.fov_range},
-        {"fov_half_angle", o.fov_half_angle},
-        {"range_buffer", o.range_buffer},
-        {"angle_buffer", o.angle_buffer},
-        {"measurement_noise_cov", MatrixJson(o.measurement_noise_cov)},
-        {"control_noise_cov", MatrixJson(o.control_noise_cov)},
-    };
+    nlohmann::json j = PaperSyntheticOptionsTable().ToJson(o);
+    j["data_dir"] = datasets::ResolveDataDir(options.data_dir).string();
+    j["steps"] = o.steps;
+    return j;
   };
   return e;
 }
@@ -86,6 +96,7 @@ ScenarioEntry PaperSyntheticEntry() {
 ScenarioEntry VictoriaParkEntry() {
   ScenarioEntry e;
   e.name = "victoria-park";
+  e.option_keys = OptionKeys(VictoriaParkOptionsTable());
   e.description =
       "ACFR Victoria Park: tree detections, car odometry, GPS as the only truth; "
       "artificial clutter drawn per seed";
@@ -96,19 +107,10 @@ ScenarioEntry VictoriaParkEntry() {
   };
   e.resolved_options = [](const ScenarioOptions& options) {
     const datasets::VictoriaParkOptions o = ToVictoriaParkOptions(options);
-    return nlohmann::json{
-        {"data_dir", datasets::ResolveDataDir(options.data_dir).string()},
-        {"steps", o.max_steps},
-        {"detection_probability_max", o.detection_probability_max},
-        {"detection_probability_nominal", o.detection_probability_nominal},
-        {"clutter_rate", o.clutter_rate},
-        {"fov_range", o.fov_range},
-        {"fov_half_angle", o.fov_half_angle},
-        {"range_buffer", o.range_buffer},
-        {"angle_buffer", o.angle_buffer},
-        {"measurement_noise_cov", MatrixJson(o.measurement_noise_cov)},
-        {"control_noise_cov", MatrixJson(o.control_noise_cov)},
-    };
+    nlohmann::json j = VictoriaParkOptionsTable().ToJson(o);
+    j["data_dir"] = datasets::ResolveDataDir(options.data_dir).string();
+    j["steps"] = o.max_steps;
+    return j;
   };
   return e;
 }
@@ -116,6 +118,7 @@ ScenarioEntry VictoriaParkEntry() {
 ScenarioEntry GeneratedEntry() {
   ScenarioEntry e;
   e.name = "generated";
+  e.option_keys = OptionKeys(GeneratedOptionsTable());
   e.description =
       "a generated scenario of the paper's kind (100 landmarks along a smooth "
       "1000-step path; map and measurements drawn per seed); no data files";
@@ -125,23 +128,9 @@ ScenarioEntry GeneratedEntry() {
   };
   e.resolved_options = [](const ScenarioOptions& options) {
     const datasets::GeneratorOptions o = ToGeneratorOptions(options);
-    return nlohmann::json{
-        {"steps", o.steps},
-        {"dt", o.dt},
-        {"speed", o.speed},
-        {"turn_amplitude", o.turn_amplitude},
-        {"landmarks", o.landmarks},
-        {"corridor_half_width", o.corridor_half_width},
-        {"detection_probability", o.detection_probability},
-        {"clutter_rate", o.clutter_rate},
-        {"fov_range", o.fov_range},
-        {"fov_half_angle", o.fov_half_angle},
-        {"range_buffer", o.range_buffer},
-        {"angle_buffer", o.angle_buffer},
-        {"measurement_noise_cov", MatrixJson(o.measurement_noise_cov)},
-        {"control_noise_cov", MatrixJson(o.control_noise_cov)},
-        {"initial_pose", {o.initial_pose(0), o.initial_pose(1), o.initial_pose(2)}},
-    };
+    nlohmann::json j = GeneratedOptionsTable().ToJson(o);
+    j["steps"] = o.steps;
+    return j;
   };
   return e;
 }
