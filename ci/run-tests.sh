@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
 # The test command: installs what is missing (Chromium included, for the report-rendering test),
-# builds the release preset (warnings are errors),
-# runs every unit test with CTest, then the accuracy regression gates (the regression run and
-# bands of ci/thresholds.yaml). Exits non-zero on any failure.
+# builds the release preset (warnings are errors), checks formatting and runs clang-tidy on the
+# project's sources (ci/run-lint.sh), runs every unit test with CTest, the Slurm test, then the
+# accuracy regression gates (the regression run and bands of ci/thresholds.yaml). Exits non-zero
+# on any failure.
 #
-#   ci/run-tests.sh              release build + unit tests + Slurm test + accuracy gates
+#   ci/run-tests.sh              release build + lint + unit tests + Slurm test + accuracy gates
 #   ci/run-tests.sh --sanitize   also build and run the unit tests under ASan + UBSan
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -15,6 +16,7 @@ export PHDSLAM_REQUIRE_CHROMIUM=1
 jobs=$(nproc 2>/dev/null || echo 2)
 cmake --preset release >/dev/null
 cmake --build --preset release -j "$jobs"
+ci/run-lint.sh build/release
 ctest --preset release
 # A single-node Slurm cluster runs an experiment as a job array (needs root to start daemons).
 if [[ "$(id -u)" -eq 0 ]]; then
