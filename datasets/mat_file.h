@@ -8,7 +8,7 @@
 #include <string>
 
 // libmatio's file handle; the header <matio.h> is included by mat_file.cc only.
-struct _mat_t;
+struct _mat_t;  // NOLINT(bugprone-reserved-identifier): the name is libmatio's
 
 namespace phdslam::datasets {
 

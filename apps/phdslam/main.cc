@@ -542,4 +542,11 @@ int Main(int argc, char** argv) {
 }  // namespace
 }  // namespace phdslam::apps
 
-int main(int argc, char** argv) { return phdslam::apps::Main(argc, argv); }
+int main(int argc, char** argv) {
+  try {
+    return phdslam::apps::Main(argc, argv);
+  } catch (...) {
+    std::cerr << "phdslam: error: an unexpected exception ended the program\n";
+    return 1;
+  }
+}

@@ -307,7 +307,7 @@ Field<T> Fixed(Field<T> field, const std::string& reason) {
 
 /// A number that may also be the string `automatic` (stored as NaN: derived elsewhere).
 template <class T, class Access>
-Field<T> NumberOrAutomaticField(std::string key, Access access, std::string automatic) {
+Field<T> NumberOrAutomaticField(std::string key, Access access, const std::string& automatic) {
   return {key, "a number or \"" + automatic + "\"",
           [access, automatic](const T& p) {
             return std::isnan(access(p)) ? nlohmann::json(automatic) : nlohmann::json(access(p));

@@ -111,7 +111,7 @@ std::vector<ExperimentPart> PlanSweep(const Experiment& experiment,
   const std::vector<SweepPoint> points = SweepPoints(experiment.sweep);
   for (std::size_t i = 0; i < experiment.sweep.size(); ++i) {
     if (!IsEstimatorSweep(experiment.sweep[i], options)) continue;
-    SweepPoint first = points.front();
+    const SweepPoint& first = points.front();
     CheckEstimatorSweep(ApplySweepPoint(experiment, options, first), experiment.sweep[i], scenario,
                         table);
   }

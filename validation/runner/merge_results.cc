@@ -133,6 +133,7 @@ void RequireDistinct(const fs::path& out, const fs::path& input) {
 }
 
 // The plan of one results folder's merge, checked before anything is written.
+// NOLINTNEXTLINE(bugprone-exception-escape): its implicit moves only move maps and JSON values
 struct FolderMerge {
   nlohmann::json config;
   std::map<RunKey, RunSource> copies;  ///< runs to copy, by key
@@ -278,6 +279,7 @@ MergeReport MergeResults(const fs::path& out, const std::vector<fs::path>& input
   }
 
   std::vector<FolderMerge> plans;
+  plans.reserve(folders.size());
   for (const auto& [folder, sources] : folders) plans.push_back(PlanFolderMerge(folder, sources));
   for (std::size_t i = 0; i < folders.size(); ++i) {
     ExecuteFolderMerge(folders[i].first, folders[i].second, plans[i], report);
@@ -285,6 +287,7 @@ MergeReport MergeResults(const fs::path& out, const std::vector<fs::path>& input
   if (!first_sweep.empty()) WriteSweepFiles(out, first_sweep);
 
   std::vector<std::string> sources;
+  sources.reserve(inputs.size());
   for (const fs::path& input : inputs) sources.push_back(input.string());
   char host[256] = {};
   if (gethostname(host, sizeof(host) - 1) != 0) host[0] = '\0';

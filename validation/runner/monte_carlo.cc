@@ -164,6 +164,7 @@ unsigned HardwareThreads() {
 
 // What is known before any run starts: the jobs left to compute, their identities, the counts
 // and the config.json to write.
+// NOLINTNEXTLINE(bugprone-exception-escape): its implicit moves only move vectors and JSON values
 struct PreparedRuns {
   std::vector<PlannedJob> todo;
   std::vector<nlohmann::json> identities;
