@@ -5,6 +5,7 @@
 #include "datasets/data_dir.h"
 #include "datasets/scenario_check.h"
 #include "datasets/scenario_generator.h"
+#include "datasets/scphd_simulation.h"
 
 namespace phdslam::validation {
 namespace {
@@ -146,6 +147,51 @@ ScenarioEntry GeneratedEntry() {
   return e;
 }
 
+datasets::ScPhdSimOptions ToScPhdSimOptions(const ScenarioOptions& options) {
+  RequireNonNegativeSteps(options);
+  datasets::ScPhdSimOptions o;
+  if (options.steps > 0) o.steps = options.steps;
+  if (options.detection_probability) o.detection_probability = *options.detection_probability;
+  if (options.clutter_rate) o.clutter_rate = *options.clutter_rate;
+  o.Validate();
+  return o;
+}
+
+ScenarioEntry ScPhdSimEntry() {
+  ScenarioEntry e;
+  e.name = "scphd-sim";
+  e.description =
+      "the simulation of single-cluster PHD SLAM's paper (Lee, Clark & Salvi 2012): Ackermann "
+      "vehicle, two laps of a 40 m circle among 60 fixed landmarks, 838 steps of 0.2 s; odometry "
+      "and measurements drawn per seed (datasets/scphd_simulation.h); no data files";
+  e.uses_data_dir = false;
+  e.make = [](std::uint64_t seed, const ScenarioOptions& options, ScenarioCache&) {
+    return datasets::MakeScPhdSimScenario(ToScPhdSimOptions(options), seed);
+  };
+  e.resolved_options = [](const ScenarioOptions& options) {
+    const datasets::ScPhdSimOptions o = ToScPhdSimOptions(options);
+    return nlohmann::json{
+        {"steps", o.steps},
+        {"dt", o.dt},
+        {"speed", o.speed},
+        {"circle_radius", o.circle_radius},
+        {"wheelbase", o.wheelbase},
+        {"landmarks", o.landmarks},
+        {"map_inner_radius", o.map_inner_radius},
+        {"map_outer_radius", o.map_outer_radius},
+        {"detection_probability", o.detection_probability},
+        {"clutter_rate", o.clutter_rate},
+        {"fov_range", o.fov_range},
+        {"fov_half_angle", o.fov_half_angle},
+        {"range_buffer", o.range_buffer},
+        {"angle_buffer", o.angle_buffer},
+        {"measurement_noise_cov", MatrixJson(o.measurement_noise_cov)},
+        {"control_noise_cov", MatrixJson(o.control_noise_cov)},
+    };
+  };
+  return e;
+}
+
 }  // namespace
 
 const datasets::PaperSyntheticEnvironment& ScenarioCache::PaperSynthetic(
@@ -175,6 +221,7 @@ const std::vector<ScenarioEntry>& ScenarioTable() {
       PaperSyntheticEntry(),
       VictoriaParkEntry(),
       GeneratedEntry(),
+      ScPhdSimEntry(),
   };
   return table;
 }
