@@ -69,6 +69,7 @@ struct RunArguments {
   std::vector<std::string> assignments;
   std::string shard;
   bool particles_trace = false;
+  bool map_ospa = false;
   bool quiet = false;
   // Options whose presence matters (command-line values override an experiment file's).
   CLI::Option* experiment_file_option = nullptr;
@@ -171,6 +172,10 @@ void AddRunCommand(CLI::App& app, RunArguments& a) {
   run->add_flag("--particles-trace", a.particles_trace,
                 "Also write particles.csv (step,particle,x,y,log_weight) per run, for estimators "
                 "that expose their particles");
+  run->add_flag("--map-ospa", a.map_ospa,
+                "Also write the map OSPA (p = 1, c = 5 m) after every step, against the true "
+                "landmarks detected so far, as the last steps.csv column map_ospa_m (online "
+                "estimators on scenarios with a true map)");
   run->add_flag("--quiet", a.quiet, "No progress line and no summary table");
 }
 
@@ -347,6 +352,7 @@ int Run(const RunArguments& a) {
   settings.show_progress = !a.quiet;
   settings.stop = &interrupt.flag();
   settings.particles_trace = a.particles_trace;
+  settings.map_ospa_trace = a.map_ospa;
   if (!a.shard.empty()) settings.shard = v::ParseShard(a.shard);
   const v::ExperimentReport report = v::RunExperiment(experiment, settings);
 
