@@ -12,6 +12,7 @@
 // error (bad option, experiment file or list; unknown name; conflicting results folders),
 // 130 interrupted (Ctrl-C).
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -70,6 +71,7 @@ struct RunArguments {
   std::vector<std::string> scenario_assignments;
   std::string shard;
   bool particles_trace = false;
+  bool map_ospa = false;
   bool quiet = false;
   // Options whose presence matters (command-line values override an experiment file's).
   CLI::Option* experiment_file_option = nullptr;
@@ -101,6 +103,8 @@ struct ParentWeightsArguments {
   std::size_t step = 100;
   int parents = 300;
   double spread = 10.0;
+  std::size_t every = 0;
+  std::size_t until = 0;
   std::string out;
   std::string data_dir;
 };
@@ -175,6 +179,10 @@ void AddRunCommand(CLI::App& app, RunArguments& a) {
   run->add_flag("--particles-trace", a.particles_trace,
                 "Also write particles.csv (step,particle,x,y,log_weight) per run, for estimators "
                 "that expose their particles");
+  run->add_flag("--map-ospa", a.map_ospa,
+                "Also write the map OSPA (p = 1, c = 5 m) after every step, against the true "
+                "landmarks detected so far, as the last steps.csv column map_ospa_m (online "
+                "estimators on scenarios with a true map)");
   run->add_flag("--quiet", a.quiet, "No progress line and no summary table");
 }
 
@@ -232,12 +240,16 @@ void AddParentWeightsCommand(CLI::App& app, ParentWeightsArguments& a) {
       "Gaussian (standard deviations scaled by --spread), updates the same predicted map with the "
       "scan of --step, and writes the "
       "normalised weights under the single-cluster likelihood (with exp(-sum pD w)) and under "
-      "the RB-PHD-SLAM weighting (46) to OUT/parent_weights.csv "
-      "(parent,x,y,theta,sc_weight,rb_weight,sc_log_weight,rb_log_weight,missed_mass: the "
-      "log-weights normalised to log-sum-exp 0, the missed-detection mass sum pD w of the "
-      "predicted map seen from each parent) and OUT/parent_weights.json (step, predicted "
-      "Gaussian, true pose, ESS of each weighting). The report draws it when OUT is a results "
-      "folder.");
+      "the RB-PHD-SLAM weighting (46) and under Mullane et al.'s single-feature RB-PHD-SLAM "
+      "weighting to OUT/parent_weights.csv "
+      "(parent,x,y,theta,sc_weight,rb_weight,sc_log_weight,rb_log_weight,missed_mass,sf_weight,"
+      "sf_log_weight: the log-weights normalised to log-sum-exp 0, the missed-detection mass "
+      "sum pD w of the predicted map seen from each parent) and OUT/parent_weights.json (step, "
+      "predicted Gaussian, true pose, ESS of each weighting). With --every N it also compares at "
+      "steps N, 2N, ... up to --until (one filter run) and writes OUT/parent_weights_steps.csv "
+      "(step,measurements,map_components,ess_single_cluster,ess_rb_phd,ess_single_feature) and "
+      "OUT/parent_weights_steps.json (mean ESS, paired Wilcoxon tests over the steps). The "
+      "report draws it when OUT is a results folder.");
   pw->add_option("--scenario", a.scenario, "Scenario")->capture_default_str();
   pw->add_option("--seed", a.seed, "Monte Carlo seed of the scenario and of the draws")
       ->capture_default_str();
@@ -247,6 +259,11 @@ void AddParentWeightsCommand(CLI::App& app, ParentWeightsArguments& a) {
   pw->add_option("--spread", a.spread,
                  "Scale of the draws' standard deviations relative to the one-step prediction "
                  "(wider parents differ in which map components they see)")
+      ->capture_default_str();
+  pw->add_option("--every", a.every,
+                 "Also compare at every N-th step (0 = only --step) and write the ESS per step")
+      ->capture_default_str();
+  pw->add_option("--until", a.until, "Last step of --every (0 = the scenario's last step)")
       ->capture_default_str();
   pw->add_option("--out", a.out, "Output folder (created if needed)")->required();
   pw->add_option("--data-dir", a.data_dir,
@@ -362,6 +379,7 @@ int Run(const RunArguments& a) {
   settings.show_progress = !a.quiet;
   settings.stop = &interrupt.flag();
   settings.particles_trace = a.particles_trace;
+  settings.map_ospa_trace = a.map_ospa;
   if (!a.shard.empty()) settings.shard = v::ParseShard(a.shard);
   const v::ExperimentReport report = v::RunExperiment(experiment, settings);
 
@@ -475,7 +493,28 @@ int ParentWeights(const ParentWeightsArguments& a) {
   v::WriteFileAtomically(out / "parent_weights.json", meta.dump(2) + "\n");
   std::cout << "parent weights: " << (out / "parent_weights.csv").string() << " (ESS "
             << meta.at("ess_single_cluster").get<double>() << " single-cluster, "
-            << meta.at("ess_rb_phd").get<double>() << " RB-PHD of " << w.poses.size() << ")\n";
+            << meta.at("ess_rb_phd").get<double>() << " RB-PHD (46), "
+            << meta.at("ess_single_feature").get<double>() << " single-feature RB-PHD of "
+            << w.poses.size() << ")\n";
+  if (a.every == 0) return 0;
+  const std::size_t last =
+      a.until == 0 ? scenario.steps.size() - 1 : std::min(a.until, scenario.steps.size() - 1);
+  std::vector<std::size_t> steps;
+  for (std::size_t k = a.every; k <= last; k += a.every) steps.push_back(k);
+  const std::vector<v::StepEss> rows =
+      v::CompareParentWeightingOverSteps(scenario, settings, steps);
+  nlohmann::json summary = v::StepEssJson(rows);
+  summary["scenario"] = a.scenario;
+  summary["seed"] = a.seed;
+  summary["parents"] = a.parents;
+  summary["spread"] = a.spread;
+  summary["every"] = a.every;
+  v::WriteFileAtomically(out / "parent_weights_steps.csv", v::StepEssCsv(rows));
+  v::WriteFileAtomically(out / "parent_weights_steps.json", summary.dump(2) + "\n");
+  std::cout << "parent weights over " << rows.size() << " steps: mean ESS "
+            << summary.at("mean_ess_single_cluster").get<double>() << " single-cluster, "
+            << summary.at("mean_ess_rb_phd").get<double>() << " RB-PHD (46), "
+            << summary.at("mean_ess_single_feature").get<double>() << " single-feature\n";
   return 0;
 }
 

@@ -101,10 +101,29 @@ TEST(PhdSlamEntries, VictoriaParkResamplingThresholdDependsOnTheVariant) {
   EXPECT_EQ(threshold("phd2a"), 2.5);
   EXPECT_EQ(threshold("phd2b"), 1.0);
   EXPECT_EQ(threshold("phd3"), 1.0);
+  EXPECT_EQ(threshold("rbphd"), 2.5);
   // The synthetic scenario: 0.2 N for every variant.
   request.scenario_name = "paper-synthetic";
   request.name = "phd1";
   EXPECT_EQ(FindEstimator("phd1").resolved_parameters(request).at("ess_threshold"), 0.2);
+}
+
+TEST(RbPhdEntry, IsPhd1WithTheSingleFeatureWeight) {
+  EstimatorRequest request;
+  request.scenario_name = "paper-synthetic";
+  request.particles = 10;
+  request.name = "rbphd";
+  nlohmann::json rb = FindEstimator("rbphd").resolved_parameters(request);
+  EXPECT_EQ(rb.at("weighting"), "single-feature");
+  request.name = "phd1";
+  nlohmann::json phd1 = FindEstimator("phd1").resolved_parameters(request);
+  EXPECT_EQ(phd1.at("weighting"), "paper-46");
+  rb.erase("weighting");
+  phd1.erase("weighting");
+  EXPECT_EQ(rb, phd1);  // every other parameter is phd1's
+  request.name = "rbphd";
+  request.overrides = {{"weighting", "empty-map"}};
+  EXPECT_EQ(FindEstimator("rbphd").resolved_parameters(request).at("weighting"), "empty-map");
 }
 
 TEST(MrptEkfPostProcessed, RunsTheSameFilterAndReportsASubsetOfItsMap) {

@@ -158,6 +158,7 @@ ExperimentReport RunExperiment(const Experiment& experiment, const ExperimentSet
     s.shard = settings.shard;
     s.job_index_offset = offset;
     s.particles_trace = settings.particles_trace;
+    s.map_ospa_trace = settings.map_ospa_trace;
     try {
       CheckMonteCarlo(part.plan, s);
     } catch (const std::invalid_argument& e) {

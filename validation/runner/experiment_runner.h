@@ -42,6 +42,7 @@ struct ExperimentSettings {
   const std::atomic<bool>* stop = nullptr;
   Shard shard;
   bool particles_trace = false;
+  bool map_ospa_trace = false;  ///< MonteCarloSettings::map_ospa_trace
   MetricSettings metrics;
 };
 

@@ -282,7 +282,7 @@ MonteCarloReport RunMonteCarlo(const MonteCarloPlan& plan, const MonteCarloSetti
       request.overrides = selection.overrides;
       const RunRecord record = RunEstimator(
           selection.entry, request, scenario, [&](std::size_t n) { progress.StepsDone(n); },
-          settings.particles_trace);
+          settings.particles_trace, settings.map_ospa_trace);
       const RunEvaluation evaluation = EvaluateRun(record, scenario, settings.metrics);
       WriteRunFiles(folder, record, scenario, evaluation, identity);
       progress.RunFinished(false);

@@ -41,13 +41,22 @@ std::vector<datasets::MapPoint> MapPoints(const filters::MapEstimate& map) {
 
 std::string StepsCsv(const RunRecord& record, const datasets::Scenario& scenario,
                      const RunEvaluation& evaluation) {
-  std::string text =
-      CsvRow({"step", "t", "x", "y", "theta", "x_true", "y_true", "theta_true", "pos_err_m",
-              "heading_err_deg", "ess", "resampled", "hypotheses", "map_components", "ms", "nees"});
+  std::vector<std::string> header = {"step",       "t",
+                                     "x",          "y",
+                                     "theta",      "x_true",
+                                     "y_true",     "theta_true",
+                                     "pos_err_m",  "heading_err_deg",
+                                     "ess",        "resampled",
+                                     "hypotheses", "map_components",
+                                     "ms",         "nees"};
+  // The opt-in map OSPA (phdslam run --map-ospa) is appended as the last column.
+  const bool has_map_ospa = evaluation.map_ospa_m.size() == record.poses.size();
+  if (has_map_ospa) header.push_back("map_ospa_m");
+  std::string text = CsvRow(header);
   const bool has_truth = scenario.truth.poses.size() == record.poses.size();
   const bool has_diag = record.diagnostics.size() == record.poses.size();
   const bool has_ms = record.step_ms.size() == record.poses.size();
-  std::vector<std::string> cells(16);
+  std::vector<std::string> cells(has_map_ospa ? 17 : 16);
   for (std::size_t k = 0; k < record.poses.size(); ++k) {
     const Pose& p = record.poses[k];
     cells[0] = FormatInteger(static_cast<std::int64_t>(k));
@@ -76,6 +85,7 @@ std::string StepsCsv(const RunRecord& record, const datasets::Scenario& scenario
     cells[14] = has_ms ? FormatNumber(record.step_ms[k]) : std::string();
     cells[15] =
         k < evaluation.pose_nees.size() ? FormatNumber(evaluation.pose_nees[k]) : std::string();
+    if (has_map_ospa) cells[16] = FormatNumber(evaluation.map_ospa_m[k]);
     text += CsvRow(cells);
   }
   return text;

@@ -72,6 +72,8 @@ struct RunEvaluation {
   /// difference); NaN without true poses, without a covariance, or when the covariance is not
   /// positive definite (zero or singular, e.g. at the first step of a particle filter).
   std::vector<double> pose_nees;
+  /// Per step: the map OSPA of map_ospa_trace.h; empty unless the run recorded its maps.
+  std::vector<double> map_ospa_m;
 };
 
 /// Evaluates a run against its scenario's truth. Throws std::invalid_argument when the record

@@ -140,4 +140,31 @@ const params::ParameterTable<datasets::GeneratorOptions>& GeneratedOptionsTable(
   return table;
 }
 
+const params::ParameterTable<datasets::ScPhdSimOptions>& ScPhdSimOptionsTable() {
+  using O = datasets::ScPhdSimOptions;
+  static const params::ParameterTable<O> table(params::Rows<O>({
+      {
+          NumberField<O>(
+              "dt", [](auto& o) -> auto& { return o.dt; }, Above(0.0)),
+          NumberField<O>(
+              "speed", [](auto& o) -> auto& { return o.speed; }, Above(0.0)),
+          NumberField<O>(
+              "circle_radius", [](auto& o) -> auto& { return o.circle_radius; }, Above(0.0)),
+          NumberField<O>(
+              "wheelbase", [](auto& o) -> auto& { return o.wheelbase; }, Above(0.0)),
+          IntField<O>(
+              "landmarks", [](auto& o) -> auto& { return o.landmarks; }, AtLeast(0)),
+          NumberField<O>(
+              "map_inner_radius", [](auto& o) -> auto& { return o.map_inner_radius; },
+              AtLeast(0.0)),
+          NumberField<O>(
+              "map_outer_radius", [](auto& o) -> auto& { return o.map_outer_radius; },
+              Above(0.0)),
+      },
+      DetectionRows<O>(),
+      SensorRows<O>(),
+  }));
+  return table;
+}
+
 }  // namespace phdslam::validation

@@ -6,6 +6,7 @@
 
 #include "datasets/paper_synthetic.h"
 #include "datasets/scenario_generator.h"
+#include "datasets/scphd_simulation.h"
 #include "datasets/victoria_park.h"
 #include "src/core/parameter_table.h"
 
@@ -20,5 +21,8 @@ const params::ParameterTable<datasets::VictoriaParkOptions>& VictoriaParkOptions
 
 /// generated: every generator option (path, landmarks, sensor, noise, initial pose).
 const params::ParameterTable<datasets::GeneratorOptions>& GeneratedOptionsTable();
+
+/// scphd-sim: the simulated path and map, the sensor and the noise covariances.
+const params::ParameterTable<datasets::ScPhdSimOptions>& ScPhdSimOptionsTable();
 
 }  // namespace phdslam::validation

@@ -5,6 +5,7 @@
 #include "datasets/data_dir.h"
 #include "datasets/scenario_check.h"
 #include "datasets/scenario_generator.h"
+#include "datasets/scphd_simulation.h"
 #include "validation/runner/scenario_option_tables.h"
 
 namespace phdslam::validation {
@@ -135,6 +136,38 @@ ScenarioEntry GeneratedEntry() {
   return e;
 }
 
+datasets::ScPhdSimOptions ToScPhdSimOptions(const ScenarioOptions& options) {
+  RequireNonNegativeSteps(options);
+  datasets::ScPhdSimOptions o;
+  if (options.steps > 0) o.steps = options.steps;
+  if (options.detection_probability) o.detection_probability = *options.detection_probability;
+  if (options.clutter_rate) o.clutter_rate = *options.clutter_rate;
+  ApplySettings(ScPhdSimOptionsTable(), options, "scphd-sim", o);
+  o.Validate();
+  return o;
+}
+
+ScenarioEntry ScPhdSimEntry() {
+  ScenarioEntry e;
+  e.name = "scphd-sim";
+  e.option_keys = OptionKeys(ScPhdSimOptionsTable());
+  e.description =
+      "the simulation of single-cluster PHD SLAM's paper (Lee, Clark & Salvi 2012): Ackermann "
+      "vehicle, two laps of a 40 m circle among 60 fixed landmarks, 838 steps of 0.2 s; odometry "
+      "and measurements drawn per seed (datasets/scphd_simulation.h); no data files";
+  e.uses_data_dir = false;
+  e.make = [](std::uint64_t seed, const ScenarioOptions& options, ScenarioCache&) {
+    return datasets::MakeScPhdSimScenario(ToScPhdSimOptions(options), seed);
+  };
+  e.resolved_options = [](const ScenarioOptions& options) {
+    const datasets::ScPhdSimOptions o = ToScPhdSimOptions(options);
+    nlohmann::json j = ScPhdSimOptionsTable().ToJson(o);
+    j["steps"] = o.steps;
+    return j;
+  };
+  return e;
+}
+
 }  // namespace
 
 const datasets::PaperSyntheticEnvironment& ScenarioCache::PaperSynthetic(
@@ -164,6 +197,7 @@ const std::vector<ScenarioEntry>& ScenarioTable() {
       PaperSyntheticEntry(),
       VictoriaParkEntry(),
       GeneratedEntry(),
+      ScPhdSimEntry(),
   };
   return table;
 }
