@@ -13,7 +13,7 @@ packages=(
   libmrpt-slam-dev libmrpt-maps-dev libmrpt-obs-dev libmrpt-bayes-dev libmrpt-poses-dev
   libmrpt-random-dev libmrpt-system-dev libmrpt-math-dev libmrpt-core-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  libyaml-cpp-dev nlohmann-json3-dev libcli11-dev
+  libyaml-cpp-dev nlohmann-json3-dev libcli11-dev zlib1g-dev
   python3 python3-matplotlib python3-numpy python3-scipy python3-yaml
 )
 if [[ "${1:-}" == "--browser" ]]; then
