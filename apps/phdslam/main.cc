@@ -16,6 +16,7 @@
 #include <filesystem>
 #include <iostream>
 #include <map>
+#include <new>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <stdexcept>
@@ -496,6 +497,11 @@ int Main(int argc, char** argv) {
     if (app.got_subcommand("evaluate")) return Evaluate(evaluate_arguments);
     if (app.got_subcommand("parent-weights")) return ParentWeights(parent_weights_arguments);
     return List();
+  } catch (const std::bad_alloc& e) {
+    std::cerr << "phdslam: error: out of memory (" << e.what() << ") in 'phdslam "
+              << app.get_subcommands().front()->get_name()
+              << "': fewer seeds, particles or --jobs, or a lower clutter rate, need less\n";
+    return kExitRunFailed;
   } catch (const std::invalid_argument& e) {
     // Bad lists, unknown names and out-of-range options: usage errors.
     std::cerr << "phdslam: error: " << e.what() << "\n";

@@ -8,6 +8,7 @@
 
 #include "validation/runner/list_arguments.h"
 #include "validation/runner/results_io.h"
+#include "validation/runner/yaml_shape.h"
 
 namespace phdslam::validation {
 namespace {
@@ -211,6 +212,7 @@ ExperimentSweep ReadSweep(const YAML::Node& node, const FileErrors& errors) {
 Experiment ParseExperimentYaml(std::string_view text, const std::string& source,
                                const std::string& default_name) {
   const FileErrors errors(source);
+  CheckYamlShape(text, source);
   YAML::Node root;
   try {
     root = YAML::Load(std::string(text));

@@ -16,6 +16,7 @@
 #include "validation/runner/results_config.h"
 #include "validation/runner/results_io.h"
 #include "validation/runner/results_layout.h"
+#include "validation/runner/results_lock.h"
 #include "validation/runner/summary.h"
 
 namespace phdslam::validation {
@@ -242,6 +243,7 @@ MergeReport MergeResults(const fs::path& out, const std::vector<fs::path>& input
   const std::string started_utc = UtcNow();
   if (inputs.empty()) throw std::invalid_argument("merge: no input folder given");
   for (const fs::path& input : inputs) RequireDistinct(out, input);
+  const ResultsLock lock(out);
   MergeReport report;
 
   const std::optional<SweepRoot> first_sweep = ReadSweepRoot(inputs.front());

@@ -5,6 +5,7 @@
 #include "datasets/data_dir.h"
 #include "datasets/scenario_check.h"
 #include "datasets/scenario_generator.h"
+#include "datasets/sha256.h"
 
 namespace phdslam::validation {
 namespace {
@@ -49,6 +50,19 @@ datasets::GeneratorOptions ToGeneratorOptions(const ScenarioOptions& options) {
   return o;
 }
 
+// {"<relative path>": "sha256:<hex>"} for the data files a scenario reads: part of a run's
+// identity, so results made from other data are never mixed with these.
+nlohmann::json DataFileChecksums(const std::filesystem::path& data_dir,
+                                 const std::vector<std::filesystem::path>& files) {
+  nlohmann::json out = nlohmann::json::object();
+  std::error_code ec;
+  for (const std::filesystem::path& file : files) {
+    if (!std::filesystem::is_regular_file(data_dir / file, ec)) continue;  // the loader says so
+    out[file.generic_string()] = "sha256:" + datasets::FileSha256Hex(data_dir / file);
+  }
+  return out;
+}
+
 nlohmann::json MatrixJson(const Mat2& m) {
   return nlohmann::json::array(
       {nlohmann::json::array({m(0, 0), m(0, 1)}), nlohmann::json::array({m(1, 0), m(1, 1)})});
@@ -67,8 +81,10 @@ ScenarioEntry PaperSyntheticEntry() {
   };
   e.resolved_options = [](const ScenarioOptions& options) {
     const datasets::SyntheticOptions o = ToSyntheticOptions(options);
+    const std::filesystem::path data_dir = datasets::ResolveDataDir(options.data_dir);
     return nlohmann::json{
-        {"data_dir", datasets::ResolveDataDir(options.data_dir).string()},
+        {"data_dir", data_dir.string()},
+        {"data_files", DataFileChecksums(data_dir, datasets::PaperSyntheticDataFiles())},
         {"steps", o.steps},
         {"detection_probability", o.detection_probability},
         {"clutter_rate", o.clutter_rate},
@@ -96,8 +112,10 @@ ScenarioEntry VictoriaParkEntry() {
   };
   e.resolved_options = [](const ScenarioOptions& options) {
     const datasets::VictoriaParkOptions o = ToVictoriaParkOptions(options);
+    const std::filesystem::path data_dir = datasets::ResolveDataDir(options.data_dir);
     return nlohmann::json{
-        {"data_dir", datasets::ResolveDataDir(options.data_dir).string()},
+        {"data_dir", data_dir.string()},
+        {"data_files", DataFileChecksums(data_dir, datasets::VictoriaParkDataFiles(data_dir))},
         {"steps", o.max_steps},
         {"detection_probability_max", o.detection_probability_max},
         {"detection_probability_nominal", o.detection_probability_nominal},
