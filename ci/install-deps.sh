@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Installs the Debian 12 packages phdslam needs to build, test and report.
+# Installs the Debian 12 packages phdslam needs to build, test (clang-14 and its runtime for the
+# libFuzzer targets, valgrind) and report.
 # Idempotent: installs only what is missing and prints nothing when everything is present.
 # Uses sudo only when not running as root.
 #
@@ -15,6 +16,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libyaml-cpp-dev nlohmann-json3-dev libcli11-dev zlib1g-dev
   python3 python3-matplotlib python3-numpy python3-scipy python3-yaml
+  clang-14 libclang-rt-14-dev valgrind
 )
 if [[ "${1:-}" == "--browser" ]]; then
   packages+=(chromium)

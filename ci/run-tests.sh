@@ -2,7 +2,8 @@
 # The test command: installs what is missing (Chromium included, for the report-rendering test),
 # builds the release preset (warnings are errors),
 # runs every unit test with CTest, then the accuracy regression gates (the regression run and
-# bands of ci/thresholds.yaml). Exits non-zero on any failure.
+# bands of ci/thresholds.yaml), then the libFuzzer targets for 20 s each (ci/run-fuzz.sh, under
+# ASan + UBSan). Exits non-zero on any failure.
 #
 #   ci/run-tests.sh              release build + unit tests + accuracy gates
 #   ci/run-tests.sh --sanitize   also build and run the unit tests under ASan + UBSan
@@ -24,3 +25,4 @@ if [[ "${1:-}" == "--sanitize" ]]; then
 fi
 
 ci/check-gates.sh build/release
+ci/run-fuzz.sh 20
