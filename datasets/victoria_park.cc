@@ -16,6 +16,7 @@
 #include <system_error>
 
 #include "datasets/mat_file.h"
+#include "datasets/range_bearing_simulator.h"
 #include "datasets/text_fields.h"
 #include "src/core/random.h"
 
@@ -286,8 +287,8 @@ void VictoriaParkOptions::Validate() const {
     throw std::invalid_argument("VictoriaParkOptions." + field + " = " + std::to_string(value) +
                                 ": expected " + expected);
   };
-  if (!std::isfinite(clutter_rate) || clutter_rate < 0.0) {
-    fail("clutter_rate", "a finite value >= 0", clutter_rate);
+  if (!(clutter_rate >= 0.0 && clutter_rate <= kMaxClutterRate)) {
+    fail("clutter_rate", "in [0, " + std::to_string(kMaxClutterRate) + "]", clutter_rate);
   }
   if (!std::isfinite(fov_range) || fov_range <= 0.0) fail("fov_range", "> 0", fov_range);
   if (!(fov_half_angle > 0.0 && fov_half_angle <= std::numbers::pi)) {

@@ -111,6 +111,10 @@ std::vector<int> ParticleList(const YAML::Node& node, const std::string& key,
   std::set<int> seen;
   for (int n : particles) {
     if (n < 1) errors.Fail(node, "'" + key + "': particle count " + std::to_string(n) + " is < 1");
+    if (n > kMaxParticles) {
+      errors.Fail(node, "'" + key + "': particle count " + std::to_string(n) + " is more than " +
+                            std::to_string(kMaxParticles));
+    }
     if (!seen.insert(n).second) {
       errors.Fail(node, "'" + key + "': particle count " + std::to_string(n) + " is listed twice");
     }

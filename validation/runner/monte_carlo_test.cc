@@ -391,11 +391,11 @@ TEST(MonteCarlo, ResumeRefusesOtherDataFiles) {
   fs::create_directories(mat.parent_path());
   fs::copy_file(
       datasets::ResolveDataDir(std::nullopt) / "phdslam3-synthetic" / "Environment_SLAM.mat", mat);
-  const auto plan = [&] {
+  const auto plan = [&](const fs::path& folder = {}, int steps = 5) {
     MonteCarloPlan p = OdometryPlan("generated", 5, {1});
     ScenarioOptions options;
-    options.steps = 5;
-    options.data_dir = data.string();
+    options.steps = steps;
+    options.data_dir = (folder.empty() ? data : folder).string();
     p.scenario = MakeScenarioSource("paper-synthetic", options);
     return p;
   };
@@ -408,7 +408,19 @@ TEST(MonteCarlo, ResumeRefusesOtherDataFiles) {
                                    .at("phdslam3-synthetic/Environment_SLAM.mat");
   EXPECT_EQ(checksum.rfind("sha256:", 0), 0u) << checksum;
   EXPECT_EQ(checksum.size(), 7u + 64u);
-  // The same content elsewhere is the same data; a changed byte is other data.
+  // The same content elsewhere is the same data: a conflict names the setting that differs, not
+  // the data folder.
+  const fs::path moved = root / "moved";
+  fs::create_directories(moved / "phdslam3-synthetic");
+  fs::copy_file(mat, moved / "phdslam3-synthetic" / "Environment_SLAM.mat");
+  try {
+    RunMonteCarlo(plan(moved, 6), Quiet(out, 1));
+    FAIL() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("steps"), std::string::npos) << e.what();
+    EXPECT_EQ(std::string(e.what()).find("data_dir"), std::string::npos) << e.what();
+  }
+  // A changed byte is other data.
   std::string bytes = ReadTextFile(mat);
   bytes[10] = static_cast<char>(bytes[10] ^ 1);  // in the descriptive header text
   WriteFileAtomically(mat, bytes);

@@ -32,6 +32,11 @@ ParentWeights CompareParentWeightingAtStep(const datasets::Scenario& scenario,
                                 std::to_string(scenario.steps.size() - 1) + ", got " +
                                 std::to_string(k));
   }
+  if (settings.parents > kMaxParents) {
+    throw std::invalid_argument("parent weights: parents must be at most " +
+                                std::to_string(kMaxParents) + ", got " +
+                                std::to_string(settings.parents));
+  }
   if (settings.parents < 2) {
     throw std::invalid_argument("parent weights: parents must be >= 2, got " +
                                 std::to_string(settings.parents));

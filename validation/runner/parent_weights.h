@@ -15,6 +15,9 @@
 
 namespace phdslam::validation {
 
+/// Most parent poses a comparison draws.
+inline constexpr int kMaxParents = 100000;
+
 struct ParentWeightsSettings {
   std::size_t step = 100;  ///< the scan whose update is compared (0-based step index)
   int parents = 300;       ///< parent poses drawn from the predicted pose Gaussian
