@@ -64,7 +64,7 @@ std::vector<StampedPose> ReadTumTrajectory(const std::filesystem::path& path) {
     for (std::size_t c = 0; c < tokens.size(); ++c) {
       const auto value = text::ParseDouble(tokens[c]);
       const std::string column = "column " + std::to_string(c + 1) + " (" + kColumns[c] + ")";
-      if (!value) fail(column + ": '" + std::string(tokens[c]) + "' is not a number");
+      if (!value) fail(column + ": '" + text::Printable(tokens[c]) + "' is not a number");
       if (!std::isfinite(*value)) fail(column + " is not finite");
       v[c] = *value;
     }

@@ -121,6 +121,11 @@ TEST(TumTrajectory, MalformedLinesNameFileAndLine) {
             std::string::npos)
       << message;
 
+  path = WriteText("escape.tum", "0 1 \x1b[2J 0 0 0 0 1\n");
+  message = ReadError(path);
+  EXPECT_EQ(message.find('\x1b'), std::string::npos) << message;
+  EXPECT_NE(message.find("'\\x1b[2J' is not a number"), std::string::npos) << message;
+
   path = WriteText("tilted.tum", "0 1 2 0 0.3826834323650898 0 0 0.9238795325112867\n");
   message = ReadError(path);
   EXPECT_NE(message.find(":1: the quaternion is not a rotation about z"), std::string::npos)
