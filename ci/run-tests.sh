@@ -6,7 +6,8 @@
 # ASan + UBSan). Exits non-zero on any failure.
 #
 #   ci/run-tests.sh              release build + unit tests + accuracy gates
-#   ci/run-tests.sh --sanitize   also build and run the unit tests under ASan + UBSan
+#   ci/run-tests.sh --sanitize   also build and run the unit tests under ASan + UBSan, and the main
+#                                job on one seed under valgrind (ci/run-valgrind.sh)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ci/install-deps.sh --browser
@@ -22,6 +23,7 @@ if [[ "${1:-}" == "--sanitize" ]]; then
   cmake --preset sanitize >/dev/null
   cmake --build --preset sanitize -j "$jobs"
   ctest --preset sanitize
+  ci/run-valgrind.sh
 fi
 
 ci/check-gates.sh build/release
