@@ -384,6 +384,28 @@ TEST(MonteCarlo, StopFlagLetsNoNewRunStart) {
   EXPECT_EQ(resumed.finished, 2u);
 }
 
+TEST(MonteCarlo, AnOverflowingErrorIsAFailedRunNotAPoisonedFolder) {
+  const fs::path out = datasets::testing::FreshTestDir();
+  MonteCarloPlan plan = OdometryPlan("generated", 20, {1, 2});
+  const auto make = plan.scenario.make;
+  plan.scenario.make = [make](std::uint64_t seed) {
+    datasets::Scenario s = make(seed);
+    if (seed == 2) s.steps[5].data.controls.front()(0) = 1e200;  // finite, but its square is not
+    return s;
+  };
+  const MonteCarloReport report = RunMonteCarlo(plan, Quiet(out, 1));
+  EXPECT_EQ(report.finished, 1u);
+  ASSERT_EQ(report.failures.size(), 1u);
+  EXPECT_EQ(report.failures[0].seed, 2u);
+  EXPECT_NE(report.failures[0].error.find("position error is not finite"), std::string::npos)
+      << report.failures[0].error;
+  EXPECT_FALSE(fs::exists(RunFolder(out, "odometry", 1, 2) / kMetricsFile));
+  // The folder stays usable: the summary is written now and again on resume.
+  EXPECT_NE(ReadTextFile(out / kSummaryFile).find("odometry,1,1,"), std::string::npos);
+  EXPECT_NO_THROW(RunMonteCarlo(plan, Quiet(out, 1)));
+  EXPECT_EQ(Lines(ReadTextFile(out / kRunsTableFile)).size(), 2u);  // header + the finished run
+}
+
 TEST(MonteCarlo, ResumeRefusesOtherDataFiles) {
   const fs::path root = datasets::testing::FreshTestDir();
   const fs::path data = root / "data";
