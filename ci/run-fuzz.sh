@@ -35,6 +35,9 @@ awk 'BEGIN { print "x,y,weight,pxx,pxy,pyy" } !/^#/ && NF >= 3 { print $2 "," $3
 cp validation/experiments/*.yaml "$corpus/experiment_file/"
 
 mkdir -p "$build/artifacts"
+# The targets write their input to files under $TMPDIR (fuzz/fuzz_input_file.h): keep them here.
+export TMPDIR=$root/$build/tmp
+rm -rf "$TMPDIR" && mkdir -p "$TMPDIR"
 status=0
 printf '%-16s %10s %12s %8s\n' target "execs/s" "total execs" result
 for t in "${targets[@]}"; do
