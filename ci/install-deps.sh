@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Installs the Debian 12 packages phdslam needs to build, test and report.
+# Installs the Debian 12 packages phdslam needs to build, test (clang-14 and its runtime for the
+# libFuzzer targets, valgrind) and report.
 # Idempotent: installs only what is missing and prints nothing when everything is present.
 # Uses sudo only when not running as root.
 #
@@ -15,9 +16,10 @@ packages=(
   libmrpt-slam-dev libmrpt-maps-dev libmrpt-obs-dev libmrpt-bayes-dev libmrpt-poses-dev
   libmrpt-random-dev libmrpt-system-dev libmrpt-math-dev libmrpt-core-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  libyaml-cpp-dev nlohmann-json3-dev libcli11-dev
+  libyaml-cpp-dev nlohmann-json3-dev libcli11-dev zlib1g-dev
   python3 python3-matplotlib python3-numpy python3-scipy python3-yaml
   clang-format clang-tidy
+  clang-14 libclang-rt-14-dev valgrind
 )
 for option in "$@"; do
   case "$option" in

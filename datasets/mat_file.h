@@ -15,8 +15,9 @@ namespace phdslam::datasets {
 /// An open MAT-file, closed on destruction. Movable, not copyable.
 class MatFile {
  public:
-  /// Opens `path` read-only. Throws std::runtime_error naming the file when it does not exist or
-  /// is not a MAT-file libmatio can read.
+  /// Opens `path` read-only. Throws std::runtime_error naming the file when it does not exist,
+  /// is not a MAT-file libmatio can read, or is a version 5 MAT-file that fails
+  /// CheckMatV5Structure (truncated, or a variable storing fewer or more elements than declared).
   explicit MatFile(const std::filesystem::path& path);
   ~MatFile();
   MatFile(MatFile&&) noexcept;

@@ -111,6 +111,32 @@ expect_exit 0 "$phdslam" evaluate --truth-trajectory "$out/truth/seed-1/truth.tu
   --trajectory "$out/truth/seed-1/truth.tum"
 expect_in "$scratch/out" '"pos_rmse_m": 0.0'
 expect_exit 1 "$phdslam" evaluate --truth-map "$run1/trajectory.tum" --map "$run1/map.csv"
+expect_exit 2 "$phdslam" evaluate --truth-map "$out/truth_map.csv" --map "$run1/map.csv" --c 1e308
+expect_in "$scratch/err" "overflow"
+awk '/^#/ { print; next } { $1 = $1 + 1e6; print }' "$run1/trajectory.tum" >"$scratch/late.tum"
+expect_exit 2 "$phdslam" evaluate --truth-trajectory "$out/truth/seed-1/truth.tum" \
+  --trajectory "$scratch/late.tum"
+expect_in "$scratch/err" "do not overlap in time"
+printf '0 1 2 0 0 0 0 1\n0 1 2 0 0 0 0 1\n' >"$scratch/twice.tum"
+expect_exit 1 "$phdslam" evaluate --truth-trajectory "$scratch/twice.tum" \
+  --trajectory "$scratch/twice.tum"
+expect_in "$scratch/err" "twice.tum:2: time stamp 0 repeats that of line 1"
+
+# An option without its value is named (not "--out is required").
+expect_exit 2 "$phdslam" run --scenario generated --estimator odometry --seeds --out "$scratch/nv"
+expect_in "$scratch/err" "--seeds needs a value"
+
+# SIGTERM stops like Ctrl-C: runs in progress finish, the summary is written, exit 130.
+"$phdslam" run --scenario paper-synthetic --data-dir "$data_dir" --estimator phd3 --particles 10 \
+  --seeds 1-100000 --steps 200 --jobs 1 --quiet --out "$scratch/term" >/dev/null 2>"$scratch/err" &
+term_pid=$!
+sleep 3
+kill -TERM "$term_pid"
+wait "$term_pid"
+term_exit=$?
+[ "$term_exit" -eq 130 ] || fail "SIGTERM: exit $term_exit (want 130): $(cat "$scratch/err")"
+[ -f "$scratch/term/summary.csv" ] || fail "SIGTERM: no summary.csv"
+[ ! -e "$scratch/term/phdslam.lock" ] || fail "SIGTERM: the lock file stayed"
 
 # Files of a results folder with the timing columns (ms, ms_*) dropped.
 without_timing() {

@@ -17,12 +17,14 @@
 #include <filesystem>
 #include <iostream>
 #include <map>
+#include <new>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "apps/phdslam/option_without_value.h"
 #include "datasets/map_io.h"
 #include "datasets/trajectory_io.h"
 #include "src/core/random.h"
@@ -138,9 +140,10 @@ void AddRunCommand(CLI::App& app, RunArguments& a) {
       run->add_option("--scenario", a.scenario, "Scenario name (see `phdslam list`)");
   a.estimator_option = run->add_option(
       "--estimator", a.estimators, "Estimator name, or a comma list of names (see `phdslam list`)");
-  a.particles_option = run->add_option("--particles", a.particles,
-                                       "Particle count, or a comma list such as 1,10,100")
-                           ->capture_default_str();
+  a.particles_option =
+      run->add_option("--particles", a.particles,
+                      "Particle count (1 to 100000), or a comma list such as 1,10,100")
+          ->capture_default_str();
   a.seeds_option = run->add_option("--seeds", a.seeds,
                                    "Monte Carlo seeds: a range a-b (inclusive), a single seed, or "
                                    "a comma list such as 1,3,10-12");
@@ -164,8 +167,9 @@ void AddRunCommand(CLI::App& app, RunArguments& a) {
           ->capture_default_str();
   a.pd_option = run->add_option("--pd", a.detection_probability,
                                 "Override the scenario's detection probability (0, 1]");
-  a.clutter_option = run->add_option("--clutter-rate", a.clutter_rate,
-                                     "Override the scenario's mean clutter count per scan");
+  a.clutter_option =
+      run->add_option("--clutter-rate", a.clutter_rate,
+                      "Override the scenario's mean clutter count per scan (0 to 1000)");
   run->add_option("--set", a.assignments,
                   "Estimator parameter override [estimator:]key=value (repeatable; dotted keys "
                   "reach nested parameters; the value is JSON when it parses, else a string)");
@@ -255,7 +259,7 @@ void AddParentWeightsCommand(CLI::App& app, ParentWeightsArguments& a) {
       ->capture_default_str();
   pw->add_option("--step", a.step, "0-based step whose scan is compared (needs measurements)")
       ->capture_default_str();
-  pw->add_option("--parents", a.parents, "Parent poses drawn (at least 2)")->capture_default_str();
+  pw->add_option("--parents", a.parents, "Parent poses drawn (2 to 100000)")->capture_default_str();
   pw->add_option("--spread", a.spread,
                  "Scale of the draws' standard deviations relative to the one-step prediction "
                  "(wider parents differ in which map components they see)")
@@ -554,6 +558,10 @@ int Main(int argc, char** argv) {
   AddEvaluateCommand(app, evaluate_arguments);
   AddParentWeightsCommand(app, parent_weights_arguments);
   app.add_subcommand("list", "List the known scenarios (with their options) and estimators");
+  if (const std::string option = OptionWithoutValue(app, argc, argv); !option.empty()) {
+    std::cerr << "phdslam: error: " << option << " needs a value (see phdslam --help)\n";
+    return kExitUsage;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -568,6 +576,11 @@ int Main(int argc, char** argv) {
     if (app.got_subcommand("evaluate")) return Evaluate(evaluate_arguments);
     if (app.got_subcommand("parent-weights")) return ParentWeights(parent_weights_arguments);
     return List();
+  } catch (const std::bad_alloc& e) {
+    std::cerr << "phdslam: error: out of memory (" << e.what() << ") in 'phdslam "
+              << app.get_subcommands().front()->get_name()
+              << "': fewer seeds, particles or --jobs, or a lower clutter rate, need less\n";
+    return kExitRunFailed;
   } catch (const std::invalid_argument& e) {
     // Bad lists, unknown names and out-of-range options: usage errors.
     std::cerr << "phdslam: error: " << e.what() << "\n";

@@ -605,8 +605,8 @@ def build_report(results_dirs: Sequence[Path | str], out_dir: Path | str,
                  options: ReportOptions | None = None) -> Report:
     """Builds the report of ``results_dirs`` into ``out_dir`` (index.html and PNG files)."""
     out = Path(out_dir)
+    folders = [ResultsFolder(p) for p in results_dirs]  # checks them before creating anything
     out.mkdir(parents=True, exist_ok=True)
-    folders = [ResultsFolder(p) for p in results_dirs]
     builder = ReportBuilder(folders, out, paper or PaperValues.load(), options or ReportOptions())
     report = builder.build()
     (out / "index.html").write_text(report.html, encoding="utf-8")

@@ -8,6 +8,7 @@
 
 #include "validation/runner/list_arguments.h"
 #include "validation/runner/results_io.h"
+#include "validation/runner/yaml_shape.h"
 
 namespace phdslam::validation {
 namespace {
@@ -110,6 +111,10 @@ std::vector<int> ParticleList(const YAML::Node& node, const std::string& key,
   std::set<int> seen;
   for (int n : particles) {
     if (n < 1) errors.Fail(node, "'" + key + "': particle count " + std::to_string(n) + " is < 1");
+    if (n > kMaxParticles) {
+      errors.Fail(node, "'" + key + "': particle count " + std::to_string(n) + " is more than " +
+                            std::to_string(kMaxParticles));
+    }
     if (!seen.insert(n).second) {
       errors.Fail(node, "'" + key + "': particle count " + std::to_string(n) + " is listed twice");
     }
@@ -236,6 +241,7 @@ std::vector<ExperimentSweep> ReadSweep(const YAML::Node& node, const FileErrors&
 Experiment ParseExperimentYaml(std::string_view text, const std::string& source,
                                const std::string& default_name) {
   const FileErrors errors(source);
+  CheckYamlShape(text, source);
   YAML::Node root;
   try {
     root = YAML::Load(std::string(text));

@@ -143,6 +143,35 @@ TEST(ExperimentFile, UnknownKeysNameTheFileLineAndKey) {
   EXPECT_NE(e.find("unknown key 'step'"), std::string::npos) << e;
 }
 
+TEST(ExperimentFile, DuplicateKeysAreRefusedNamingBothLines) {
+  std::string e = ParseError("scenario: s\nestimators: [e]\nseeds: 1\nseeds: 2\n");
+  EXPECT_NE(e.find("exp.yaml:4: the key 'seeds' appears twice"), std::string::npos) << e;
+  EXPECT_NE(e.find("first on line 3"), std::string::npos) << e;
+  e = ParseError("scenario: s\nseeds: 1\nestimators:\n  - name: e\n    set: {a: 1, b: 2, a: 3}\n");
+  EXPECT_NE(e.find("exp.yaml:5: the key 'a' appears twice"), std::string::npos) << e;
+  // The same key in two different mappings is fine.
+  EXPECT_EQ(ParseError("scenario: s\nseeds: 1\nestimators:\n  - {name: e, set: {a: 1}}\n"
+                       "  - {name: f, set: {a: 1}}\n"),
+            "");
+}
+
+TEST(ExperimentFile, AliasesAndDeepNestingAreRefusedWithoutExpanding) {
+  // Nine levels of nine aliases each: 9^9 values if expanded.
+  std::string bomb = "scenario: s\nseeds: 1\nestimators:\n  - name: e\n    set:\n";
+  bomb += "      a0: &a0 [x, x, x, x, x, x, x, x, x]\n";
+  for (int i = 1; i < 9; ++i) {
+    const std::string prev = "*a" + std::to_string(i - 1);
+    bomb += "      a" + std::to_string(i) + ": &a" + std::to_string(i) + " [" + prev;
+    for (int j = 1; j < 9; ++j) bomb += ", " + prev;
+    bomb += "]\n";
+  }
+  std::string e = ParseError(bomb);
+  EXPECT_NE(e.find("exp.yaml:7: YAML aliases"), std::string::npos) << e;
+  e = ParseError("scenario: s\nestimators: [e]\nseeds: 1\nsweep: " + std::string(100, '[') +
+                 std::string(100, ']') + "\n");
+  EXPECT_NE(e.find("nested deeper than"), std::string::npos) << e;
+}
+
 TEST(ExperimentFile, RejectsBadValues) {
   const std::string base = "scenario: s\nestimators: [e]\n";
   const auto expect_error = [](const std::string& text, const std::string& part) {

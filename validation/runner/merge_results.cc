@@ -15,6 +15,7 @@
 #include "validation/runner/results_config.h"
 #include "validation/runner/results_io.h"
 #include "validation/runner/results_layout.h"
+#include "validation/runner/results_lock.h"
 #include "validation/runner/summary.h"
 #include "validation/runner/sweep.h"
 
@@ -240,6 +241,7 @@ MergeReport MergeResults(const fs::path& out, const std::vector<fs::path>& input
   const std::string started_utc = UtcNow();
   if (inputs.empty()) throw std::invalid_argument("merge: no input folder given");
   for (const fs::path& input : inputs) RequireDistinct(out, input);
+  const ResultsLock lock(out);
   MergeReport report;
 
   const std::vector<ExperimentSweep> first_sweep = ReadSweepFile(inputs.front());

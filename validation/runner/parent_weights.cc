@@ -62,6 +62,11 @@ std::vector<ParentWeighting> CompareParentWeights(std::span<const Pose> parent_p
 namespace {
 
 void CheckDraws(const ParentWeightsSettings& settings) {
+  if (settings.parents > kMaxParents) {
+    throw std::invalid_argument("parent weights: parents must be at most " +
+                                std::to_string(kMaxParents) + ", got " +
+                                std::to_string(settings.parents));
+  }
   if (settings.parents < 2) {
     throw std::invalid_argument("parent weights: parents must be >= 2, got " +
                                 std::to_string(settings.parents));

@@ -45,6 +45,9 @@ std::vector<ParentWeighting> CompareParentWeights(std::span<const Pose> parent_p
                                                   const models::SensorModel& sensor,
                                                   const phd::MapParams& params);
 
+/// Most parent poses a comparison draws.
+inline constexpr int kMaxParents = 100000;
+
 struct ParentWeightsSettings {
   std::size_t step = 100;  ///< the scan whose update is compared (0-based step index)
   int parents = 300;       ///< parent poses drawn from the predicted pose Gaussian

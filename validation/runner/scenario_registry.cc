@@ -6,6 +6,7 @@
 #include "datasets/scenario_check.h"
 #include "datasets/scenario_generator.h"
 #include "datasets/scphd_simulation.h"
+#include "datasets/sha256.h"
 #include "validation/runner/scenario_option_tables.h"
 
 namespace phdslam::validation {
@@ -72,6 +73,19 @@ datasets::GeneratorOptions ToGeneratorOptions(const ScenarioOptions& options) {
   return o;
 }
 
+// {"<relative path>": "sha256:<hex>"} for the data files a scenario reads: part of a run's
+// identity, so results made from other data are never mixed with these.
+nlohmann::json DataFileChecksums(const std::filesystem::path& data_dir,
+                                 const std::vector<std::filesystem::path>& files) {
+  nlohmann::json out = nlohmann::json::object();
+  std::error_code ec;
+  for (const std::filesystem::path& file : files) {
+    if (!std::filesystem::is_regular_file(data_dir / file, ec)) continue;  // the loader says so
+    out[file.generic_string()] = "sha256:" + datasets::FileSha256Hex(data_dir / file);
+  }
+  return out;
+}
+
 ScenarioEntry PaperSyntheticEntry() {
   ScenarioEntry e;
   e.name = "paper-synthetic";
@@ -86,8 +100,10 @@ ScenarioEntry PaperSyntheticEntry() {
   };
   e.resolved_options = [](const ScenarioOptions& options) {
     const datasets::SyntheticOptions o = ToSyntheticOptions(options);
+    const std::filesystem::path data_dir = datasets::ResolveDataDir(options.data_dir);
     nlohmann::json j = PaperSyntheticOptionsTable().ToJson(o);
-    j["data_dir"] = datasets::ResolveDataDir(options.data_dir).string();
+    j["data_dir"] = data_dir.string();
+    j["data_files"] = DataFileChecksums(data_dir, datasets::PaperSyntheticDataFiles());
     j["steps"] = o.steps;
     return j;
   };
@@ -108,8 +124,10 @@ ScenarioEntry VictoriaParkEntry() {
   };
   e.resolved_options = [](const ScenarioOptions& options) {
     const datasets::VictoriaParkOptions o = ToVictoriaParkOptions(options);
+    const std::filesystem::path data_dir = datasets::ResolveDataDir(options.data_dir);
     nlohmann::json j = VictoriaParkOptionsTable().ToJson(o);
-    j["data_dir"] = datasets::ResolveDataDir(options.data_dir).string();
+    j["data_dir"] = data_dir.string();
+    j["data_files"] = DataFileChecksums(data_dir, datasets::VictoriaParkDataFiles(data_dir));
     j["steps"] = o.max_steps;
     return j;
   };

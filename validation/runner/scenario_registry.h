@@ -87,7 +87,8 @@ datasets::Scenario MakeScenario(const std::string& name, std::uint64_t seed,
 struct ScenarioSource {
   std::string name;
   /// Every resolved scenario setting, stored in config.json and metrics.json. A "data_dir" key,
-  /// if present, is not compared when resuming (the same data may move).
+  /// if present, is not compared when resuming (the same data may move); a "data_files" key
+  /// (relative path -> "sha256:<hex>" of each data file read) is, so other data is refused.
   nlohmann::json options = nlohmann::json::object();
   /// Monte Carlo run `seed`; called concurrently from the worker threads.
   std::function<datasets::Scenario(std::uint64_t seed)> make;
