@@ -252,7 +252,7 @@ void PrintAndWriteScaling(const CollectingReporter& reporter,
 }  // namespace
 }  // namespace phdslam::benchmarks
 
-int main(int argc, char** argv) {
+int RunBenchmarks(int argc, char** argv) {
   using namespace phdslam;
   using namespace phdslam::benchmarks;
   // Our own flag, removed before Google Benchmark parses the rest.
@@ -292,4 +292,16 @@ int main(int argc, char** argv) {
   PrintAndWriteScaling(reporter, workloads, mixture_sizes, csv_path);
   benchmark::Shutdown();
   return 0;
+}
+
+int main(int argc, char** argv) {
+  try {
+    return RunBenchmarks(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "importance_density_benchmark: %s\n", e.what());
+    return 1;
+  } catch (...) {
+    std::fprintf(stderr, "importance_density_benchmark: an unexpected exception\n");
+    return 1;
+  }
 }

@@ -1,10 +1,13 @@
 #!/usr/bin/env bash
-# Installs the Debian 12 packages phdslam needs to build, test and report.
+# Installs the Debian 12 packages phdslam needs to build, test (clang-14 and its runtime for the
+# libFuzzer targets, valgrind) and report.
 # Idempotent: installs only what is missing and prints nothing when everything is present.
 # Uses sudo only when not running as root.
 #
 #   ci/install-deps.sh            build + tests + reports (everything but the browser)
 #   ci/install-deps.sh --browser  also Debian's chromium, for the report-rendering test
+#   ci/install-deps.sh --slurm    also slurm-wlm and munge, for the Slurm test (ci/run-slurm-test.sh)
+# (options may be combined)
 set -euo pipefail
 
 packages=(
@@ -13,13 +16,18 @@ packages=(
   libmrpt-slam-dev libmrpt-maps-dev libmrpt-obs-dev libmrpt-bayes-dev libmrpt-poses-dev
   libmrpt-random-dev libmrpt-system-dev libmrpt-math-dev libmrpt-core-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  libyaml-cpp-dev nlohmann-json3-dev libcli11-dev
+  libyaml-cpp-dev nlohmann-json3-dev libcli11-dev zlib1g-dev
   python3 python3-matplotlib python3-numpy python3-scipy python3-yaml
   clang-format clang-tidy
+  clang-14 libclang-rt-14-dev valgrind
 )
-if [[ "${1:-}" == "--browser" ]]; then
-  packages+=(chromium)
-fi
+for option in "$@"; do
+  case "$option" in
+    --browser) packages+=(chromium) ;;
+    --slurm) packages+=(slurm-wlm munge) ;;
+    *) echo "install-deps: unknown option '$option' (--browser, --slurm)" >&2; exit 2 ;;
+  esac
+done
 
 missing=()
 for p in "${packages[@]}"; do

@@ -1,26 +1,38 @@
 #!/usr/bin/env bash
 # The test command: installs what is missing (Chromium included, for the report-rendering test),
-# builds the release preset (warnings are errors),
-# runs every unit test with CTest, then the accuracy regression gates (the regression run and
-# bands of ci/thresholds.yaml). Exits non-zero on any failure.
+# builds the release preset (warnings are errors), checks formatting and runs clang-tidy on the
+# project's sources (ci/run-lint.sh), runs every unit test with CTest, the Slurm test, the
+# accuracy regression gates (the regression run and bands of ci/thresholds.yaml), then the
+# libFuzzer targets for 20 s each (ci/run-fuzz.sh, under ASan + UBSan). Exits non-zero on any
+# failure.
 #
-#   ci/run-tests.sh              release build + unit tests + accuracy gates
-#   ci/run-tests.sh --sanitize   also build and run the unit tests under ASan + UBSan
+#   ci/run-tests.sh              release build + lint + unit tests + Slurm test + gates + fuzzing
+#   ci/run-tests.sh --sanitize   also build and run the unit tests under ASan + UBSan, and the main
+#                                job on one seed under valgrind (ci/run-valgrind.sh)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-ci/install-deps.sh --browser
+ci/install-deps.sh --browser --slurm
 # The report-rendering test runs in headless Chromium; here a missing browser is a failure.
 export PHDSLAM_REQUIRE_CHROMIUM=1
 
 jobs=$(nproc 2>/dev/null || echo 2)
 cmake --preset release >/dev/null
 cmake --build --preset release -j "$jobs"
+ci/run-lint.sh build/release
 ctest --preset release
+# A single-node Slurm cluster runs an experiment as a job array (needs root to start daemons).
+if [[ "$(id -u)" -eq 0 ]]; then
+  ci/run-slurm-test.sh build/release/apps/phdslam
+else
+  echo "run-tests: not root, Slurm test skipped (ci/run-slurm-test.sh)" >&2
+fi
 
 if [[ "${1:-}" == "--sanitize" ]]; then
   cmake --preset sanitize >/dev/null
   cmake --build --preset sanitize -j "$jobs"
   ctest --preset sanitize
+  ci/run-valgrind.sh
 fi
 
 ci/check-gates.sh build/release
+ci/run-fuzz.sh 20

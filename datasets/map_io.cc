@@ -78,7 +78,7 @@ std::vector<MapPoint> ReadMapCsv(const std::filesystem::path& path) {
         continue;
       }
       value[c] = text::ParseDouble(field);
-      if (!value[c]) fail(column + ": '" + std::string(field) + "' is not a number");
+      if (!value[c]) fail(column + ": '" + text::Printable(field) + "' is not a number");
       if (!std::isfinite(*value[c])) fail(column + " is not finite");
     }
     MapPoint p;

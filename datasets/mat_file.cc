@@ -3,9 +3,13 @@
 #include <matio.h>
 
 #include <cstdint>
+#include <fstream>
+#include <iterator>
 #include <stdexcept>
 #include <system_error>
 #include <utility>
+
+#include "datasets/mat_v5_structure.h"
 
 namespace phdslam::datasets {
 namespace {
@@ -87,6 +91,16 @@ Eigen::MatrixXd CopyColumnMajor(const matvar_t& var, Eigen::Index rows, Eigen::I
   return out;
 }
 
+// Reads the whole file and checks its structure when it is a version 5 MAT-file, so that a
+// truncated or inconsistent file is refused before libmatio reads past what is stored.
+void CheckStructure(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error("cannot open MAT-file '" + path.string() + "' for reading");
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad()) throw std::runtime_error("cannot read MAT-file '" + path.string() + "'");
+  if (IsMatV5(bytes)) CheckMatV5Structure(bytes, "MAT-file '" + path.string() + "'");
+}
+
 }  // namespace
 
 void MatFile::Closer::operator()(_mat_t* mat) const { Mat_Close(mat); }
@@ -96,6 +110,7 @@ MatFile::MatFile(const std::filesystem::path& path) : path_(path) {
   if (!std::filesystem::is_regular_file(path, ec)) {
     throw std::runtime_error("MAT-file '" + path.string() + "' does not exist or is not a file");
   }
+  CheckStructure(path);
   mat_.reset(Mat_Open(path.c_str(), MAT_ACC_RDONLY));
   if (!mat_) {
     throw std::runtime_error("cannot open '" + path.string() +

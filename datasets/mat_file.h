@@ -8,15 +8,16 @@
 #include <string>
 
 // libmatio's file handle; the header <matio.h> is included by mat_file.cc only.
-struct _mat_t;
+struct _mat_t;  // NOLINT(bugprone-reserved-identifier): the name is libmatio's
 
 namespace phdslam::datasets {
 
 /// An open MAT-file, closed on destruction. Movable, not copyable.
 class MatFile {
  public:
-  /// Opens `path` read-only. Throws std::runtime_error naming the file when it does not exist or
-  /// is not a MAT-file libmatio can read.
+  /// Opens `path` read-only. Throws std::runtime_error naming the file when it does not exist,
+  /// is not a MAT-file libmatio can read, or is a version 5 MAT-file that fails
+  /// CheckMatV5Structure (truncated, or a variable storing fewer or more elements than declared).
   explicit MatFile(const std::filesystem::path& path);
   ~MatFile();
   MatFile(MatFile&&) noexcept;

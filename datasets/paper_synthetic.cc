@@ -55,8 +55,12 @@ SimulationSettings ToSettings(const SyntheticOptions& o) {
 
 }  // namespace
 
+std::vector<std::filesystem::path> PaperSyntheticDataFiles() {
+  return {std::filesystem::path("phdslam3-synthetic") / "Environment_SLAM.mat"};
+}
+
 PaperSyntheticEnvironment LoadPaperSyntheticEnvironment(const std::filesystem::path& data_dir) {
-  const MatFile file(data_dir / "phdslam3-synthetic" / "Environment_SLAM.mat");
+  const MatFile file(data_dir / PaperSyntheticDataFiles().front());
   // Landmark_Groundtruth: one row per landmark, columns 2-3 hold x, y.
   const Eigen::MatrixXd lm =
       ReadChecked(file, "Landmark_Groundtruth", 0, 3, "N x 5 (N >= 1, at least 3 columns)");

@@ -24,6 +24,9 @@ struct PaperSyntheticEnvironment {
 /// N x >=3, Robot_Control 2 x K, Robot_Groundtruth 3 x >=1, N, K >= 1) or holds NaN/inf.
 PaperSyntheticEnvironment LoadPaperSyntheticEnvironment(const std::filesystem::path& data_dir);
 
+/// The files LoadPaperSyntheticEnvironment reads, relative to the data folder.
+std::vector<std::filesystem::path> PaperSyntheticDataFiles();
+
 struct SyntheticOptions {
   int steps = 0;  ///< 0 = all available (4000); otherwise 1..available
   double detection_probability = 0.95;

@@ -303,6 +303,9 @@ TEST_F(PaperSyntheticTest, InvalidOptionsNameTheField) {
   o = SyntheticOptions();
   o.clutter_rate = -1.0;
   EXPECT_NE(error(o).find("clutter_rate"), std::string::npos);
+  o.clutter_rate = 1e9;  // within the double range, far beyond any sensor
+  EXPECT_NE(error(o).find("clutter_rate"), std::string::npos);
+  EXPECT_NE(error(o).find("1000"), std::string::npos);
   o = SyntheticOptions();
   o.steps = 4001;
   EXPECT_NE(error(o).find("steps"), std::string::npos);

@@ -33,8 +33,9 @@ void SimulationSettings::Validate(std::string_view owner) const {
   if (!(detection_probability > 0.0 && detection_probability <= 1.0)) {
     Fail(owner, "detection_probability", "must be in (0, 1], got " + str(detection_probability));
   }
-  if (!(clutter_rate >= 0.0) || !std::isfinite(clutter_rate)) {
-    Fail(owner, "clutter_rate", "must be finite and >= 0, got " + str(clutter_rate));
+  if (!(clutter_rate >= 0.0 && clutter_rate <= kMaxClutterRate)) {
+    Fail(owner, "clutter_rate",
+         "must be in [0, " + str(kMaxClutterRate) + "] per scan, got " + str(clutter_rate));
   }
   if (!(fov_range > 0.0) || !std::isfinite(fov_range)) {
     Fail(owner, "fov_range", "must be finite and > 0 (m), got " + str(fov_range));

@@ -14,6 +14,9 @@
 namespace phdslam::datasets {
 
 /// The sensor and noise settings of a simulated scenario.
+/// Largest mean clutter count per scan accepted (each clutter point costs every filter an update).
+inline constexpr double kMaxClutterRate = 1000.0;
+
 struct SimulationSettings {
   double detection_probability = 0.95;
   double clutter_rate = 5.0;  ///< Poisson mean per scan, before pD thinning
@@ -25,8 +28,9 @@ struct SimulationSettings {
   Mat2 control_noise_cov = Mat2::Zero();
 
   /// Throws std::invalid_argument naming `owner` and the field when a value is out of range:
-  /// detection_probability in (0, 1]; clutter_rate >= 0; fov_range > 0; fov_half_angle in
-  /// (0, pi]; buffers >= 0; covariances finite, symmetric and positive semi-definite.
+  /// detection_probability in (0, 1]; clutter_rate in [0, kMaxClutterRate]; fov_range > 0;
+  /// fov_half_angle in (0, pi]; buffers >= 0; covariances finite, symmetric and positive
+  /// semi-definite.
   void Validate(std::string_view owner) const;
   /// The sensor model filters use: constant profile, pd_max = pd_nominal = detection_probability.
   [[nodiscard]] models::SensorModel Sensor() const;

@@ -111,14 +111,14 @@ void CheckStep(const ScenarioStep& step, std::size_t k, double* last_time,
                         ", expected times.size() - 1 = " + std::to_string(d.times.size() - 1));
   }
   for (std::size_t i = 0; i < d.controls.size(); ++i) {
-    const std::string field = "control " + std::to_string(i);
-    rep.CheckFinite(d.controls[i](0), where + ": " + field, "component 0");
-    rep.CheckFinite(d.controls[i](1), where + ": " + field, "component 1");
+    const std::string field = where + ": control " + std::to_string(i);
+    rep.CheckFinite(d.controls[i](0), field, "component 0");
+    rep.CheckFinite(d.controls[i](1), field, "component 1");
   }
   for (std::size_t j = 0; j < d.measurements.size(); ++j) {
-    const std::string field = "measurement " + std::to_string(j);
-    rep.CheckFinite(d.measurements[j](0), where + ": " + field, "range");
-    rep.CheckFinite(d.measurements[j](1), where + ": " + field, "bearing");
+    const std::string field = where + ": measurement " + std::to_string(j);
+    rep.CheckFinite(d.measurements[j](0), field, "range");
+    rep.CheckFinite(d.measurements[j](1), field, "bearing");
   }
   if (!step.origin.empty() && step.origin.size() != d.measurements.size()) {
     rep.Fail(where, "origin.size() is " + std::to_string(step.origin.size()) +

@@ -184,7 +184,8 @@ Scenario GenerateScenario(const GeneratorOptions& options, std::uint64_t seed) {
                                corridor.inside_cells.size() - 1);
     const long index = corridor.inside_cells[pick];
     const double ix = static_cast<double>(index % corridor.nx) + landmark_rng.Uniform();
-    const double iy = static_cast<double>(index / corridor.nx) + landmark_rng.Uniform();
+    const long row = index / corridor.nx;
+    const double iy = static_cast<double>(row) + landmark_rng.Uniform();
     s.truth.landmarks.emplace_back(corridor.x0 + ix * corridor.cell,
                                    corridor.y0 + iy * corridor.cell);
   }

@@ -65,6 +65,26 @@ inline std::string FormatDouble(double value) {
   return ec == std::errc() ? std::string(buffer, end) : std::string("nan");
 }
 
+/// `s` made safe to print in a message: printable ASCII kept, every other byte written as \xNN,
+/// and at most `max_length` characters of `s` shown (then "... (N bytes)").
+inline std::string Printable(std::string_view s, std::size_t max_length = 80) {
+  static constexpr char kHex[] = "0123456789abcdef";
+  std::string out;
+  const std::size_t shown = s.size() < max_length ? s.size() : max_length;
+  for (std::size_t i = 0; i < shown; ++i) {
+    const auto c = static_cast<unsigned char>(s[i]);
+    if (c >= 0x20 && c < 0x7f && c != '\\') {
+      out += static_cast<char>(c);
+    } else {
+      out += "\\x";
+      out += kHex[c >> 4];
+      out += kHex[c & 0xf];
+    }
+  }
+  if (shown < s.size()) out += "... (" + std::to_string(s.size()) + " bytes)";
+  return out;
+}
+
 /// "file:line" prefix of an error message.
 inline std::string Where(const std::filesystem::path& path, std::size_t line) {
   return path.string() + ":" + std::to_string(line);

@@ -25,8 +25,9 @@ void WriteTumTrajectory(const std::filesystem::path& path, const std::vector<Sta
 /// 1 - 2 (qy^2 + qz^2)), and headings are unwrapped along the file (each yaw is chosen within pi
 /// of the previous one; the first lies in [-pi, pi]), since phdslam never wraps headings.
 /// Throws std::runtime_error naming the file and line for a wrong column count, a token that is
-/// not a number, a NaN/inf value or a zero quaternion, and naming the file when it cannot be
-/// opened.
+/// not a number, a NaN/inf value, a zero quaternion, a quaternion that is not a rotation about z
+/// (tilted by more than 1e-3 rad) or a repeated time stamp, and naming the file when it cannot be
+/// opened or holds no poses.
 std::vector<StampedPose> ReadTumTrajectory(const std::filesystem::path& path);
 
 }  // namespace phdslam::datasets

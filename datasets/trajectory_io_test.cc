@@ -115,6 +115,26 @@ TEST(TumTrajectory, MalformedLinesNameFileAndLine) {
   message = ReadError(path);
   EXPECT_NE(message.find("column 8 (qw): '1x' is not a number"), std::string::npos) << message;
 
+  path = WriteText("duplicate.tum", "0 1 2 0 0 0 0 1\n1 2 2 0 0 0 0 1\n0 5 2 0 0 0 0 1\n");
+  message = ReadError(path);
+  EXPECT_NE(message.find(path.string() + ":3: time stamp 0 repeats that of line 1"),
+            std::string::npos)
+      << message;
+
+  path = WriteText("escape.tum", "0 1 \x1b[2J 0 0 0 0 1\n");
+  message = ReadError(path);
+  EXPECT_EQ(message.find('\x1b'), std::string::npos) << message;
+  EXPECT_NE(message.find("'\\x1b[2J' is not a number"), std::string::npos) << message;
+
+  path = WriteText("tilted.tum", "0 1 2 0 0.3826834323650898 0 0 0.9238795325112867\n");
+  message = ReadError(path);
+  EXPECT_NE(message.find(":1: the quaternion is not a rotation about z"), std::string::npos)
+      << message;
+
+  path = WriteText("empty.tum", "# t x y z qx qy qz qw\n\n");
+  message = ReadError(path);
+  EXPECT_NE(message.find("holds no poses"), std::string::npos) << message;
+
   message = ReadError(testing::FreshTestDir() / "missing.tum");
   EXPECT_NE(message.find("missing.tum"), std::string::npos) << message;
 }

@@ -16,6 +16,8 @@
 #include <system_error>
 
 #include "datasets/mat_file.h"
+#include "datasets/range_bearing_simulator.h"
+#include "datasets/text_fields.h"
 #include "src/core/random.h"
 
 namespace phdslam::datasets {
@@ -63,9 +65,9 @@ std::vector<TextRow<N>> ReadNumberRows(const std::filesystem::path& path,
 
     const auto is_space = [](char c) { return c == ' ' || c == '\t'; };
     const auto fail = [&](const std::string& what) {
-      throw std::runtime_error(
-          Cat({path.string(), ":", std::to_string(line_number), ": ", what, " (expected ",
-               std::to_string(N), " numbers: ", columns, "; line is '", line, "')"}));
+      throw std::runtime_error(Cat({path.string(), ":", std::to_string(line_number), ": ", what,
+                                    " (expected ", std::to_string(N), " numbers: ", columns,
+                                    "; line is '", text::Printable(line), "')"}));
     };
     TextRow<N> row;
     row.line = line_number;
@@ -81,8 +83,9 @@ std::vector<TextRow<N>> ReadNumberRows(const std::filesystem::path& path,
       if (ec != std::errc() || (next != last && !is_space(*next))) {
         const char* token_end = p;
         while (token_end != last && !is_space(*token_end)) ++token_end;
-        fail(Cat({"'", std::string_view(p, static_cast<std::size_t>(token_end - p)),
-                  "' is not a number"}));
+        fail(
+            Cat({"'", text::Printable(std::string_view(p, static_cast<std::size_t>(token_end - p))),
+                 "' is not a number"}));
       }
       if (!std::isfinite(value)) fail("value " + std::to_string(count + 1) + " is not finite");
       row.values[count++] = value;
@@ -109,6 +112,10 @@ std::vector<VictoriaParkData::Scan> ReadScans(const std::filesystem::path& path)
                                  std::to_string(t) + " is earlier than the previous line's " +
                                  std::to_string(prev) + " (rows must be in time order)");
       }
+    }
+    if (range < 0.0) {
+      throw std::runtime_error(path.string() + ":" + std::to_string(rows[i].line) + ": range " +
+                               std::to_string(range) + " m is negative (a range is >= 0)");
     }
     if (scans.empty() || t != scans.back().t) {
       scans.emplace_back();
@@ -251,6 +258,23 @@ VictoriaParkData LoadVictoriaParkData(const std::filesystem::path& data_dir) {
   return data;
 }
 
+std::vector<std::filesystem::path> VictoriaParkDataFiles(const std::filesystem::path& data_dir) {
+  const std::filesystem::path folder(kFolderName);
+  std::vector<std::filesystem::path> files;
+  std::error_code ec;
+  const auto add_if_present = [&](const char* name) {
+    if (std::filesystem::is_regular_file(data_dir / folder / name, ec)) {
+      files.push_back(folder / name);
+      return true;
+    }
+    return false;
+  };
+  add_if_present("measurements.dat");
+  if (!add_if_present("aa3_dr.mat")) add_if_present("inputs.dat");
+  add_if_present("aa3_gpsx.mat");
+  return files;
+}
+
 VictoriaParkOptions::VictoriaParkOptions() {
   const double one_deg = DegToRad(1.0);
   const double four_deg = DegToRad(4.0);
@@ -263,8 +287,8 @@ void VictoriaParkOptions::Validate() const {
     throw std::invalid_argument("VictoriaParkOptions." + field + " = " + std::to_string(value) +
                                 ": expected " + expected);
   };
-  if (!std::isfinite(clutter_rate) || clutter_rate < 0.0) {
-    fail("clutter_rate", "a finite value >= 0", clutter_rate);
+  if (!(clutter_rate >= 0.0 && clutter_rate <= kMaxClutterRate)) {
+    fail("clutter_rate", "in [0, " + std::to_string(kMaxClutterRate) + "]", clutter_rate);
   }
   if (!std::isfinite(fov_range) || fov_range <= 0.0) fail("fov_range", "> 0", fov_range);
   if (!(fov_half_angle > 0.0 && fov_half_angle <= std::numbers::pi)) {

@@ -48,6 +48,10 @@ struct VictoriaParkData {
 /// non-finite values, times that go backwards, or variables of mismatched length.
 VictoriaParkData LoadVictoriaParkData(const std::filesystem::path& data_dir);
 
+/// The files LoadVictoriaParkData reads from `data_dir` (inputs.dat only when aa3_dr.mat is
+/// absent), relative to `data_dir`; files that do not exist are left out.
+std::vector<std::filesystem::path> VictoriaParkDataFiles(const std::filesystem::path& data_dir);
+
 struct VictoriaParkOptions {
   double clutter_rate = 5.0;  ///< Poisson mean per scan; range U[0, fov_range], bearing in FOV
   double fov_range = 50.0;    ///< m

@@ -339,6 +339,30 @@ TEST(VictoriaParkErrorTest, MalformedMeasurementLinesNameFileAndLine) {
   EXPECT_NE(msg.find("time order"), std::string::npos) << msg;
 }
 
+TEST(VictoriaParkErrorTest, NegativeRangeIsRefused) {
+  const TempDataDir dir("negative_range");
+  WriteSmallFolder(dir, /*with_dr_mat=*/true);
+  dir.WriteText("measurements.dat", "0.1 10 1.5 0.3\n0.2 -4 1.5 0.3\n");
+  const std::string msg = LoadError(dir);
+  EXPECT_NE(msg.find("measurements.dat:2: range -4"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("negative"), std::string::npos) << msg;
+}
+
+TEST(VictoriaParkErrorTest, RawBytesAreEscapedAndLongTokensCapped) {
+  const TempDataDir dir("raw_bytes");
+  WriteSmallFolder(dir, /*with_dr_mat=*/true);
+  dir.WriteText("measurements.dat", "0.1 10 \x1b]0;owned\x07\x1b[2J 0.3\n");
+  std::string msg = LoadError(dir);
+  EXPECT_EQ(msg.find('\x1b'), std::string::npos) << msg;
+  EXPECT_EQ(msg.find('\x07'), std::string::npos) << msg;
+  EXPECT_NE(msg.find("\\x1b]0;owned\\x07"), std::string::npos) << msg;
+
+  dir.WriteText("measurements.dat", "0.1 10 " + std::string(1 << 20, 'z') + " 0.3\n");
+  msg = LoadError(dir);
+  EXPECT_NE(msg.find("measurements.dat:1:"), std::string::npos) << msg;
+  EXPECT_LT(msg.size(), 1000U) << msg.substr(0, 200);
+}
+
 TEST(VictoriaParkErrorTest, MalformedInputsLineNamesFileAndLine) {
   const TempDataDir dir("bad_inputs");
   WriteSmallFolder(dir, /*with_dr_mat=*/false);

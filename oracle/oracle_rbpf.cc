@@ -160,7 +160,8 @@ int OracleMapModel::ComponentCount(const Map& map) const {
 }
 
 std::unique_ptr<OracleRbpf> MakeKnownAssociationFilter(
-    filters::EstimatorContext context, std::vector<std::vector<int>> origins, OracleParams params,
+    filters::EstimatorContext context, std::vector<std::vector<int>> origins,
+    const OracleParams& params,
     std::unique_ptr<filters::ImportanceDensity> density, std::uint64_t stream_seed) {
   params.Validate();
   if (!context.motion) throw std::invalid_argument("oracle RBPF: the context has no motion model");
@@ -181,7 +182,7 @@ std::unique_ptr<OracleRbpf> MakeOracle(filters::EstimatorContext context,
                                        std::uint64_t stream_seed) {
   auto density = std::make_unique<KnownAssociationIplDensity>(
       filters::IplOptions{params.ipl_iterations, params.ipl_kl_tolerance});
-  return MakeKnownAssociationFilter(std::move(context), std::move(origins), std::move(params),
+  return MakeKnownAssociationFilter(std::move(context), std::move(origins), params,
                                     std::move(density), stream_seed);
 }
 

@@ -116,7 +116,8 @@ std::unique_ptr<OracleRbpf> MakeOracle(filters::EstimatorContext context,
 /// The known-association map model with another importance density (e.g. the transition density:
 /// FastSLAM 1.0 with known association); `params` as for the oracle.
 std::unique_ptr<OracleRbpf> MakeKnownAssociationFilter(
-    filters::EstimatorContext context, std::vector<std::vector<int>> origins, OracleParams params,
+    filters::EstimatorContext context, std::vector<std::vector<int>> origins,
+    const OracleParams& params,
     std::unique_ptr<filters::ImportanceDensity> density, std::uint64_t stream_seed);
 
 /// Origin labels of every step of a scenario, checked against its measurement counts. Throws

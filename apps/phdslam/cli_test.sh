@@ -39,7 +39,8 @@ for command in run merge compare evaluate list; do
 done
 expect_exit 0 "$phdslam" run --help
 for option in --scenario --estimator --particles --seeds --out --data-dir --steps --jobs \
-    --experiment-name --pd --clutter-rate --set --quiet --experiment --shard --particles-trace; do
+    --experiment-name --pd --clutter-rate --set --scenario-set --quiet --experiment --shard \
+    --particles-trace; do
   expect_in "$scratch/out" "$option"
 done
 expect_exit 0 "$phdslam" merge --help
@@ -110,6 +111,32 @@ expect_exit 0 "$phdslam" evaluate --truth-trajectory "$out/truth/seed-1/truth.tu
   --trajectory "$out/truth/seed-1/truth.tum"
 expect_in "$scratch/out" '"pos_rmse_m": 0.0'
 expect_exit 1 "$phdslam" evaluate --truth-map "$run1/trajectory.tum" --map "$run1/map.csv"
+expect_exit 2 "$phdslam" evaluate --truth-map "$out/truth_map.csv" --map "$run1/map.csv" --c 1e308
+expect_in "$scratch/err" "overflow"
+awk '/^#/ { print; next } { $1 = $1 + 1e6; print }' "$run1/trajectory.tum" >"$scratch/late.tum"
+expect_exit 2 "$phdslam" evaluate --truth-trajectory "$out/truth/seed-1/truth.tum" \
+  --trajectory "$scratch/late.tum"
+expect_in "$scratch/err" "do not overlap in time"
+printf '0 1 2 0 0 0 0 1\n0 1 2 0 0 0 0 1\n' >"$scratch/twice.tum"
+expect_exit 1 "$phdslam" evaluate --truth-trajectory "$scratch/twice.tum" \
+  --trajectory "$scratch/twice.tum"
+expect_in "$scratch/err" "twice.tum:2: time stamp 0 repeats that of line 1"
+
+# An option without its value is named (not "--out is required").
+expect_exit 2 "$phdslam" run --scenario generated --estimator odometry --seeds --out "$scratch/nv"
+expect_in "$scratch/err" "--seeds needs a value"
+
+# SIGTERM stops like Ctrl-C: runs in progress finish, the summary is written, exit 130.
+"$phdslam" run --scenario paper-synthetic --data-dir "$data_dir" --estimator phd3 --particles 10 \
+  --seeds 1-100000 --steps 200 --jobs 1 --quiet --out "$scratch/term" >/dev/null 2>"$scratch/err" &
+term_pid=$!
+sleep 3
+kill -TERM "$term_pid"
+wait "$term_pid"
+term_exit=$?
+[ "$term_exit" -eq 130 ] || fail "SIGTERM: exit $term_exit (want 130): $(cat "$scratch/err")"
+[ -f "$scratch/term/summary.csv" ] || fail "SIGTERM: no summary.csv"
+[ ! -e "$scratch/term/phdslam.lock" ] || fail "SIGTERM: the lock file stayed"
 
 # Files of a results folder with the timing columns (ms, ms_*) dropped.
 without_timing() {
@@ -203,6 +230,45 @@ expect_in "$scratch/swept/sweep-pd-0.8/config.json" '"detection_probability": 0.
 expect_exit 2 "$phdslam" run --experiment "$sweep" --data-dir "$data_dir" --out "$scratch/sw2" \
   --pd 0.5 --quiet
 expect_in "$scratch/err" "is swept"
+
+# Scenario options on the command line, recorded in config.json; bad keys and values name the key.
+gen=(--scenario generated --estimator odometry --seeds 1 --steps 20 --quiet)
+expect_exit 0 "$phdslam" run "${gen[@]}" --out "$scratch/gen" --scenario-set landmarks=12 \
+  --scenario-set 'measurement_noise_cov=[0.5,0.001]'
+expect_in "$scratch/gen/config.json" '"landmarks": 12'
+expect_exit 2 "$phdslam" run "${gen[@]}" --out "$scratch/gen2" --scenario-set lanmarks=12
+expect_in "$scratch/err" "unknown parameter 'lanmarks'"
+expect_exit 2 "$phdslam" run "${gen[@]}" --out "$scratch/gen2" --scenario-set landmarks=1.5
+expect_in "$scratch/err" "parameter 'landmarks': expected an integer, got 1.5"
+expect_exit 0 "$phdslam" list
+expect_in "$scratch/out" "corridor_half_width"
+
+# A grid over a scenario option and an estimator parameter: one folder per point, one column
+# per parameter; sweep errors name the parameter.
+grid="$scratch/grid.yaml"
+printf 'scenario: generated\nestimators: [phd3]\nseeds: 1\nsteps: 15\nsweep:\n' >"$grid"
+printf '  - {parameter: landmarks, values: [10, 20]}\n' >>"$grid"
+printf '  - {parameter: "phd3:max_hypotheses", values: [5, 50]}\n' >>"$grid"
+expect_exit 0 "$phdslam" run --experiment "$grid" --out "$scratch/grid" --quiet
+expect_in "$scratch/grid/sweep.csv" "landmarks,phd3:max_hypotheses,estimator,particles,runs,"
+expect_in "$scratch/grid/sweep.csv" "20,50,phd3,1,1,15,"
+expect_in "$scratch/grid/sweep-landmarks-20-phd3.max_hypotheses-5/config.json" '"landmarks": 20'
+expect_in "$scratch/grid/sweep-landmarks-20-phd3.max_hypotheses-5/config.json" \
+  '"max_hypotheses": 5'
+printf 'scenario: generated\nestimators: [phd3]\nseeds: 1\nsweep: {parameter: landmark, values: [1]}\n' \
+  >"$scratch/bad.yaml"
+expect_exit 2 "$phdslam" run --experiment "$scratch/bad.yaml" --out "$scratch/bad" --quiet
+expect_in "$scratch/err" "sweep parameter 'landmark' (value 1) is not particles"
+printf 'scenario: generated\nestimators: [phd3]\nseeds: 1\nsweep: {parameter: landmarks, values: [1, x]}\n' \
+  >"$scratch/bad.yaml"
+expect_exit 2 "$phdslam" run --experiment "$scratch/bad.yaml" --out "$scratch/bad" --quiet
+expect_in "$scratch/err" "sweep point landmarks = x:"
+expect_in "$scratch/err" "parameter 'landmarks': expected an integer"
+printf 'scenario: generated\nestimators: [phd3]\nseeds: 1\nsweep: {parameter: landmarks, values: []}\n' \
+  >"$scratch/bad.yaml"
+expect_exit 2 "$phdslam" run --experiment "$scratch/bad.yaml" --out "$scratch/bad" --quiet
+expect_in "$scratch/err" "bad.yaml:4: 'sweep.values' of 'landmarks': expected a non-empty list"
+[ -e "$scratch/bad" ] && fail "a sweep error left a results folder behind"
 
 if [ "$failures" -ne 0 ]; then
   echo "$failures check(s) failed" >&2

@@ -12,16 +12,19 @@
 // error (bad option, experiment file or list; unknown name; conflicting results folders),
 // 130 interrupted (Ctrl-C).
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <map>
+#include <new>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "apps/phdslam/option_without_value.h"
 #include "datasets/map_io.h"
 #include "datasets/trajectory_io.h"
 #include "src/core/random.h"
@@ -42,6 +45,7 @@
 #include "validation/runner/scenario_registry.h"
 #include "validation/runner/shard.h"
 #include "validation/runner/summary.h"
+#include "validation/runner/sweep.h"
 
 namespace phdslam::apps {
 namespace {
@@ -66,8 +70,10 @@ struct RunArguments {
   double detection_probability = 0.0;
   double clutter_rate = 0.0;
   std::vector<std::string> assignments;
+  std::vector<std::string> scenario_assignments;
   std::string shard;
   bool particles_trace = false;
+  bool map_ospa = false;
   bool quiet = false;
   // Options whose presence matters (command-line values override an experiment file's).
   CLI::Option* experiment_file_option = nullptr;
@@ -99,6 +105,8 @@ struct ParentWeightsArguments {
   std::size_t step = 100;
   int parents = 300;
   double spread = 10.0;
+  std::size_t every = 0;
+  std::size_t until = 0;
   std::string out;
   std::string data_dir;
 };
@@ -120,8 +128,9 @@ void AddRunCommand(CLI::App& app, RunArguments& a) {
       "experiment file (--experiment; options given with it override the file's values). Each "
       "finished run is written to <out>/runs/<estimator>-N<particles>/seed-<seed>/; rerunning "
       "with the same --out skips finished runs. Ends with <out>/summary.csv, runs.csv, "
-      "config.json and timing.json; a sweep writes one such folder per value, "
-      "<out>/sweep-<parameter>-<value>/, and <out>/sweep.csv (layout: validation/README.md).");
+      "config.json and timing.json; a sweep writes one such folder per sweep point, "
+      "<out>/sweep-<parameter>-<value>[-<parameter>-<value>...]/, and <out>/sweep.csv (layout: "
+      "validation/README.md).");
   a.experiment_file_option =
       run->add_option("--experiment", a.experiment_file,
                       "Experiment file (YAML, e.g. validation/experiments/quick.yaml); "
@@ -131,9 +140,10 @@ void AddRunCommand(CLI::App& app, RunArguments& a) {
       run->add_option("--scenario", a.scenario, "Scenario name (see `phdslam list`)");
   a.estimator_option = run->add_option(
       "--estimator", a.estimators, "Estimator name, or a comma list of names (see `phdslam list`)");
-  a.particles_option = run->add_option("--particles", a.particles,
-                                       "Particle count, or a comma list such as 1,10,100")
-                           ->capture_default_str();
+  a.particles_option =
+      run->add_option("--particles", a.particles,
+                      "Particle count (1 to 100000), or a comma list such as 1,10,100")
+          ->capture_default_str();
   a.seeds_option = run->add_option("--seeds", a.seeds,
                                    "Monte Carlo seeds: a range a-b (inclusive), a single seed, or "
                                    "a comma list such as 1,3,10-12");
@@ -157,17 +167,26 @@ void AddRunCommand(CLI::App& app, RunArguments& a) {
           ->capture_default_str();
   a.pd_option = run->add_option("--pd", a.detection_probability,
                                 "Override the scenario's detection probability (0, 1]");
-  a.clutter_option = run->add_option("--clutter-rate", a.clutter_rate,
-                                     "Override the scenario's mean clutter count per scan");
+  a.clutter_option =
+      run->add_option("--clutter-rate", a.clutter_rate,
+                      "Override the scenario's mean clutter count per scan (0 to 1000)");
   run->add_option("--set", a.assignments,
                   "Estimator parameter override [estimator:]key=value (repeatable; dotted keys "
                   "reach nested parameters; the value is JSON when it parses, else a string)");
+  run->add_option("--scenario-set", a.scenario_assignments,
+                  "Scenario option key=value (repeatable; the keys of each scenario are listed "
+                  "by `phdslam list`; pd and clutter_rate as --pd and --clutter-rate; the value "
+                  "is JSON when it parses, else a string)");
   run->add_option("--shard", a.shard,
                   "Run only shard i of n: the jobs whose index in the experiment's job order is "
                   "i-1 modulo n (join the shards' folders with `phdslam merge`)");
   run->add_flag("--particles-trace", a.particles_trace,
                 "Also write particles.csv (step,particle,x,y,log_weight) per run, for estimators "
                 "that expose their particles");
+  run->add_flag("--map-ospa", a.map_ospa,
+                "Also write the map OSPA (p = 1, c = 5 m) after every step, against the true "
+                "landmarks detected so far, as the last steps.csv column map_ospa_m (online "
+                "estimators on scenarios with a true map)");
   run->add_flag("--quiet", a.quiet, "No progress line and no summary table");
 }
 
@@ -225,21 +244,30 @@ void AddParentWeightsCommand(CLI::App& app, ParentWeightsArguments& a) {
       "Gaussian (standard deviations scaled by --spread), updates the same predicted map with the "
       "scan of --step, and writes the "
       "normalised weights under the single-cluster likelihood (with exp(-sum pD w)) and under "
-      "the RB-PHD-SLAM weighting (46) to OUT/parent_weights.csv "
-      "(parent,x,y,theta,sc_weight,rb_weight,sc_log_weight,rb_log_weight,missed_mass: the "
-      "log-weights normalised to log-sum-exp 0, the missed-detection mass sum pD w of the "
-      "predicted map seen from each parent) and OUT/parent_weights.json (step, predicted "
-      "Gaussian, true pose, ESS of each weighting). The report draws it when OUT is a results "
-      "folder.");
+      "the RB-PHD-SLAM weighting (46) and under Mullane et al.'s single-feature RB-PHD-SLAM "
+      "weighting to OUT/parent_weights.csv "
+      "(parent,x,y,theta,sc_weight,rb_weight,sc_log_weight,rb_log_weight,missed_mass,sf_weight,"
+      "sf_log_weight: the log-weights normalised to log-sum-exp 0, the missed-detection mass "
+      "sum pD w of the predicted map seen from each parent) and OUT/parent_weights.json (step, "
+      "predicted Gaussian, true pose, ESS of each weighting). With --every N it also compares at "
+      "steps N, 2N, ... up to --until (one filter run) and writes OUT/parent_weights_steps.csv "
+      "(step,measurements,map_components,ess_single_cluster,ess_rb_phd,ess_single_feature) and "
+      "OUT/parent_weights_steps.json (mean ESS, paired Wilcoxon tests over the steps). The "
+      "report draws it when OUT is a results folder.");
   pw->add_option("--scenario", a.scenario, "Scenario")->capture_default_str();
   pw->add_option("--seed", a.seed, "Monte Carlo seed of the scenario and of the draws")
       ->capture_default_str();
   pw->add_option("--step", a.step, "0-based step whose scan is compared (needs measurements)")
       ->capture_default_str();
-  pw->add_option("--parents", a.parents, "Parent poses drawn (at least 2)")->capture_default_str();
+  pw->add_option("--parents", a.parents, "Parent poses drawn (2 to 100000)")->capture_default_str();
   pw->add_option("--spread", a.spread,
                  "Scale of the draws' standard deviations relative to the one-step prediction "
                  "(wider parents differ in which map components they see)")
+      ->capture_default_str();
+  pw->add_option("--every", a.every,
+                 "Also compare at every N-th step (0 = only --step) and write the ESS per step")
+      ->capture_default_str();
+  pw->add_option("--until", a.until, "Last step of --every (0 = the scenario's last step)")
       ->capture_default_str();
   pw->add_option("--out", a.out, "Output folder (created if needed)")->required();
   pw->add_option("--data-dir", a.data_dir,
@@ -260,6 +288,22 @@ void ApplyAssignments(const std::vector<std::string>& sets, v::Experiment& x) {
     if (!matched) {
       throw std::invalid_argument("--set '" + text + "': estimator '" + assignment.estimator +
                                   "' is not among the experiment's estimators");
+    }
+  }
+}
+
+// Applies the --scenario-set arguments (key=value) to the experiment's scenario options.
+void ApplyScenarioAssignments(const std::vector<std::string>& sets, v::Experiment& x) {
+  for (const std::string& text : sets) {
+    const v::ParameterAssignment assignment = v::ParseParameterAssignment(text);
+    if (!assignment.estimator.empty() || assignment.overrides.size() != 1 ||
+        assignment.overrides.begin()->is_object()) {
+      throw std::invalid_argument("--scenario-set '" + text + "': expected key=value");
+    }
+    try {
+      v::SetScenarioOption(x, assignment.overrides.begin().key(), *assignment.overrides.begin());
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument("--scenario-set '" + text + "': " + e.what());
     }
   }
 }
@@ -307,16 +351,20 @@ v::Experiment ResolveExperiment(const RunArguments& a) {
   if (a.data_dir_option->count() > 0) x.data_dir = a.data_dir;  // a machine setting
   if (!a.assignments.empty()) overridden.push_back("--set");
   ApplyAssignments(a.assignments, x);
+  if (!a.scenario_assignments.empty()) overridden.push_back("--scenario-set");
+  ApplyScenarioAssignments(a.scenario_assignments, x);
   if (from_file) x.source["command_line"] = overridden;
   return x;
 }
 
 void PrintRunReport(const v::ExperimentPart& part, const v::MonteCarloReport& report,
-                    const std::string& sweep_parameter, bool quiet) {
+                    const std::vector<v::ExperimentSweep>& sweep, bool quiet) {
   if (!quiet) {
-    if (part.sweep_value) {
-      std::cout << sweep_parameter << " = " << *part.sweep_value << ":\n";
+    for (std::size_t i = 0; i < part.sweep_point.size() && i < sweep.size(); ++i) {
+      std::cout << (i > 0 ? ", " : "") << sweep[i].parameter << " = "
+                << v::SweepValueText(part.sweep_point[i]);
     }
+    if (!part.sweep_point.empty()) std::cout << ":\n";
     std::cout << v::FormatSummaryTable(v::SummariseGroups(v::ReadResults(part.out)));
     std::cout << "runs: " << report.planned << " planned, " << report.skipped
               << " already finished, " << report.finished << " computed, " << report.failures.size()
@@ -335,18 +383,18 @@ int Run(const RunArguments& a) {
   settings.show_progress = !a.quiet;
   settings.stop = &interrupt.flag();
   settings.particles_trace = a.particles_trace;
+  settings.map_ospa_trace = a.map_ospa;
   if (!a.shard.empty()) settings.shard = v::ParseShard(a.shard);
   const v::ExperimentReport report = v::RunExperiment(experiment, settings);
 
   std::size_t failures = 0;
   std::size_t attempted = 0;
-  const std::string parameter = experiment.sweep ? experiment.sweep->parameter : "";
   for (std::size_t i = 0; i < report.reports.size(); ++i) {
-    PrintRunReport(report.parts[i], report.reports[i], parameter, a.quiet);
+    PrintRunReport(report.parts[i], report.reports[i], experiment.sweep, a.quiet);
     failures += report.reports[i].failures.size();
     attempted += report.reports[i].planned - report.reports[i].skipped;
   }
-  if (experiment.sweep) {
+  if (!experiment.sweep.empty()) {
     std::cout << "sweep: " << (std::filesystem::path(a.out) / v::kSweepTableFile).string() << "\n";
   }
   // Each failure was reported on stderr as it happened; its error is kept in its error.json.
@@ -449,7 +497,28 @@ int ParentWeights(const ParentWeightsArguments& a) {
   v::WriteFileAtomically(out / "parent_weights.json", meta.dump(2) + "\n");
   std::cout << "parent weights: " << (out / "parent_weights.csv").string() << " (ESS "
             << meta.at("ess_single_cluster").get<double>() << " single-cluster, "
-            << meta.at("ess_rb_phd").get<double>() << " RB-PHD of " << w.poses.size() << ")\n";
+            << meta.at("ess_rb_phd").get<double>() << " RB-PHD (46), "
+            << meta.at("ess_single_feature").get<double>() << " single-feature RB-PHD of "
+            << w.poses.size() << ")\n";
+  if (a.every == 0) return 0;
+  const std::size_t last =
+      a.until == 0 ? scenario.steps.size() - 1 : std::min(a.until, scenario.steps.size() - 1);
+  std::vector<std::size_t> steps;
+  for (std::size_t k = a.every; k <= last; k += a.every) steps.push_back(k);
+  const std::vector<v::StepEss> rows =
+      v::CompareParentWeightingOverSteps(scenario, settings, steps);
+  nlohmann::json summary = v::StepEssJson(rows);
+  summary["scenario"] = a.scenario;
+  summary["seed"] = a.seed;
+  summary["parents"] = a.parents;
+  summary["spread"] = a.spread;
+  summary["every"] = a.every;
+  v::WriteFileAtomically(out / "parent_weights_steps.csv", v::StepEssCsv(rows));
+  v::WriteFileAtomically(out / "parent_weights_steps.json", summary.dump(2) + "\n");
+  std::cout << "parent weights over " << rows.size() << " steps: mean ESS "
+            << summary.at("mean_ess_single_cluster").get<double>() << " single-cluster, "
+            << summary.at("mean_ess_rb_phd").get<double>() << " RB-PHD (46), "
+            << summary.at("mean_ess_single_feature").get<double>() << " single-feature\n";
   return 0;
 }
 
@@ -461,7 +530,12 @@ int List() {
     std::cout << "  " << name << std::string(width + 2 - name.size(), ' ') << description << "\n";
   };
   std::cout << "scenarios:\n";
-  for (const auto& s : v::ScenarioTable()) line(s.name, s.description);
+  for (const auto& s : v::ScenarioTable()) {
+    line(s.name, s.description);
+    for (const v::ScenarioOptionHelp& o : s.option_keys) {
+      std::cout << "  " << std::string(width + 2, ' ') << "  " << o.key << ": " << o.help << "\n";
+    }
+  }
   std::cout << "estimators:\n";
   for (const auto& e : v::EstimatorTable()) {
     line(e.name, e.description + (e.batch ? " [batch]" : ""));
@@ -483,7 +557,11 @@ int Main(int argc, char** argv) {
   AddCompareCommand(app, compare_arguments);
   AddEvaluateCommand(app, evaluate_arguments);
   AddParentWeightsCommand(app, parent_weights_arguments);
-  app.add_subcommand("list", "List the known scenarios and estimators");
+  app.add_subcommand("list", "List the known scenarios (with their options) and estimators");
+  if (const std::string option = OptionWithoutValue(app, argc, argv); !option.empty()) {
+    std::cerr << "phdslam: error: " << option << " needs a value (see phdslam --help)\n";
+    return kExitUsage;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -498,6 +576,11 @@ int Main(int argc, char** argv) {
     if (app.got_subcommand("evaluate")) return Evaluate(evaluate_arguments);
     if (app.got_subcommand("parent-weights")) return ParentWeights(parent_weights_arguments);
     return List();
+  } catch (const std::bad_alloc& e) {
+    std::cerr << "phdslam: error: out of memory (" << e.what() << ") in 'phdslam "
+              << app.get_subcommands().front()->get_name()
+              << "': fewer seeds, particles or --jobs, or a lower clutter rate, need less\n";
+    return kExitRunFailed;
   } catch (const std::invalid_argument& e) {
     // Bad lists, unknown names and out-of-range options: usage errors.
     std::cerr << "phdslam: error: " << e.what() << "\n";
@@ -511,4 +594,11 @@ int Main(int argc, char** argv) {
 }  // namespace
 }  // namespace phdslam::apps
 
-int main(int argc, char** argv) { return phdslam::apps::Main(argc, argv); }
+int main(int argc, char** argv) {
+  try {
+    return phdslam::apps::Main(argc, argv);
+  } catch (...) {
+    std::cerr << "phdslam: error: an unexpected exception ended the program\n";
+    return 1;
+  }
+}

@@ -34,9 +34,9 @@ class OdometryFactor {
     const T dx = pose_b[0] - pose_a[0];
     const T dy = pose_b[1] - pose_a[1];
     Eigen::Matrix<T, 3, 1> e;
-    e(0) = c * dx + s * dy - T(delta_(0));
-    e(1) = -s * dx + c * dy - T(delta_(1));
-    e(2) = pose_b[2] - pose_a[2] - T(delta_(2));
+    e(0) = c * dx + s * dy - static_cast<T>(delta_(0));
+    e(1) = -s * dx + c * dy - static_cast<T>(delta_(1));
+    e(2) = pose_b[2] - pose_a[2] - static_cast<T>(delta_(2));
     Eigen::Map<Eigen::Matrix<T, 3, 1>> residuals(residuals_ptr);
     residuals = whitening_.template cast<T>() * e;
     return true;

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <stdexcept>
 #include <string>
 
 namespace phdslam::reference {
@@ -36,6 +37,32 @@ TEST(SmootherParamsJson, AppliesOverrides) {
   EXPECT_EQ(o.min_observations, 5);
 }
 
+TEST(SmootherParamsJson, AcceptsTheCurrentAssociationModeAsANoOp) {
+  SmootherOptions o;
+  o.association = AssociationMode::kFilter;
+  const nlohmann::json resolved = ToJson(o);
+  ApplyJson(nlohmann::json{{"association", "filter"}}, o);
+  EXPECT_EQ(o.association, AssociationMode::kFilter);
+  SmootherOptions back;
+  back.association = AssociationMode::kFilter;
+  ApplyJson(resolved, back);
+  EXPECT_EQ(ToJson(back), resolved);
+}
+
+// The resolved configuration stored with results (config.json): every key, value and number type.
+TEST(SmootherParamsJson, WritesEveryOptionWithItsType) {
+  EXPECT_EQ(ToJson(SmootherOptions{}).dump(),
+            nlohmann::json::parse(R"({"association": "known", "compute_covariances": true,
+      "filter_label_distance": 2.0, "function_tolerance": 1e-09, "gate_chi2": 13.8,
+      "initial_pass_solve_steps": 200, "intermediate_function_tolerance": 1e-06,
+      "linear_solver": "sparse_normal_cholesky", "max_iterations": 100,
+      "merge_position_std": 1.0, "min_detection_ratio": 0.3, "min_observations": 3,
+      "num_threads": 1, "odometry_floor": [0.0001, 1e-05], "odometry_residual": "control_space",
+      "reassociation_rounds": 5, "robust_loss": "cauchy", "robust_scale": 1.0,
+      "warm_start_floor": [0.05, 1e-05]})")
+                .dump());
+}
+
 void ExpectRejected(const std::string& overrides, const std::string& message_part) {
   SmootherOptions o;
   const nlohmann::json before = ToJson(o);
@@ -49,15 +76,23 @@ void ExpectRejected(const std::string& overrides, const std::string& message_par
 }
 
 TEST(SmootherParamsJson, RejectsBadOverridesAndLeavesTheOptionsUnchanged) {
-  ExpectRejected(R"({"max_iterations": 50, "gate": 3})", "'gate': unknown parameter (known: ");
-  ExpectRejected(R"({"association": "unknown"})", "fixed by the estimator's name");
+  ExpectRejected(R"({"max_iterations": 50, "gate": 3})",
+                 "unknown parameter 'gate' (known: association, max_iterations, ");
+  ExpectRejected(R"({"association": "unknown"})",
+                 "parameter 'association': fixed by the estimator's name (smoother-known, "
+                 "smoother-filter, smoother-unknown): expected \"known\", got \"unknown\"");
+  ExpectRejected(R"({"association": "none"})", "parameter 'association': expected one of");
   ExpectRejected(R"({"max_iterations": 2.5})", "max_iterations': expected an integer");
   ExpectRejected(R"({"compute_covariances": 1})", "expected true or false");
-  ExpectRejected(R"({"odometry_floor": [0.001]})", "expected [position_std, heading_std]");
+  ExpectRejected(R"({"odometry_floor": [0.001]})",
+                 "parameter 'odometry_floor': expected [position_std, heading_std], got [0.001]");
+  ExpectRejected(R"({"warm_start_floor": [0.001, 0]})",
+                 "parameter 'warm_start_floor': must be > 0, got 0");
   ExpectRejected(R"({"linear_solver": "dense_qr"})", "sparse_normal_cholesky");
   ExpectRejected(R"({"robust_loss": "tukey"})", "robust_loss");
   ExpectRejected(R"({"min_observations": 0})", "min_observations");
-  ExpectRejected(R"([1, 2])", "expected a JSON object");
+  ExpectRejected(R"({"robust_scale": 0})", "parameter 'robust_scale': must be > 0, got 0");
+  ExpectRejected(R"([1, 2])", "expected an object, got [1,2]");
 }
 
 }  // namespace

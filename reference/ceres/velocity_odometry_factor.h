@@ -41,7 +41,7 @@ class VelocityOdometryFactor {
   static T HalfAngleRatio(const T& h) {
     using std::abs;
     using std::sin;
-    if (abs(h) < 1e-4) return T(1.0) + h * h / 6.0;
+    if (abs(h) < 1e-4) return static_cast<T>(1.0) + h * h / 6.0;
     return h / sin(h);
   }
 

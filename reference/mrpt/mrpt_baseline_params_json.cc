@@ -1,158 +1,111 @@
 #include "reference/mrpt/mrpt_baseline_params_json.h"
 
-#include <cmath>
-#include <stdexcept>
+#include <initializer_list>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace phdslam::reference {
 namespace {
 
-std::string Field(const std::string& owner, const std::string& key) {
-  return owner + " parameter '" + key + "'";
+/// Each value with its text name (association_options.h, fastslam.h).
+template <class E>
+std::vector<std::pair<E, std::string>> Named(std::initializer_list<E> values) {
+  std::vector<std::pair<E, std::string>> names;
+  for (E v : values) names.emplace_back(v, ToString(v));
+  return names;
 }
 
-double NumberAt(const nlohmann::json& v, const std::string& field) {
-  if (!v.is_number()) throw std::invalid_argument(field + ": expected a number");
-  const double d = v.get<double>();
-  if (!std::isfinite(d)) throw std::invalid_argument(field + ": expected a finite number");
-  return d;
-}
-
-int IntAt(const nlohmann::json& v, const std::string& field) {
-  const double d = NumberAt(v, field);
-  if (d != std::floor(d) || std::abs(d) > 1e9) {
-    throw std::invalid_argument(field + ": expected an integer");
-  }
-  return static_cast<int>(d);
-}
-
-bool BoolAt(const nlohmann::json& v, const std::string& field) {
-  if (!v.is_boolean()) throw std::invalid_argument(field + ": expected true or false");
-  return v.get<bool>();
-}
-
-std::string StringAt(const nlohmann::json& v, const std::string& field) {
-  if (!v.is_string()) throw std::invalid_argument(field + ": expected a string");
-  return v.get<std::string>();
-}
-
-void RequireObject(const nlohmann::json& overrides, const std::string& owner) {
-  if (!overrides.is_object()) {
-    throw std::invalid_argument(owner + " parameters: expected a JSON object");
-  }
-}
+/// MRPT gates with chi2inv(quantile, 2): a probability in (0, 1).
+params::Bounds OpenProbability() { return {0.0, 1.0, true, true}; }
 
 }  // namespace
 
-nlohmann::json ToJson(const MrptEkfSlamOptions& o) {
-  nlohmann::json j;
-  j["association"] = ToString(o.association);
-  j["metric"] = ToString(o.metric);
-  j["ic_chi2_quantile"] = o.ic_chi2_quantile;
-  j["min_associations"] = o.min_associations;
-  j["mrpt_kdtree_candidates"] = o.mrpt_kdtree_candidates;
-  j["prune_after_steps"] = o.prune_after_steps;
-  j["prune_min_associations"] = o.prune_min_associations;
-  j["symmetrize_covariance"] = o.symmetrize_covariance;
-  return j;
+const params::ParameterTable<MrptEkfSlamOptions>& MrptEkfSlamOptionsTable() {
+  using params::AtLeast;
+  using O = MrptEkfSlamOptions;
+  static const params::ParameterTable<O> table({
+      params::EnumField<O, AssociationMethod>(
+          "association", [](auto& o) -> auto& { return o.association; },
+          Named({AssociationMethod::kJcbb, AssociationMethod::kNearestNeighbour})),
+      params::EnumField<O, AssociationMetric>(
+          "metric", [](auto& o) -> auto& { return o.metric; },
+          Named({AssociationMetric::kMahalanobis, AssociationMetric::kMatchingLikelihood})),
+      params::NumberField<O>(
+          "ic_chi2_quantile", [](auto& o) -> auto& { return o.ic_chi2_quantile; },
+          OpenProbability()),
+      params::IntField<O>(
+          "min_associations", [](auto& o) -> auto& { return o.min_associations; }, AtLeast(0)),
+      params::BoolField<O>(
+          "mrpt_kdtree_candidates", [](auto& o) -> auto& { return o.mrpt_kdtree_candidates; }),
+      params::IntField<O>(
+          "prune_after_steps", [](auto& o) -> auto& { return o.prune_after_steps; }, AtLeast(0)),
+      params::IntField<O>(
+          "prune_min_associations", [](auto& o) -> auto& { return o.prune_min_associations; },
+          AtLeast(1)),
+      params::BoolField<O>(
+          "symmetrize_covariance", [](auto& o) -> auto& { return o.symmetrize_covariance; }),
+  });
+  return table;
 }
 
-nlohmann::json ToJson(const FastSlamOptions& o) {
-  nlohmann::json j;
-  j["proposal"] =
-      o.proposal == FastSlamProposal::kMotionModel ? "motion-model" : "measurement-conditioned";
-  j["association"] = ToString(o.association);
-  j["metric"] = ToString(o.metric);
-  j["ic_chi2_quantile"] = o.ic_chi2_quantile;
-  j["new_landmark_log_likelihood"] = o.new_landmark_log_likelihood
-                                         ? nlohmann::json(*o.new_landmark_log_likelihood)
-                                         : nlohmann::json(nullptr);
-  j["confirm_associations"] = o.confirm_associations;
-  j["tentative_steps"] = o.tentative_steps;
-  j["ess_threshold_fraction"] = o.ess_threshold_fraction;
-  j["resampling"] = ToString(o.resampling);
-  j["pose_regularisation"] = {o.pose_regulariser_diag(0), o.pose_regulariser_diag(1),
-                              o.pose_regulariser_diag(2)};
-  return j;
+const params::ParameterTable<FastSlamOptions>& FastSlamOptionsTable() {
+  using params::AtLeast;
+  using O = FastSlamOptions;
+  static const params::ParameterTable<O> table({
+      params::EnumField<O, FastSlamProposal>(
+          "proposal", [](auto& o) -> auto& { return o.proposal; },
+          {{FastSlamProposal::kMotionModel, "motion-model"},
+           {FastSlamProposal::kMeasurementConditioned, "measurement-conditioned"}}),
+      params::EnumField<O, AssociationMethod>(
+          "association", [](auto& o) -> auto& { return o.association; },
+          Named({AssociationMethod::kJcbb, AssociationMethod::kNearestNeighbour})),
+      params::EnumField<O, AssociationMetric>(
+          "metric", [](auto& o) -> auto& { return o.metric; },
+          Named({AssociationMetric::kMahalanobis, AssociationMetric::kMatchingLikelihood})),
+      params::NumberField<O>(
+          "ic_chi2_quantile", [](auto& o) -> auto& { return o.ic_chi2_quantile; },
+          OpenProbability()),
+      params::OptionalNumberField<O>(
+          "new_landmark_log_likelihood",
+          [](auto& o) -> auto& { return o.new_landmark_log_likelihood; }),
+      params::IntField<O>(
+          "confirm_associations", [](auto& o) -> auto& { return o.confirm_associations; },
+          AtLeast(0)),
+      params::IntField<O>(
+          "tentative_steps", [](auto& o) -> auto& { return o.tentative_steps; }, AtLeast(1)),
+      params::NumberField<O>(
+          "ess_threshold_fraction", [](auto& o) -> auto& { return o.ess_threshold_fraction; },
+          params::Probability()),
+      params::EnumField<O, ResamplingScheme>(
+          "resampling", [](auto& o) -> auto& { return o.resampling; },
+          Named({ResamplingScheme::kMultinomial, ResamplingScheme::kResidual,
+                 ResamplingScheme::kStratified, ResamplingScheme::kSystematic})),
+      params::VectorField<O, 3>(
+          "pose_regularisation", [](auto& o) -> auto& { return o.pose_regulariser_diag; },
+          AtLeast(0.0)),
+  });
+  return table;
+}
+
+nlohmann::json ToJson(const MrptEkfSlamOptions& options) {
+  return MrptEkfSlamOptionsTable().ToJson(options);
+}
+
+nlohmann::json ToJson(const FastSlamOptions& options) {
+  return FastSlamOptionsTable().ToJson(options);
 }
 
 void ApplyJson(const nlohmann::json& overrides, MrptEkfSlamOptions& options) {
-  const std::string owner = "mrpt-ekf";
-  RequireObject(overrides, owner);
   MrptEkfSlamOptions o = options;
-  for (const auto& [key, v] : overrides.items()) {
-    const std::string field = Field(owner, key);
-    if (key == "association") {
-      o.association = ParseAssociationMethod(StringAt(v, field), field);
-    } else if (key == "metric") {
-      o.metric = ParseAssociationMetric(StringAt(v, field), field);
-    } else if (key == "ic_chi2_quantile") {
-      o.ic_chi2_quantile = NumberAt(v, field);
-    } else if (key == "min_associations") {
-      o.min_associations = IntAt(v, field);
-    } else if (key == "mrpt_kdtree_candidates") {
-      o.mrpt_kdtree_candidates = BoolAt(v, field);
-    } else if (key == "prune_after_steps") {
-      o.prune_after_steps = IntAt(v, field);
-    } else if (key == "prune_min_associations") {
-      o.prune_min_associations = IntAt(v, field);
-    } else if (key == "symmetrize_covariance") {
-      o.symmetrize_covariance = BoolAt(v, field);
-    } else {
-      throw std::invalid_argument(field + ": unknown (known: " + ToJson(options).dump() + ")");
-    }
-  }
+  MrptEkfSlamOptionsTable().Apply(overrides, o);
   o.Validate();
   options = o;
 }
 
 void ApplyJson(const nlohmann::json& overrides, FastSlamOptions& options) {
-  const std::string owner = "fastslam";
-  RequireObject(overrides, owner);
   FastSlamOptions o = options;
-  for (const auto& [key, v] : overrides.items()) {
-    const std::string field = Field(owner, key);
-    if (key == "proposal") {
-      const std::string s = StringAt(v, field);
-      if (s == "motion-model") {
-        o.proposal = FastSlamProposal::kMotionModel;
-      } else if (s == "measurement-conditioned") {
-        o.proposal = FastSlamProposal::kMeasurementConditioned;
-      } else {
-        throw std::invalid_argument(field +
-                                    ": expected \"motion-model\" or \"measurement-conditioned\"");
-      }
-    } else if (key == "association") {
-      o.association = ParseAssociationMethod(StringAt(v, field), field);
-    } else if (key == "metric") {
-      o.metric = ParseAssociationMetric(StringAt(v, field), field);
-    } else if (key == "ic_chi2_quantile") {
-      o.ic_chi2_quantile = NumberAt(v, field);
-    } else if (key == "new_landmark_log_likelihood") {
-      if (v.is_null()) {
-        o.new_landmark_log_likelihood.reset();
-      } else {
-        o.new_landmark_log_likelihood = NumberAt(v, field);
-      }
-    } else if (key == "confirm_associations") {
-      o.confirm_associations = IntAt(v, field);
-    } else if (key == "tentative_steps") {
-      o.tentative_steps = IntAt(v, field);
-    } else if (key == "ess_threshold_fraction") {
-      o.ess_threshold_fraction = NumberAt(v, field);
-    } else if (key == "resampling") {
-      o.resampling = ParseResamplingScheme(StringAt(v, field), field);
-    } else if (key == "pose_regularisation") {
-      if (!v.is_array() || v.size() != 3) {
-        throw std::invalid_argument(field + ": expected the diagonal [qx, qy, qtheta]");
-      }
-      for (int i = 0; i < 3; ++i) {
-        o.pose_regulariser_diag(i) = NumberAt(v[static_cast<std::size_t>(i)], field);
-      }
-    } else {
-      throw std::invalid_argument(field + ": unknown (known: " + ToJson(options).dump() + ")");
-    }
-  }
+  FastSlamOptionsTable().Apply(overrides, o);
   o.Validate();
   options = o;
 }

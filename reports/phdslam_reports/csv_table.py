@@ -111,8 +111,13 @@ def read_csv(
     path: Path | str,
     required: Iterable[str] = (),
     text_columns: Iterable[str] = (),
+    finite_only: bool = False,
 ) -> CsvTable:
     """Reads ``path``; every column not in ``text_columns`` must hold numbers or be empty.
+
+    With ``finite_only`` a cell that spells a non-finite number ('nan', 'inf', ...) is an error
+    too: phdslam writes an empty cell for "not available", so such a cell was written by hand and
+    would silently change the statistics computed from the column.
 
     Raises ResultsFormatError naming the file (and the line and column) when the file is missing,
     has no header, lacks a column of ``required``, has a row of the wrong length or a cell that is
@@ -134,7 +139,7 @@ def read_csv(
     table = CsvTable(path=path, header=header, rows=len(data), line_numbers=numbers)
     numeric_names = [h for h in header if h not in text_set]
 
-    if not text_set.intersection(header):
+    if not finite_only and not text_set.intersection(header):
         block = _fast_numeric_block(data, len(header))
         if block is not None:
             for j, name in enumerate(header):
@@ -153,11 +158,16 @@ def read_csv(
                 columns[name].append(cell.strip())
                 continue
             try:
-                columns[name].append(parse_number(cell))
+                value = parse_number(cell)
             except ValueError:
                 raise ResultsFormatError(
                     f"{path}, line {line_number}, column '{name}': '{cell}' is not a number"
                 ) from None
+            if finite_only and cell.strip() and not math.isfinite(value):
+                raise ResultsFormatError(
+                    f"{path}, line {line_number}, column '{name}': '{cell}' is not a finite "
+                    f"number (phdslam writes an empty cell for a value that is not available)")
+            columns[name].append(value)
     for name in header:
         if name in text_set:
             table.text[name] = columns[name]

@@ -37,6 +37,8 @@ from .figures.sensitivity import (
     plot_sensitivity,
     points_from_table,
 )
+from .figures.sweep_heat_map import plot_sweep_heat_maps
+from .figures.sweep_lines import plot_sweep_lines
 from .figures.trajectory_map import (
     TrajectoryPanel,
     gps_in_span,
@@ -58,6 +60,7 @@ from .results import (
 )
 from .stats import relative_difference, standard_error_of_values
 from .style import save_figure
+from .sweep_table import SweepTable, read_sweep_table, sweep_point_of, sweep_root_of
 from .tables_shared import matched_paper_tables, ours_with_se, paper_table_rows
 
 FOLDER_SECTIONS = ("summary", "paper-tables", "fig1", "fig2", "fig3", "nees", "scaling",
@@ -502,20 +505,67 @@ class ReportBuilder:
                 points.append(SweepPoint(**{**point.__dict__, "pos_rmse_se": se}))
         return points, notes
 
+    def sweep_tables(self) -> list[SweepTable]:
+        """The sweep roots the folders belong to (or are), each once, in folder order."""
+        tables: list[SweepTable] = []
+        for folder in self.folders:
+            root = folder.path if (folder.path / "sweep.json").is_file() else \
+                sweep_root_of(folder.path)
+            if root is None or any(t.root == root for t in tables):
+                continue
+            table = read_sweep_table(root)
+            if table is not None:
+                tables.append(table)
+        return tables
+
+    def general_sweep_figures(self, tables: list[SweepTable]) -> tuple[str, list[str]]:
+        """Line plots of one-parameter sweeps and heat maps of two-parameter sweeps."""
+        body, drawn = "", []
+        for index, table in enumerate(tables):
+            names = " \u00d7 ".join(table.parameters)
+            if len(table.parameters) == 2:
+                fig = plot_sweep_heat_maps(table, self._name)
+                rows = "estimator" if "particles" in table.parameters else \
+                    "estimator and particle count"
+                caption = (f"Sweep over {names} ({table.root.name}): final-map GOSPA and "
+                           f"position RMSE at every grid point, one row of panels per {rows}; "
+                           f"rows {table.parameters[0]}, columns {table.parameters[1]}.")
+                file_name = f"sweep{index + 1}-heat-map.png"
+            else:
+                fig = plot_sweep_lines(table, self._name)
+                caption = (f"Sweep over {names} ({table.root.name}): final-map GOSPA (\u00b1 SE) "
+                           f"and position RMSE against {names}.")
+                file_name = f"sweep{index + 1}-lines.png"
+            if fig is None:
+                body += note_html(f"{table.root}: a sweep over {len(table.parameters)} "
+                                  "parameters is not drawn (one or two only)")
+                continue
+            body += self._figure(fig, file_name, caption)
+            drawn.append(names)
+        return body, drawn
+
     def sensitivity_section(self) -> Section:
-        """Fig. 5 analogue: GOSPA and position RMSE against pD and clutter rate."""
+        """Fig. 5 analogue (GOSPA and position RMSE against pD and clutter rate), and any other
+        sweep: lines for one swept parameter, heat maps for two."""
         title = "Fig. 5 analogue: sensitivity to pD and clutter rate"
+        general = [t for t in self.sweep_tables()
+                   if len(t.parameters) != 1 or t.parameters[0] not in ("pd", "clutter_rate")]
+        general_body, drawn = self.general_sweep_figures(general)
+        if general:
+            title = "Sensitivity: parameter sweeps"
         points, notes = self.sweep_points()
-        fig = plot_sensitivity(points, self._name)
-        if fig is None:
+        fig = plot_sensitivity(points, self._name) if not general else None
+        if fig is None and not general_body:
             return Section("sensitivity", title, skipped_note=(
                 "no sweep: the results hold a single detection probability and clutter rate "
                 "(give several results folders with different --pd / --clutter-rate, or a "
                 "sweep.csv / summary.csv with pd or clutter_rate columns)"))
-        body = self._figure(fig, "fig5-sensitivity.png",
-                            "Final-map GOSPA and position RMSE (\u00b1 SE) against the detection "
-                            "probability and the clutter rate.")
-        body += "".join(note_html(n) for n in notes)
+        body = general_body
+        if fig is not None:
+            body += self._figure(fig, "fig5-sensitivity.png",
+                                 "Final-map GOSPA and position RMSE (\u00b1 SE) against the "
+                                 "detection probability and the clutter rate.")
+            body += "".join(note_html(n) for n in notes)
         return Section("sensitivity", title, body=body)
 
     # --- whole report -------------------------------------------------------------------------
@@ -529,9 +579,11 @@ class ReportBuilder:
                            "clutter_rate") if k in options)
         seeds = config.get("seeds") or []
         program = config.get("program") or {}
+        point = ", ".join(f"{name} = {value}" for name, value in sweep_point_of(folder.path))
         return (f"<p class=\"meta\">Results folder <code>{escape(folder.path)}</code>: scenario "
                 f"<b>{escape(folder.scenario_name or 'unknown')}</b>"
                 f"{' (' + escape(shown) + ')' if shown else ''}; "
+                f"{'sweep point ' + escape(point) + '; ' if point else ''}"
                 f"{len(seeds)} seed(s); estimators "
                 f"{escape(', '.join(sorted((config.get('estimators') or {}).keys())) or '?')}; "
                 f"experiment {escape(config.get('experiment', '?'))}; program "
@@ -575,8 +627,8 @@ def build_report(results_dirs: Sequence[Path | str], out_dir: Path | str,
                  options: ReportOptions | None = None) -> Report:
     """Builds the report of ``results_dirs`` into ``out_dir`` (index.html and PNG files)."""
     out = Path(out_dir)
+    folders = [ResultsFolder(p) for p in results_dirs]  # checks them before creating anything
     out.mkdir(parents=True, exist_ok=True)
-    folders = [ResultsFolder(p) for p in results_dirs]
     builder = ReportBuilder(folders, out, paper or PaperValues.load(), options or ReportOptions())
     report = builder.build()
     (out / "index.html").write_text(report.html, encoding="utf-8")

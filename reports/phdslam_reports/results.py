@@ -222,10 +222,28 @@ class ResultsFolder:
         path = self.path / SUMMARY_FILE
         if not path.is_file():
             return None
-        table = read_csv(path, SUMMARY_COLUMNS, text_columns=("estimator",))
+        table = read_csv(path, SUMMARY_COLUMNS, text_columns=("estimator",), finite_only=True)
+        if table.rows == 0:
+            raise ResultsFormatError(
+                f"{path}: header only, no group rows (an interrupted or truncated write; "
+                f"'phdslam run' or 'phdslam merge' with the same --out rewrites it)")
         for i, value in enumerate(table.num("particles")):
             _as_int(value, path, "particles", i + 1)
+        self._check_summary_covers_runs(table)
         return table
+
+    def _check_summary_covers_runs(self, summary: CsvTable) -> None:
+        """Every group of runs.csv must have its summary.csv row (else the file was cut short)."""
+        runs = self.runs_table
+        if runs is None:
+            return
+        listed = set(zip(summary.str("estimator"), (int(n) for n in summary.num("particles"))))
+        for estimator, particles in zip(runs.str("estimator"), runs.num("particles")):
+            if math.isfinite(particles) and (estimator, int(particles)) not in listed:
+                raise ResultsFormatError(
+                    f"{self.path / SUMMARY_FILE}: no row for {estimator} N={int(particles)}, "
+                    f"which {RUNS_TABLE_FILE} has (a truncated file; 'phdslam run' or "
+                    f"'phdslam merge' with the same --out rewrites it)")
 
     @cached_property
     def runs_table(self) -> CsvTable | None:
@@ -233,7 +251,7 @@ class ResultsFolder:
         path = self.path / RUNS_TABLE_FILE
         if not path.is_file():
             return None
-        return read_csv(path, RUNS_COLUMNS, text_columns=("estimator",))
+        return read_csv(path, RUNS_COLUMNS, text_columns=("estimator",), finite_only=True)
 
     @cached_property
     def truth_map(self) -> CsvTable | None:

@@ -74,6 +74,36 @@ class MalformedInputTest(unittest.TestCase):
         path.write_text("\n".join(lines) + "\n")
         self.assert_report_error(str(path), "line 3", "cells")
 
+    def test_runs_nan_cell_is_refused(self):
+        path = self.results / "runs.csv"
+        lines = path.read_text().splitlines()
+        header = lines[0].split(",")
+        cells = lines[2].split(",")
+        cells[header.index("pos_rmse_m")] = "nan"
+        lines[2] = ",".join(cells)
+        path.write_text("\n".join(lines) + "\n")
+        self.assert_report_error(str(path), "line 3", "column 'pos_rmse_m'", "not a finite")
+
+    def test_summary_header_only_is_refused(self):
+        path = self.results / "summary.csv"
+        path.write_text(path.read_text().splitlines()[0] + "\n")
+        self.assert_report_error(str(path), "header only")
+
+    def test_summary_cut_before_a_group_is_refused(self):
+        self.results = make_results_folder(Path(self.tmp.name) / "two", FixtureSpec(
+            groups=(("phd3", 10), ("phd3", 100)), steps=10, seeds=(1, 2)))
+        path = self.results / "summary.csv"
+        path.write_text("\n".join(path.read_text().splitlines()[:2]) + "\n")
+        self.assert_report_error(str(path), "no row for phd3 N=100")
+
+    def test_missing_results_folder_is_refused_and_not_created(self):
+        missing = Path(self.tmp.name) / "no-such-folder"
+        stderr = io.StringIO()
+        with contextlib.redirect_stderr(stderr), contextlib.redirect_stdout(io.StringIO()):
+            self.assertEqual(make_report.main([str(missing)]), 1)
+        self.assertIn(f"{missing}: not a folder", stderr.getvalue())
+        self.assertFalse(missing.exists())
+
     def test_map_missing_y(self):
         path = self.results / "runs" / "phd3-N10" / "seed-1" / "map.csv"
         replace_line(path, 0, "x,y,", "x,yy,")

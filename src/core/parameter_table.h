@@ -4,9 +4,10 @@
 //
 //   const ParameterTable<MyParams>& Table() {
 //     static const ParameterTable<MyParams> table({
-//         IntField<MyParams>("particles", [](auto& p) -> auto& { return p.particles; }, AtLeast(1)),
-//         NumberField<MyParams>("gate", [](auto& p) -> auto& { return p.gate; }, Above(0.0)),
-//         BoolField<MyParams>("resampling", [](auto& p) -> auto& { return p.resampling; }),
+//         IntField<MyParams>("particles", [](auto& p) -> auto& { return p.particles; },
+//         AtLeast(1)), NumberField<MyParams>("gate", [](auto& p) -> auto& { return p.gate; },
+//         Above(0.0)), BoolField<MyParams>("resampling", [](auto& p) -> auto& { return
+//         p.resampling; }),
 //     });
 //     return table;
 //   }
@@ -215,9 +216,98 @@ Field<T> DiagonalField(std::string key, Access access, Bounds bounds = {}) {
           }};
 }
 
+/// A free-form string (its values, if restricted, are checked by the struct's own validation).
+template <class T, class Access>
+Field<T> StringField(std::string key, Access access) {
+  return {key, "a string", [access](const T& p) { return nlohmann::json(access(p)); },
+          [access, key](const nlohmann::json& v, T& p) {
+            if (!v.is_string()) Fail(key, "expected a string, got " + v.dump());
+            access(p) = v.get<std::string>();
+          }};
+}
+
+/// A std::optional<double> written and read as a number in `bounds`, or null when unset.
+template <class T, class Access>
+Field<T> OptionalNumberField(std::string key, Access access, Bounds bounds = {}) {
+  return {key, "null or a number " + bounds.Describe(),
+          [access](const T& p) {
+            return access(p).has_value() ? nlohmann::json(*access(p)) : nlohmann::json(nullptr);
+          },
+          [access, key, bounds](const nlohmann::json& v, T& p) {
+            if (v.is_null()) {
+              access(p).reset();
+            } else {
+              access(p) = ReadNumber(v, key, bounds);
+            }
+          }};
+}
+
+/// A fixed-size Eigen vector written and read as the array of its entries, each in `bounds`.
+template <class T, int N, class Access>
+Field<T> VectorField(std::string key, Access access, Bounds bounds = {}) {
+  return {key, "an array of " + std::to_string(N) + " numbers " + bounds.Describe(),
+          [access](const T& p) {
+            nlohmann::json j = nlohmann::json::array();
+            for (int i = 0; i < N; ++i) j.push_back(access(p)(i));
+            return j;
+          },
+          [access, key, bounds](const nlohmann::json& v, T& p) {
+            if (!v.is_array() || v.size() != static_cast<std::size_t>(N)) {
+              Fail(key, "expected an array of " + std::to_string(N) + " numbers, got " + v.dump());
+            }
+            Eigen::Matrix<double, N, 1> x;
+            for (int i = 0; i < N; ++i) x(i) = ReadNumber(v[i], key, bounds);
+            access(p) = x;
+          }};
+}
+
+/// A struct of numbers written and read as an array in the order of `members`, each in `bounds`
+/// (e.g. a noise floor as [position_std, heading_std]).
+template <class T, class S, class Access>
+Field<T> StructArrayField(std::string key, Access access,
+                          std::vector<std::pair<std::string, double S::*>> members,
+                          Bounds bounds = {}) {
+  std::string names;
+  for (const auto& [name, member] : members) names += (names.empty() ? "" : ", ") + name;
+  names = "[" + names + "]";
+  return {key, names + ", each " + bounds.Describe(),
+          [access, members](const T& p) {
+            nlohmann::json j = nlohmann::json::array();
+            for (const auto& [name, member] : members) j.push_back(access(p).*member);
+            return j;
+          },
+          [access, key, members, names, bounds](const nlohmann::json& v, T& p) {
+            if (!v.is_array() || v.size() != members.size()) {
+              Fail(key, "expected " + names + ", got " + v.dump());
+            }
+            S s = access(p);
+            for (std::size_t i = 0; i < members.size(); ++i) {
+              s.*members[i].second = ReadNumber(v[i], key, bounds);
+            }
+            access(p) = s;
+          }};
+}
+
+/// `field` for a value that is fixed elsewhere (e.g. by an estimator's name): written as usual;
+/// an input equal to the current value is accepted (so that a written configuration reads back)
+/// and any other value is rejected, the message giving `reason` and the current value.
+template <class T>
+Field<T> Fixed(Field<T> field, const std::string& reason) {
+  field.help = "fixed: " + reason;
+  field.read = [key = field.key, read = field.read, write = field.write, reason](
+                   const nlohmann::json& v, T& p) {
+    T candidate = p;
+    read(v, candidate);
+    if (write(candidate) != write(p)) {
+      Fail(key, reason + ": expected " + write(p).dump() + ", got " + v.dump());
+    }
+  };
+  return field;
+}
+
 /// A number that may also be the string `automatic` (stored as NaN: derived elsewhere).
 template <class T, class Access>
-Field<T> NumberOrAutomaticField(std::string key, Access access, std::string automatic) {
+Field<T> NumberOrAutomaticField(std::string key, Access access, const std::string& automatic) {
   return {key, "a number or \"" + automatic + "\"",
           [access, automatic](const T& p) {
             return std::isnan(access(p)) ? nlohmann::json(automatic) : nlohmann::json(access(p));

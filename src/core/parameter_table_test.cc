@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -26,8 +27,10 @@ struct Settings {
 
 const ParameterTable<Inner>& InnerTable() {
   static const ParameterTable<Inner> table({
-      NumberField<Inner>("gate", [](auto& p) -> auto& { return p.gate; }, Above(0.0)),
-      BoolField<Inner>("strict", [](auto& p) -> auto& { return p.strict; }),
+      NumberField<Inner>(
+          "gate", [](auto& p) -> auto& { return p.gate; }, Above(0.0)),
+      BoolField<Inner>(
+          "strict", [](auto& p) -> auto& { return p.strict; }),
   });
   return table;
 }
@@ -35,14 +38,18 @@ const ParameterTable<Inner>& InnerTable() {
 const ParameterTable<Settings>& Table() {
   using S = Settings;
   static const ParameterTable<S> table(Rows<S>({
-      {IntField<S>("count", [](auto& p) -> auto& { return p.count; }, AtLeast(1)),
-       NumberField<S>("rate", [](auto& p) -> auto& { return p.rate; }, Probability()),
+      {IntField<S>(
+           "count", [](auto& p) -> auto& { return p.count; }, AtLeast(1)),
+       NumberField<S>(
+           "rate", [](auto& p) -> auto& { return p.rate; }, Probability()),
        EnumField<S, Mode>("mode", [](auto& p) -> auto& { return p.mode; },
                           {{Mode::kFast, "fast"}, {Mode::kExact, "exact"}}),
-       DiagonalField<S, 3>("noise", [](auto& p) -> auto& { return p.noise; }, AtLeast(0.0)),
-       NumberOrAutomaticField<S>("threshold", [](auto& p) -> auto& { return p.threshold; },
-                                 "auto")},
-      Embed<S>(InnerTable(), [](auto& p) -> auto& { return p.inner; }),
+       DiagonalField<S, 3>(
+           "noise", [](auto& p) -> auto& { return p.noise; }, AtLeast(0.0)),
+       NumberOrAutomaticField<S>(
+           "threshold", [](auto& p) -> auto& { return p.threshold; }, "auto")},
+      Embed<S>(
+          InnerTable(), [](auto& p) -> auto& { return p.inner; }),
   }));
   return table;
 }
@@ -99,12 +106,109 @@ TEST(ParameterTable, ErrorsNameTheKeyAndTheRule) {
   EXPECT_EQ(ErrorOf({{"threshold", "automatic"}}),
             "parameter 'threshold': expected a number, got \"automatic\"");
   EXPECT_EQ(ErrorOf(nlohmann::json::array()), "parameters: expected an object, got []");
-  EXPECT_EQ(ErrorOf({{"count", 1e12}}), "parameter 'count': expected an integer, got 1000000000000.0");
+  EXPECT_EQ(ErrorOf({{"count", 1e12}}),
+            "parameter 'count': expected an integer, got 1000000000000.0");
 }
 
 TEST(ParameterTable, RejectsNonFiniteNumbers) {
   EXPECT_EQ(ErrorOf({{"rate", std::numeric_limits<double>::infinity()}}),
             "parameter 'rate': not finite");
+}
+
+struct Floor {
+  double position_std = 0.1;
+  double heading_std = 0.01;
+};
+
+struct Extras {
+  std::string loss = "cauchy";
+  std::optional<double> level;
+  Eigen::Vector3d q = Eigen::Vector3d(1.0, 2.0, 0.5);
+  Floor floor;
+  Mode mode = Mode::kExact;
+};
+
+const ParameterTable<Extras>& ExtrasTable() {
+  using E = Extras;
+  static const ParameterTable<E> table({
+      StringField<E>(
+          "loss", [](auto& p) -> auto& { return p.loss; }),
+      OptionalNumberField<E>(
+          "level", [](auto& p) -> auto& { return p.level; }, AtLeast(0.0)),
+      VectorField<E, 3>(
+          "q", [](auto& p) -> auto& { return p.q; }, AtLeast(0.0)),
+      StructArrayField<E, Floor>(
+          "floor", [](auto& p) -> auto& { return p.floor; },
+          {{"position_std", &Floor::position_std}, {"heading_std", &Floor::heading_std}},
+          Above(0.0)),
+      Fixed(EnumField<E, Mode>("mode", [](auto& p) -> auto& { return p.mode; },
+                               {{Mode::kFast, "fast"}, {Mode::kExact, "exact"}}),
+            "fixed by the name"),
+  });
+  return table;
+}
+
+std::string ExtrasErrorOf(const nlohmann::json& overrides, Extras& e) {
+  try {
+    ExtrasTable().Apply(overrides, e);
+  } catch (const std::invalid_argument& error) {
+    return error.what();
+  }
+  return "";
+}
+
+TEST(ParameterTable, WritesStringsOptionalsVectorsAndStructArrays) {
+  EXPECT_EQ(ExtrasTable().ToJson(Extras{}), nlohmann::json::parse(R"({"loss": "cauchy",
+      "level": null, "q": [1.0, 2.0, 0.5], "floor": [0.1, 0.01], "mode": "exact"})"));
+  Extras e;
+  e.level = 2.5;
+  EXPECT_EQ(ExtrasTable().ToJson(e)["level"], 2.5);
+}
+
+TEST(ParameterTable, ReadsStringsOptionalsVectorsAndStructArrays) {
+  Extras e;
+  ExtrasTable().Apply(nlohmann::json::parse(R"({"loss": "huber", "level": 3, "q": [0, 4, 5],
+      "floor": [0.5, 0.25], "mode": "exact"})"),
+                      e);
+  EXPECT_EQ(e.loss, "huber");
+  ASSERT_TRUE(e.level.has_value());
+  EXPECT_EQ(*e.level, 3.0);
+  EXPECT_EQ(e.q, Eigen::Vector3d(0.0, 4.0, 5.0));
+  EXPECT_EQ(e.floor.position_std, 0.5);
+  EXPECT_EQ(e.floor.heading_std, 0.25);
+  EXPECT_EQ(e.mode, Mode::kExact);
+  Extras back;
+  ExtrasTable().Apply(ExtrasTable().ToJson(e), back);
+  EXPECT_EQ(ExtrasTable().ToJson(back), ExtrasTable().ToJson(e));
+  ExtrasTable().Apply({{"level", nullptr}}, e);
+  EXPECT_FALSE(e.level.has_value());
+}
+
+TEST(ParameterTable, FixedRowAcceptsOnlyTheCurrentValue) {
+  Extras e;
+  e.mode = Mode::kFast;
+  EXPECT_EQ(ExtrasErrorOf({{"mode", "fast"}}, e), "");
+  EXPECT_EQ(e.mode, Mode::kFast);
+  EXPECT_EQ(ExtrasErrorOf({{"mode", "exact"}}, e),
+            "parameter 'mode': fixed by the name: expected \"fast\", got \"exact\"");
+  EXPECT_EQ(e.mode, Mode::kFast);
+  EXPECT_EQ(ExtrasErrorOf({{"mode", "slow"}}, e),
+            "parameter 'mode': expected one of \"fast\", \"exact\", got \"slow\"");
+}
+
+TEST(ParameterTable, ExtrasErrorsNameTheKeyAndLeaveTheValueUnchanged) {
+  Extras e;
+  EXPECT_EQ(ExtrasErrorOf({{"loss", 1}}, e), "parameter 'loss': expected a string, got 1");
+  EXPECT_EQ(ExtrasErrorOf({{"level", -1}}, e), "parameter 'level': must be >= 0, got -1");
+  EXPECT_EQ(ExtrasErrorOf({{"level", "high"}}, e),
+            "parameter 'level': expected a number, got \"high\"");
+  EXPECT_EQ(ExtrasErrorOf({{"q", {1, 2}}}, e),
+            "parameter 'q': expected an array of 3 numbers, got [1,2]");
+  EXPECT_EQ(ExtrasErrorOf({{"q", {1, 2, -3}}}, e), "parameter 'q': must be >= 0, got -3");
+  EXPECT_EQ(ExtrasErrorOf({{"floor", {0.5}}}, e),
+            "parameter 'floor': expected [position_std, heading_std], got [0.5]");
+  EXPECT_EQ(ExtrasErrorOf({{"floor", {0.5, 0}}}, e), "parameter 'floor': must be > 0, got 0");
+  EXPECT_EQ(ExtrasTable().ToJson(e), ExtrasTable().ToJson(Extras{}));
 }
 
 }  // namespace

@@ -105,7 +105,7 @@ JointIplResult JointIpl(const Pose& prior_mean, const Mat3& prior_cov,
     // Stacked linearisation at the previous joint iterate: z ~ h(lin) + H (x - lin) + r.
     const Pose lin_pose = lin.mean.head<3>();
     const Vec3 pose_offset = prior_mean - lin_pose;
-    for (int p = 0; p < num_pairs; ++p) {
+    for (Eigen::Index p = 0; p < num_pairs; ++p) {
       const Landmark lin_landmark = lin.mean.segment<2>(3 + 2 * p);
       const auto j = models::MeasurementJacobians(lin_pose, lin_landmark);
       h.block<2, 3>(2 * p, 0) = j.hx;
@@ -119,7 +119,7 @@ JointIplResult JointIpl(const Pose& prior_mean, const Mat3& prior_cov,
     // One stacked Kalman update of the dense joint prior.
     const Eigen::MatrixXd pht = p0 * h.transpose();
     s.noalias() = h * pht;
-    for (int p = 0; p < num_pairs; ++p) s.block<2, 2>(2 * p, 2 * p) += noise_cov;
+    for (Eigen::Index p = 0; p < num_pairs; ++p) s.block<2, 2>(2 * p, 2 * p) += noise_cov;
     s = (0.5 * (s + s.transpose())).eval();
     const Eigen::LLT<Eigen::MatrixXd> s_llt(s);
     if (s_llt.info() != Eigen::Success) {

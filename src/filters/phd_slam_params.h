@@ -7,6 +7,7 @@
 
 #include "src/core/types.h"
 #include "src/filters/particle_filter_params.h"
+#include "src/filters/rb_phd_weighting.h"
 #include "src/phd/map_params.h"
 
 namespace phdslam::filters {
@@ -35,6 +36,10 @@ struct PhdSlamParams {
 
   /// Map estimate threshold ln((1 - pD_nominal)^2); NaN means derive it from the sensor.
   double estimate_log_weight_threshold = std::nan("");
+
+  /// Particle weight: PHD-SLAM 3.0's eq. 46 as the reference code evaluates it (default), or
+  /// Mullane et al.'s empty-map or single-feature strategy (rb_phd_weighting.h).
+  RbPhdWeighting weighting = RbPhdWeighting::kPaper46;
 
   /// Reference code: copies of one resampled parent share one proposal (a speed optimisation
   /// with no effect on results).

@@ -36,6 +36,11 @@ const params::ParameterTable<PhdSlamParams>& PhdSlamParamsTable() {
           params::NumberOrAutomaticField<P>(
               "estimate_log_weight_threshold",
               [](auto& p) -> auto& { return p.estimate_log_weight_threshold; }, "from-sensor"),
+          params::EnumField<P, RbPhdWeighting>(
+              "weighting", [](auto& p) -> auto& { return p.weighting; },
+              {{RbPhdWeighting::kPaper46, "paper-46"},
+               {RbPhdWeighting::kEmptyMap, "empty-map"},
+               {RbPhdWeighting::kSingleFeature, "single-feature"}}),
           params::BoolField<P>("reuse_parent_proposal",
                                [](auto& p) -> auto& { return p.reuse_parent_proposal; }),
       },

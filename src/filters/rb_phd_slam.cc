@@ -6,7 +6,7 @@
 namespace phdslam::filters {
 
 PhdMapModel::PhdMapModel(const EstimatorContext& context, const PhdSlamParams& params)
-    : sensor_(context.sensor), map_params_(params.map) {
+    : sensor_(context.sensor), map_params_(params.map), weighting_(params.weighting) {
   if (!std::isnan(params.estimate_log_weight_threshold)) {
     estimate_threshold_ = params.estimate_log_weight_threshold;
   } else {
@@ -24,12 +24,29 @@ void PhdMapModel::BeforePrediction(Map& map, const Pose& pose) const {
 
 void PhdMapModel::Update(Map& map, const Pose& pose, const StepData& step, double& log_weight,
                          InnovationStats& nis) const {
+  if (weighting_ == RbPhdWeighting::kPaper46) {
+    const phd::PhdUpdateResult update =
+        map.gm.Update(pose, step.measurements, sensor_, map_params_);
+    log_weight += update.log_likelihood;
+    nis.nis_sum += update.nis_sum;
+    nis.count += update.nis_count;
+    KeepBirthsAndReduce(map, pose, step, update.ungated);
+    return;
+  }
+  const std::vector<phd::GaussianComponent> predicted = map.gm.active();
   const phd::PhdUpdateResult update = map.gm.Update(pose, step.measurements, sensor_, map_params_);
-  log_weight += update.log_likelihood;
   nis.nis_sum += update.nis_sum;
   nis.count += update.nis_count;
+  const PhdIntensityPair v{predicted, map.gm.active(), map.gm.passive()};
+  log_weight +=
+      RbPhdLogWeight(weighting_, update.log_likelihood, v, pose, step.measurements, sensor_);
+  KeepBirthsAndReduce(map, pose, step, update.ungated);
+}
+
+void PhdMapModel::KeepBirthsAndReduce(Map& map, const Pose& pose, const StepData& step,
+                                      const std::vector<int>& ungated) const {
   map.births.clear();
-  for (int j : update.ungated) map.births.push_back(step.measurements[j]);
+  for (int j : ungated) map.births.push_back(step.measurements[j]);
   // Hypothesis reduction and active/passive bookkeeping.
   map.gm.Reduce(pose, sensor_, map_params_);
 }

@@ -33,8 +33,9 @@ struct PhdParticleMap {
 /// The GM-PHD map model of the skeleton:
 ///  - before prediction, the pending births are added at the pose the scan was taken from;
 ///  - the landmark view is the active component list;
-///  - the update is the GM-PHD update at the sampled pose (its log-likelihood added to the
-///    weight), the ungated measurements kept as next births, then the hypothesis reduction;
+///  - the update is the GM-PHD update at the sampled pose (its log-likelihood, or the
+///    RB-PHD-SLAM strategy of PhdSlamParams::weighting, added to the weight), the ungated
+///    measurements kept as next births, then the hypothesis reduction;
 ///  - the estimate is every component with log-weight above ln((1 - pD)^2) (or the parameter).
 class PhdMapModel {
  public:
@@ -62,8 +63,13 @@ class PhdMapModel {
   [[nodiscard]] int ComponentCount(const Map& map) const { return static_cast<int>(map.gm.size()); }
 
  private:
+  /// Keeps the ungated measurements as next births, then reduces the mixture.
+  void KeepBirthsAndReduce(Map& map, const Pose& pose, const StepData& step,
+                           const std::vector<int>& ungated) const;
+
   models::SensorModel sensor_;
   phd::MapParams map_params_;
+  RbPhdWeighting weighting_;
   double estimate_threshold_;
 };
 

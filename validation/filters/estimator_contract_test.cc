@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <memory>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -171,6 +172,8 @@ std::vector<DensityCase> Densities() {
                    true});
   return cases;
 }
+
+void PrintTo(const DensityCase& c, std::ostream* os) { *os << c.name; }
 
 class DensityContract : public ::testing::TestWithParam<DensityCase> {};
 

@@ -9,6 +9,7 @@
 #include "datasets/paper_synthetic.h"
 #include "src/core/log_sum_exp.h"
 #include "src/filters/phd_slam_family.h"
+#include "src/filters/rb_phd_weighting.h"
 
 namespace phdslam::filters {
 namespace {
@@ -121,6 +122,59 @@ TEST(RbPhdSlam, WithoutResamplingWeightsStayUnnormalised) {
   for (const auto& particle : filter->particles()) log_w.push_back(particle.log_weight);
   // The measurement likelihoods are never renormalised: the weights no longer sum to one.
   EXPECT_GT(std::abs(LogSumExp(log_w)), 1.0);
+}
+
+// A predicted map of the true landmarks in view of step 10's true pose.
+PhdParticleMap MapInView(const datasets::Scenario& s, const Pose& x) {
+  std::vector<phd::GaussianComponent> components;
+  for (const Landmark& m : s.truth.landmarks) {
+    if (s.sensor.DetectionProbability(x, m) > 0.0) {
+      components.push_back({m + Landmark(0.3, -0.2), Mat2::Identity(), std::log(0.9)});
+    }
+  }
+  PhdParticleMap map;
+  map.gm.SetActive(components);
+  return map;
+}
+
+TEST(PhdMapModel, TheWeightingSelectsTheLikelihoodIncrementAndLeavesTheMapAlone) {
+  const datasets::Scenario& s = PaperScenario();
+  const EstimatorContext context = s.PublicContext();
+  const Pose x = s.truth.poses[10];
+  const StepData& step = s.steps[10].data;
+  const PhdParticleMap predicted = MapInView(s, x);
+  ASSERT_GT(predicted.gm.active().size(), 3u);
+  ASSERT_FALSE(step.measurements.empty());
+
+  phd::GmPhdMap updated = predicted.gm;
+  const double paper46 =
+      updated.Update(x, step.measurements, context.sensor, PhdSlamParams{}.map).log_likelihood;
+  const PhdIntensityPair v{predicted.gm.active(), updated.active(), updated.passive()};
+  const std::vector<std::pair<RbPhdWeighting, double>> expected = {
+      {RbPhdWeighting::kPaper46, paper46},
+      {RbPhdWeighting::kEmptyMap, EmptyMapLogWeight(v, step.measurements, context.sensor)},
+      {RbPhdWeighting::kSingleFeature,
+       SingleFeatureLogWeight(v, x, step.measurements, context.sensor)}};
+  std::vector<PhdParticleMap> maps;
+  for (const auto& [weighting, increment] : expected) {
+    PhdSlamParams p;
+    p.weighting = weighting;
+    const PhdMapModel model(context, p);
+    PhdParticleMap map = predicted;
+    double log_weight = 1.5;
+    model.Update(map, x, step, log_weight);
+    EXPECT_DOUBLE_EQ(log_weight, 1.5 + increment) << static_cast<int>(weighting);
+    maps.push_back(std::move(map));
+  }
+  EXPECT_NE(expected[0].second, expected[2].second);
+  for (std::size_t i = 1; i < maps.size(); ++i) {
+    ASSERT_EQ(maps[i].gm.size(), maps[0].gm.size());
+    ASSERT_EQ(maps[i].births.size(), maps[0].births.size());
+    for (std::size_t c = 0; c < maps[0].gm.active().size(); ++c) {
+      EXPECT_EQ(maps[i].gm.active()[c].mean, maps[0].gm.active()[c].mean);
+      EXPECT_EQ(maps[i].gm.active()[c].log_weight, maps[0].gm.active()[c].log_weight);
+    }
+  }
 }
 
 }  // namespace

@@ -70,6 +70,30 @@ EstimatorEntry PhdSlamEntry(const filters::PhdSlamVariant& variant) {
   return e;
 }
 
+filters::PhdSlamParams RbPhdDefaults() {
+  filters::PhdSlamParams p;
+  p.weighting = filters::RbPhdWeighting::kSingleFeature;
+  return p;
+}
+
+EstimatorEntry RbPhdEntry() {
+  EstimatorEntry e;
+  e.name = "rbphd";
+  e.description =
+      "RB-PHD-SLAM of Mullane, Vo, Adams & Vo (2011): PHD-SLAM 1.0's transition density with the "
+      "single-feature map particle weight (the comparator of single-cluster PHD SLAM's paper); "
+      "--set weighting=empty-map for the empty-map strategy";
+  e.resolved_parameters = [](const EstimatorRequest& r) {
+    return filters::ToJson(ResolveParameters(r, filters::PhdSlamParamsTable(), RbPhdDefaults()));
+  };
+  e.make_online = [](const EstimatorRequest& r) -> std::unique_ptr<filters::OnlineEstimator> {
+    return filters::MakePhdSlam(
+        "phd1", RequireContext(r),
+        ResolveParameters(r, filters::PhdSlamParamsTable(), RbPhdDefaults()), r.stream_seed);
+  };
+  return e;
+}
+
 oracle::OracleParams ResolveOracleParams(const EstimatorRequest& request) {
   RequireKnownOrigins(request);
   return ResolveParameters(request, oracle::OracleParamsTable());
@@ -121,6 +145,7 @@ std::vector<EstimatorEntry> BuildTable() {
   for (const filters::PhdSlamVariant& v : filters::PhdSlamVariants()) {
     table.push_back(PhdSlamEntry(v));
   }
+  table.push_back(RbPhdEntry());
   table.push_back(ScPhdSlamEntry());
   table.push_back(OracleEntry());
   table.push_back(OracleFastSlam1Entry());

@@ -4,6 +4,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "datasets/scenario_generator.h"
 #include "src/core/random.h"
@@ -34,8 +35,7 @@ TEST(EstimatorTable, HasOdometryAndUniqueNames) {
     EXPECT_TRUE(names.insert(e.name).second) << e.name << " twice";
     EXPECT_FALSE(e.description.empty()) << e.name;
     EXPECT_TRUE(e.resolved_parameters) << e.name;
-    EXPECT_TRUE(e.HasFactory())
-        << e.name;
+    EXPECT_TRUE(e.HasFactory()) << e.name;
   }
   EXPECT_EQ(FindEstimator("odometry").name, "odometry");
 }
@@ -101,10 +101,29 @@ TEST(PhdSlamEntries, VictoriaParkResamplingThresholdDependsOnTheVariant) {
   EXPECT_EQ(threshold("phd2a"), 2.5);
   EXPECT_EQ(threshold("phd2b"), 1.0);
   EXPECT_EQ(threshold("phd3"), 1.0);
+  EXPECT_EQ(threshold("rbphd"), 2.5);
   // The synthetic scenario: 0.2 N for every variant.
   request.scenario_name = "paper-synthetic";
   request.name = "phd1";
   EXPECT_EQ(FindEstimator("phd1").resolved_parameters(request).at("ess_threshold"), 0.2);
+}
+
+TEST(RbPhdEntry, IsPhd1WithTheSingleFeatureWeight) {
+  EstimatorRequest request;
+  request.scenario_name = "paper-synthetic";
+  request.particles = 10;
+  request.name = "rbphd";
+  nlohmann::json rb = FindEstimator("rbphd").resolved_parameters(request);
+  EXPECT_EQ(rb.at("weighting"), "single-feature");
+  request.name = "phd1";
+  nlohmann::json phd1 = FindEstimator("phd1").resolved_parameters(request);
+  EXPECT_EQ(phd1.at("weighting"), "paper-46");
+  rb.erase("weighting");
+  phd1.erase("weighting");
+  EXPECT_EQ(rb, phd1);  // every other parameter is phd1's
+  request.name = "rbphd";
+  request.overrides = {{"weighting", "empty-map"}};
+  EXPECT_EQ(FindEstimator("rbphd").resolved_parameters(request).at("weighting"), "empty-map");
 }
 
 TEST(MrptEkfPostProcessed, RunsTheSameFilterAndReportsASubsetOfItsMap) {
@@ -137,6 +156,58 @@ TEST(MrptEkfPostProcessed, RunsTheSameFilterAndReportsASubsetOfItsMap) {
     for (const Landmark& r : raw_map.means) found = found || r == m;
     EXPECT_TRUE(found) << m.transpose();
   }
+}
+
+bool Registered(const std::string& name) {
+  for (const EstimatorEntry& e : EstimatorTable()) {
+    if (e.name == name) return true;
+  }
+  return false;
+}
+
+std::string ResolveError(const std::string& name, const nlohmann::json& overrides) {
+  EstimatorRequest request;
+  request.name = name;
+  request.scenario_name = "generated";
+  request.overrides = overrides;
+  try {
+    FindEstimator(name).resolved_parameters(request);
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// A key fixed by the estimator's name accepts that value (a no-op) and rejects any other.
+TEST(ReferenceEstimators, KeysFixedByTheNameAcceptOnlyTheirOwnValue) {
+  if (!Registered("smoother-filter")) GTEST_SKIP() << "built without Ceres";
+  for (const auto& [name, mode] : {std::pair<std::string, std::string>{"smoother-known", "known"},
+                                   {"smoother-filter", "filter"},
+                                   {"smoother-unknown", "unknown"}}) {
+    EstimatorRequest request;
+    request.name = name;
+    request.scenario_name = "generated";
+    request.overrides = {{"association", mode}};
+    EXPECT_EQ(FindEstimator(name).resolved_parameters(request).at("association"), mode);
+  }
+  EXPECT_EQ(ResolveError("smoother-filter", {{"association", "known"}}),
+            "estimator 'smoother-filter': parameter 'association': fixed by the estimator's name "
+            "(smoother-known, smoother-filter, smoother-unknown): expected \"filter\", got "
+            "\"known\"");
+  EXPECT_EQ(ResolveError("smoother-known", {{"robust_loss", "tukey"}}),
+            "estimator 'smoother-known': SmootherOptions.robust_loss: expected \"cauchy\", "
+            "\"huber\" or \"none\", got \"tukey\"");
+}
+
+TEST(ReferenceEstimators, FastSlamProposalIsFixedByTheName) {
+  if (!Registered("fastslam1")) GTEST_SKIP() << "built without MRPT";
+  EXPECT_EQ(ResolveError("fastslam1", {{"proposal", "motion-model"}}), "");
+  EXPECT_EQ(ResolveError("fastslam1", {{"proposal", "measurement-conditioned"}}),
+            "estimator 'fastslam1': parameter 'proposal': fixed by the estimator's name "
+            "(fastslam1, fastslam2): expected \"motion-model\", got "
+            "\"measurement-conditioned\"");
+  EXPECT_EQ(ResolveError("mrpt-ekf", {{"prune_after_steps", -1}}),
+            "estimator 'mrpt-ekf': parameter 'prune_after_steps': must be >= 0, got -1");
 }
 
 TEST(RunStreamSeed, FollowsTheDocumentedDerivation) {

@@ -8,6 +8,7 @@
 
 #include "validation/runner/list_arguments.h"
 #include "validation/runner/results_io.h"
+#include "validation/runner/yaml_shape.h"
 
 namespace phdslam::validation {
 namespace {
@@ -110,6 +111,10 @@ std::vector<int> ParticleList(const YAML::Node& node, const std::string& key,
   std::set<int> seen;
   for (int n : particles) {
     if (n < 1) errors.Fail(node, "'" + key + "': particle count " + std::to_string(n) + " is < 1");
+    if (n > kMaxParticles) {
+      errors.Fail(node, "'" + key + "': particle count " + std::to_string(n) + " is more than " +
+                            std::to_string(kMaxParticles));
+    }
     if (!seen.insert(n).second) {
       errors.Fail(node, "'" + key + "': particle count " + std::to_string(n) + " is listed twice");
     }
@@ -171,39 +176,64 @@ std::vector<ExperimentEstimator> EstimatorList(const YAML::Node& node, const Fil
 }
 
 void ReadScenarioOptions(const YAML::Node& node, const FileErrors& errors, Experiment& x) {
-  RequireKnownKeys(node, {kSweepParameterPd, kSweepParameterClutterRate}, "'scenario_options'",
-                   errors);
-  if (const YAML::Node pd = node[kSweepParameterPd]) x.pd = Number<double>(pd, "pd", errors);
-  if (const YAML::Node rate = node[kSweepParameterClutterRate]) {
-    x.clutter_rate = Number<double>(rate, "clutter_rate", errors);
+  if (!node.IsMap()) errors.Fail(node, "'scenario_options': expected a mapping of keys to values");
+  for (const auto& item : node) {
+    try {
+      SetScenarioOption(x, item.first.Scalar(), ToJson(item.second, errors));
+    } catch (const std::invalid_argument& e) {
+      errors.Fail(item.second, std::string("'scenario_options': ") + e.what());
+    }
   }
 }
 
-ExperimentSweep ReadSweep(const YAML::Node& node, const FileErrors& errors) {
+ExperimentSweep ReadSweepDimension(const YAML::Node& node, const FileErrors& errors) {
   RequireKnownKeys(node, {"parameter", "values"}, "'sweep'", errors);
   if (!node["parameter"] || !node["values"]) {
-    errors.Fail(node, "'sweep' needs 'parameter' (pd or clutter_rate) and 'values' (a list)");
+    errors.Fail(node, "'sweep' needs 'parameter' and 'values' (a list)");
   }
   ExperimentSweep sweep;
   sweep.parameter = ScalarText(node["parameter"], "parameter", errors);
-  if (sweep.parameter != kSweepParameterPd && sweep.parameter != kSweepParameterClutterRate) {
-    errors.Fail(node["parameter"],
-                "sweep parameter '" + sweep.parameter + "' is not one of: pd, clutter_rate");
-  }
+  if (sweep.parameter.empty()) errors.Fail(node["parameter"], "'sweep.parameter' is empty");
   const YAML::Node values = node["values"];
   if (!values.IsSequence() || values.size() == 0) {
-    errors.Fail(values, "'sweep.values': expected a non-empty list of numbers");
+    errors.Fail(values, "'sweep.values' of '" + sweep.parameter + "': expected a non-empty list");
   }
-  std::set<double> seen;
   for (const auto& v : values) {
-    const double value = Number<double>(v, "values", errors);
-    if (!std::isfinite(value)) errors.Fail(v, "'sweep.values': a value is not finite");
-    if (!seen.insert(value).second) {
-      errors.Fail(v, "'sweep.values': " + FormatNumber(value) + " is listed twice");
+    const nlohmann::json value = ToJson(v, errors);
+    if (!value.is_number() && !value.is_boolean() && !value.is_string()) {
+      errors.Fail(v, "'sweep.values' of '" + sweep.parameter +
+                         "': expected numbers, true/false or names, got " + value.dump());
+    }
+    if (value.is_number() && !std::isfinite(value.get<double>())) {
+      errors.Fail(v, "'sweep.values' of '" + sweep.parameter + "': a value is not finite");
+    }
+    for (const nlohmann::json& earlier : sweep.values) {
+      if (earlier == value) {
+        errors.Fail(
+            v, "'sweep.values' of '" + sweep.parameter + "': " + value.dump() + " is listed twice");
+      }
     }
     sweep.values.push_back(value);
   }
   return sweep;
+}
+
+// `sweep: {parameter: ..., values: [...]}` or a grid `sweep: [{...}, {...}]`.
+std::vector<ExperimentSweep> ReadSweep(const YAML::Node& node, const FileErrors& errors) {
+  if (node.IsMap()) return {ReadSweepDimension(node, errors)};
+  if (!node.IsSequence() || node.size() == 0) {
+    errors.Fail(node, "'sweep': expected {parameter: ..., values: [...]} or a list of them");
+  }
+  std::vector<ExperimentSweep> grid;
+  for (const auto& item : node) {
+    grid.push_back(ReadSweepDimension(item, errors));
+    for (std::size_t i = 0; i + 1 < grid.size(); ++i) {
+      if (grid[i].parameter == grid.back().parameter) {
+        errors.Fail(item, "'sweep': parameter '" + grid.back().parameter + "' is listed twice");
+      }
+    }
+  }
+  return grid;
 }
 
 }  // namespace
@@ -211,6 +241,7 @@ ExperimentSweep ReadSweep(const YAML::Node& node, const FileErrors& errors) {
 Experiment ParseExperimentYaml(std::string_view text, const std::string& source,
                                const std::string& default_name) {
   const FileErrors errors(source);
+  CheckYamlShape(text, source);
   YAML::Node root;
   try {
     root = YAML::Load(std::string(text));
@@ -246,15 +277,31 @@ Experiment ParseExperimentYaml(std::string_view text, const std::string& source,
   }
   if (const YAML::Node sweep = root["sweep"]) {
     x.sweep = ReadSweep(sweep, errors);
-    const bool pd_clash = x.sweep->parameter == kSweepParameterPd && x.pd;
-    const bool clutter_clash = x.sweep->parameter == kSweepParameterClutterRate && x.clutter_rate;
-    if (pd_clash || clutter_clash) {
-      errors.Fail(sweep,
-                  "'" + x.sweep->parameter + "' is swept; remove it from 'scenario_options'");
+    for (const ExperimentSweep& d : x.sweep) {
+      const bool pd_clash = d.parameter == kSweepParameterPd && x.pd;
+      const bool clutter_clash = d.parameter == kSweepParameterClutterRate && x.clutter_rate;
+      if (pd_clash || clutter_clash || x.scenario_settings.contains(d.parameter)) {
+        errors.Fail(sweep, "'" + d.parameter + "' is swept; remove it from 'scenario_options'");
+      }
     }
   }
   x.source = {{"path", source}, {"text", std::string(text)}, {"values", ToJson(root, errors)}};
   return x;
+}
+
+void SetScenarioOption(Experiment& experiment, const std::string& key,
+                       const nlohmann::json& value) {
+  if (key.empty()) throw std::invalid_argument("a scenario option key is empty");
+  const bool pd = key == kSweepParameterPd;
+  if (pd || key == kSweepParameterClutterRate) {
+    if (!value.is_number() || !std::isfinite(value.get<double>())) {
+      throw std::invalid_argument("scenario option '" + key + "': expected a number, got " +
+                                  value.dump());
+    }
+    (pd ? experiment.pd : experiment.clutter_rate) = value.get<double>();
+    return;
+  }
+  experiment.scenario_settings[key] = value;
 }
 
 Experiment ReadExperimentFile(const std::filesystem::path& path) {

@@ -59,7 +59,7 @@ jobs: 2
   EXPECT_EQ(x.pd, 0.8);
   EXPECT_EQ(x.clutter_rate, 2.0);
   EXPECT_EQ(x.jobs, 2);
-  EXPECT_FALSE(x.sweep.has_value());
+  EXPECT_TRUE(x.sweep.empty());
   EXPECT_FALSE(x.data_dir.has_value());
   EXPECT_EQ(x.source.at("path"), "exp.yaml");
   EXPECT_EQ(x.source.at("values").at("particles"), nlohmann::json({1, 10, 100}));
@@ -104,9 +104,30 @@ TEST(ExperimentFile, ReadsASweep) {
       "scenario: s\nestimators: [e]\nseeds: 1-2\nsweep: {parameter: clutter_rate, values: [0, "
       "2.5, 10]}\n",
       "f", "n");
-  ASSERT_TRUE(x.sweep.has_value());
-  EXPECT_EQ(x.sweep->parameter, "clutter_rate");
-  EXPECT_EQ(x.sweep->values, std::vector<double>({0.0, 2.5, 10.0}));
+  ASSERT_EQ(x.sweep.size(), 1u);
+  EXPECT_EQ(x.sweep[0].parameter, "clutter_rate");
+  EXPECT_EQ(x.sweep[0].values, std::vector<nlohmann::json>({0, 2.5, 10}));
+}
+
+TEST(ExperimentFile, ReadsAGridAndScenarioOptions) {
+  const Experiment x = ParseExperimentYaml(R"(
+scenario: generated
+estimators: [phd3]
+seeds: 1-2
+scenario_options: {pd: 0.8, landmarks: 40, measurement_noise_cov: [0.5, 0.001]}
+sweep:
+  - {parameter: clutter_rate, values: [0, 5]}
+  - {parameter: "phd3:resampling", values: [true, false]}
+  - {parameter: particles, values: [1, 10]}
+)",
+                                           "f", "n");
+  EXPECT_EQ(x.pd, 0.8);
+  EXPECT_EQ(x.scenario_settings,
+            (nlohmann::json{{"landmarks", 40}, {"measurement_noise_cov", {0.5, 0.001}}}));
+  ASSERT_EQ(x.sweep.size(), 3u);
+  EXPECT_EQ(x.sweep[1].parameter, "phd3:resampling");
+  EXPECT_EQ(x.sweep[1].values, std::vector<nlohmann::json>({true, false}));
+  EXPECT_EQ(x.sweep[2].values, std::vector<nlohmann::json>({1, 10}));
 }
 
 TEST(ExperimentFile, UnknownKeysNameTheFileLineAndKey) {
@@ -115,13 +136,40 @@ TEST(ExperimentFile, UnknownKeysNameTheFileLineAndKey) {
   EXPECT_NE(e.find("exp.yaml:4:"), std::string::npos) << e;
   EXPECT_NE(e.find("unknown key 'partcles'"), std::string::npos) << e;
   EXPECT_NE(e.find("particles"), std::string::npos) << e;  // the known keys are listed
-  e = ParseError(base + "scenario_options: {pd: 0.9, clutter: 3}\n");
-  EXPECT_NE(e.find("unknown key 'clutter'"), std::string::npos) << e;
   e = ParseError("scenario: s\nseeds: 1\nestimators:\n  - {name: e, sett: {a: 1}}\n");
   EXPECT_NE(e.find("exp.yaml:4:"), std::string::npos) << e;
   EXPECT_NE(e.find("unknown key 'sett'"), std::string::npos) << e;
   e = ParseError(base + "sweep: {parameter: pd, values: [0.5], step: 1}\n");
   EXPECT_NE(e.find("unknown key 'step'"), std::string::npos) << e;
+}
+
+TEST(ExperimentFile, DuplicateKeysAreRefusedNamingBothLines) {
+  std::string e = ParseError("scenario: s\nestimators: [e]\nseeds: 1\nseeds: 2\n");
+  EXPECT_NE(e.find("exp.yaml:4: the key 'seeds' appears twice"), std::string::npos) << e;
+  EXPECT_NE(e.find("first on line 3"), std::string::npos) << e;
+  e = ParseError("scenario: s\nseeds: 1\nestimators:\n  - name: e\n    set: {a: 1, b: 2, a: 3}\n");
+  EXPECT_NE(e.find("exp.yaml:5: the key 'a' appears twice"), std::string::npos) << e;
+  // The same key in two different mappings is fine.
+  EXPECT_EQ(ParseError("scenario: s\nseeds: 1\nestimators:\n  - {name: e, set: {a: 1}}\n"
+                       "  - {name: f, set: {a: 1}}\n"),
+            "");
+}
+
+TEST(ExperimentFile, AliasesAndDeepNestingAreRefusedWithoutExpanding) {
+  // Nine levels of nine aliases each: 9^9 values if expanded.
+  std::string bomb = "scenario: s\nseeds: 1\nestimators:\n  - name: e\n    set:\n";
+  bomb += "      a0: &a0 [x, x, x, x, x, x, x, x, x]\n";
+  for (int i = 1; i < 9; ++i) {
+    const std::string prev = "*a" + std::to_string(i - 1);
+    bomb += "      a" + std::to_string(i) + ": &a" + std::to_string(i) + " [" + prev;
+    for (int j = 1; j < 9; ++j) bomb += ", " + prev;
+    bomb += "]\n";
+  }
+  std::string e = ParseError(bomb);
+  EXPECT_NE(e.find("exp.yaml:7: YAML aliases"), std::string::npos) << e;
+  e = ParseError("scenario: s\nestimators: [e]\nseeds: 1\nsweep: " + std::string(100, '[') +
+                 std::string(100, ']') + "\n");
+  EXPECT_NE(e.find("nested deeper than"), std::string::npos) << e;
 }
 
 TEST(ExperimentFile, RejectsBadValues) {
@@ -139,10 +187,20 @@ TEST(ExperimentFile, RejectsBadValues) {
   expect_error(base + "seeds: 1\nparticles: [1.5]\n", "not an integer");
   expect_error(base + "seeds: 1\nsteps: -3\n", "'steps'");
   expect_error(base + "seeds: 1\nsteps: many\n", "not an integer");
-  expect_error(base + "seeds: 1\nscenario_options: {pd: high}\n", "not a number");
+  expect_error(base + "seeds: 1\nscenario_options: {pd: high}\n", "'pd': expected a number");
   expect_error(base + "seeds: 1\njobs: -1\n", "'jobs'");
-  expect_error(base + "seeds: 1\nsweep: {parameter: speed, values: [1]}\n",
-               "not one of: pd, clutter_rate");
+  expect_error(base + "seeds: 1\nscenario_options: {clutter_rate: [1]}\n", "expected a number");
+  expect_error(base + "seeds: 1\nsweep: {parameter: pd, values: [[1, 2]]}\n", "expected numbers");
+  expect_error(base + "seeds: 1\nsweep: {parameter: pd, values: 0.5}\n", "non-empty list");
+  expect_error(base + "seeds: 1\nsweep: []\n", "'sweep'");
+  expect_error(base +
+                   "seeds: 1\nsweep: [{parameter: pd, values: [1]}, {parameter: pd, values: "
+                   "[0.5]}]\n",
+               "listed twice");
+  expect_error(base +
+                   "seeds: 1\nscenario_options: {landmarks: 5}\nsweep: {parameter: landmarks, "
+                   "values: [4]}\n",
+               "is swept");
   expect_error(base + "seeds: 1\nsweep: {parameter: pd, values: []}\n", "non-empty list");
   expect_error(base + "seeds: 1\nsweep: {parameter: pd, values: [0.5, 0.5]}\n", "listed twice");
   expect_error(base + "seeds: 1\nsweep: {parameter: pd}\n", "needs 'parameter'");

@@ -1,5 +1,6 @@
 #include "validation/runner/experiment_runner.h"
 
+#include <algorithm>
 #include <stdexcept>
 
 #include "validation/runner/results_io.h"
@@ -17,8 +18,31 @@ namespace {
   throw e;
 }
 
-MonteCarloPlan BuildPlan(const Experiment& experiment, const ScenarioOptions& options,
-                         const std::vector<EstimatorEntry>& table) {
+ScenarioOptions ToScenarioOptions(const Experiment& experiment) {
+  ScenarioOptions options;
+  options.data_dir = experiment.data_dir;
+  options.steps = experiment.steps;
+  options.detection_probability = experiment.pd;
+  options.clutter_rate = experiment.clutter_rate;
+  options.settings = experiment.scenario_settings;
+  return options;
+}
+
+// `pd` sets the detection probability options of the scenario; giving one of them as well would
+// leave one of the two values unused.
+void RequireSinglePd(const Experiment& experiment) {
+  if (!experiment.pd) return;
+  for (const char* key :
+       {"detection_probability", "detection_probability_max", "detection_probability_nominal"}) {
+    if (experiment.scenario_settings.contains(key)) {
+      throw std::invalid_argument("scenario options 'pd' and '" + std::string(key) +
+                                  "' both set the detection probability; give one");
+    }
+  }
+}
+
+MonteCarloPlan BuildPlan(const Experiment& experiment, const std::vector<EstimatorEntry>& table) {
+  RequireSinglePd(experiment);
   MonteCarloPlan plan;
   plan.experiment = experiment.name;
   plan.particles = experiment.particles;
@@ -26,47 +50,92 @@ MonteCarloPlan BuildPlan(const Experiment& experiment, const ScenarioOptions& op
   for (const ExperimentEstimator& e : experiment.estimators) {
     plan.estimators.push_back({FindEstimator(table, e.name), e.overrides, e.particles});
   }
-  plan.scenario = MakeScenarioSource(experiment.scenario, options);
+  plan.scenario = MakeScenarioSource(experiment.scenario, ToScenarioOptions(experiment));
   plan.experiment_file = experiment.source;
   return plan;
 }
 
-}  // namespace
-
-std::string SweepFolderName(const std::string& parameter, double value) {
-  return "sweep-" + parameter + "-" + FormatNumber(value);
+// The particle count an estimator of `x` is first run with (for checking its parameters).
+int FirstParticleCount(const Experiment& x, const ExperimentEstimator& e) {
+  const std::vector<int>& counts = e.particles.empty() ? x.particles : e.particles;
+  return counts.empty() ? 1 : counts.front();
 }
+
+// A swept estimator parameter must be a parameter of some estimator it applies to; otherwise
+// the sweep names something unknown (not particles, steps, a scenario option or a parameter).
+void CheckEstimatorSweep(const Experiment& point, const ExperimentSweep& dimension,
+                         const ScenarioEntry& scenario, const std::vector<EstimatorEntry>& table) {
+  std::string errors;
+  for (const ExperimentEstimator& e : point.estimators) {
+    const EstimatorEntry& entry = FindEstimator(table, e.name);
+    if (!entry.resolved_parameters) continue;
+    EstimatorRequest request;
+    request.name = e.name;
+    request.particles = FirstParticleCount(point, e);
+    request.scenario_name = point.scenario;
+    request.overrides = e.overrides;
+    try {
+      entry.resolved_parameters(request);
+      return;
+    } catch (const std::invalid_argument& error) {
+      errors += std::string(errors.empty() ? "" : "; ") + error.what();
+    }
+  }
+  std::string options;
+  for (const ScenarioOptionHelp& o : scenario.option_keys) options += ", " + o.key;
+  throw std::invalid_argument(
+      "sweep parameter '" + dimension.parameter + "' (value " + dimension.values.front().dump() +
+      ") is not particles, steps, pd, an option of scenario '" + scenario.name + "' (" +
+      options.substr(2) + ") or a parameter of the estimators: " + errors);
+}
+
+std::vector<std::string> OptionKeys(const ScenarioEntry& scenario) {
+  std::vector<std::string> keys;
+  for (const ScenarioOptionHelp& o : scenario.option_keys) keys.push_back(o.key);
+  return keys;
+}
+
+bool IsEstimatorSweep(const ExperimentSweep& d, const std::vector<std::string>& options) {
+  const std::string& p = d.parameter;
+  return p != kSweepParameterParticles && p != kSweepParameterSteps && p != kSweepParameterPd &&
+         p != kSweepParameterClutterRate &&
+         std::find(options.begin(), options.end(), p) == options.end();
+}
+
+std::vector<ExperimentPart> PlanSweep(const Experiment& experiment,
+                                      const std::filesystem::path& out,
+                                      const std::vector<EstimatorEntry>& table) {
+  const ScenarioEntry& scenario = FindScenario(experiment.scenario);
+  const std::vector<std::string> options = OptionKeys(scenario);
+  CheckSweepNotSet(experiment, options);
+  const std::vector<SweepPoint> points = SweepPoints(experiment.sweep);
+  for (std::size_t i = 0; i < experiment.sweep.size(); ++i) {
+    if (!IsEstimatorSweep(experiment.sweep[i], options)) continue;
+    const SweepPoint& first = points.front();
+    CheckEstimatorSweep(ApplySweepPoint(experiment, options, first), experiment.sweep[i], scenario,
+                        table);
+  }
+  std::vector<ExperimentPart> parts;
+  for (const SweepPoint& point : points) {
+    try {
+      parts.push_back({point, out / SweepFolderName(experiment.sweep, point),
+                       BuildPlan(ApplySweepPoint(experiment, options, point), table)});
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument("sweep point " + DescribeSweepPoint(experiment.sweep, point) +
+                                  ": " + e.what());
+    }
+  }
+  return parts;
+}
+
+}  // namespace
 
 std::vector<ExperimentPart> PlanExperiment(const Experiment& experiment,
                                            const std::filesystem::path& out,
                                            const std::vector<EstimatorEntry>& table) {
   try {
-    ScenarioOptions options;
-    options.data_dir = experiment.data_dir;
-    options.steps = experiment.steps;
-    options.detection_probability = experiment.pd;
-    options.clutter_rate = experiment.clutter_rate;
-    if (!experiment.sweep) return {{std::nullopt, out, BuildPlan(experiment, options, table)}};
-
-    const ExperimentSweep& sweep = *experiment.sweep;
-    const bool is_pd = sweep.parameter == kSweepParameterPd;
-    if (!is_pd && sweep.parameter != kSweepParameterClutterRate) {
-      throw std::invalid_argument("sweep parameter '" + sweep.parameter +
-                                  "' is not one of: pd, clutter_rate");
-    }
-    if (sweep.values.empty()) throw std::invalid_argument("the sweep has no values");
-    if ((is_pd && experiment.pd) || (!is_pd && experiment.clutter_rate)) {
-      throw std::invalid_argument("'" + sweep.parameter + "' is swept; it cannot also be set (" +
-                                  (is_pd ? "--pd" : "--clutter-rate") + " or scenario_options)");
-    }
-    std::vector<ExperimentPart> parts;
-    for (double value : sweep.values) {
-      ScenarioOptions swept = options;
-      (is_pd ? swept.detection_probability : swept.clutter_rate) = value;
-      parts.push_back({value, out / SweepFolderName(sweep.parameter, value),
-                       BuildPlan(experiment, swept, table)});
-    }
-    return parts;
+    if (experiment.sweep.empty()) return {{{}, out, BuildPlan(experiment, table)}};
+    return PlanSweep(experiment, out, table);
   } catch (const std::invalid_argument& e) {
     Rethrow(experiment, e);
   }
@@ -89,10 +158,15 @@ ExperimentReport RunExperiment(const Experiment& experiment, const ExperimentSet
     s.shard = settings.shard;
     s.job_index_offset = offset;
     s.particles_trace = settings.particles_trace;
+    s.map_ospa_trace = settings.map_ospa_trace;
     try {
       CheckMonteCarlo(part.plan, s);
     } catch (const std::invalid_argument& e) {
-      Rethrow(experiment, e);
+      if (part.sweep_point.empty()) Rethrow(experiment, e);
+      Rethrow(experiment,
+              std::invalid_argument("sweep point " +
+                                    DescribeSweepPoint(experiment.sweep, part.sweep_point) + ": " +
+                                    e.what()));
     }
     offset += PlanJobs(part.plan).size();
     part_settings.push_back(std::move(s));
@@ -108,47 +182,8 @@ ExperimentReport RunExperiment(const Experiment& experiment, const ExperimentSet
       break;
     }
   }
-  if (experiment.sweep) {
-    WriteSweepFiles(settings.out, experiment.sweep->parameter, experiment.sweep->values);
-  }
+  if (!experiment.sweep.empty()) WriteSweepFiles(settings.out, experiment.sweep);
   return report;
-}
-
-void WriteSweepFiles(const std::filesystem::path& root, const std::string& parameter,
-                     const std::vector<double>& values) {
-  std::filesystem::create_directories(root);
-  std::string table;
-  std::string header;
-  std::string header_source;
-  nlohmann::json folders = nlohmann::json::array();
-  for (double value : values) {
-    const std::string folder = SweepFolderName(parameter, value);
-    folders.push_back(folder);
-    const std::filesystem::path summary = root / folder / kSummaryFile;
-    if (!std::filesystem::exists(summary)) continue;
-    const std::string text = ReadTextFile(summary);
-    const std::size_t end = text.find('\n');
-    const std::string first = text.substr(0, end);
-    if (header.empty()) {
-      header = first;
-      header_source = summary.string();
-      table = parameter + "," + header + "\n";
-    } else if (first != header) {
-      throw std::runtime_error(summary.string() + ": header differs from " + header_source);
-    }
-    std::size_t start = end == std::string::npos ? text.size() : end + 1;
-    while (start < text.size()) {
-      std::size_t stop = text.find('\n', start);
-      if (stop == std::string::npos) stop = text.size();
-      if (stop > start)
-        table += FormatNumber(value) + "," + text.substr(start, stop - start) + "\n";
-      start = stop + 1;
-    }
-  }
-  if (header.empty()) table = CsvRow({parameter});
-  const nlohmann::json sweep = {{"parameter", parameter}, {"values", values}, {"folders", folders}};
-  WriteFileAtomically(root / kSweepFile, sweep.dump(2) + "\n");
-  WriteFileAtomically(root / kSweepTableFile, table);
 }
 
 }  // namespace phdslam::validation

@@ -50,20 +50,62 @@ TEST(PlanExperiment, OnePartOrOnePerSweepValue) {
   Experiment x = OdometryExperiment();
   std::vector<ExperimentPart> parts = PlanExperiment(x, "/r", EstimatorTable());
   ASSERT_EQ(parts.size(), 1u);
-  EXPECT_FALSE(parts[0].sweep_value.has_value());
+  EXPECT_TRUE(parts[0].sweep_point.empty());
   EXPECT_EQ(parts[0].out, fs::path("/r"));
   EXPECT_EQ(parts[0].plan.experiment, "runner-test");
   EXPECT_EQ(parts[0].plan.scenario.options.at("steps"), 20);
 
-  x.sweep = ExperimentSweep{"pd", {0.3, 0.75, 1.0}};
+  x.sweep = {ExperimentSweep{"pd", {0.3, 0.75, 1.0}}};
   parts = PlanExperiment(x, "/r", EstimatorTable());
   ASSERT_EQ(parts.size(), 3u);
   EXPECT_EQ(parts[1].out, fs::path("/r/sweep-pd-0.75"));
   EXPECT_EQ(parts[2].out, fs::path("/r/sweep-pd-1"));
-  EXPECT_EQ(parts[1].sweep_value, 0.75);
+  EXPECT_EQ(parts[1].sweep_point, SweepPoint({0.75}));
   EXPECT_EQ(parts[1].plan.scenario.options.at("detection_probability"), 0.75);
   EXPECT_EQ(parts[0].plan.experiment, parts[2].plan.experiment);  // common random numbers
-  EXPECT_EQ(SweepFolderName("clutter_rate", 0.0), "sweep-clutter_rate-0");
+  EXPECT_EQ(SweepFolderName({{"clutter_rate", {0.0}}}, {0.0}), "sweep-clutter_rate-0");
+}
+
+TEST(PlanExperiment, GridsOverScenarioOptionsEstimatorParametersAndParticles) {
+  Experiment x = OdometryExperiment();
+  x.estimators = {{"phd3", {{"resampling", true}}, {5}}};
+  x.scenario_settings = {{"speed", 2.0}};
+  x.sweep = {ExperimentSweep{"landmarks", {10, 30}}, ExperimentSweep{"particles", {1, 4}},
+             ExperimentSweep{"phd3:merge_threshold", {2, 8}}};
+  const std::vector<ExperimentPart> parts = PlanExperiment(x, "/r", EstimatorTable());
+  ASSERT_EQ(parts.size(), 8u);
+  EXPECT_EQ(parts[0].out, fs::path("/r/sweep-landmarks-10-particles-1-phd3.merge_threshold-2"));
+  EXPECT_EQ(parts[7].out, fs::path("/r/sweep-landmarks-30-particles-4-phd3.merge_threshold-8"));
+  const ExperimentPart& p = parts[5];  // landmarks 30, particles 1, merge threshold 8
+  EXPECT_EQ(p.sweep_point, SweepPoint({30, 1, 8}));
+  EXPECT_EQ(p.plan.scenario.options.at("landmarks"), 30);
+  EXPECT_EQ(p.plan.scenario.options.at("speed"), 2.0);
+  EXPECT_EQ(p.plan.particles, std::vector<int>({1}));
+  ASSERT_EQ(p.plan.estimators.size(), 1u);
+  EXPECT_TRUE(p.plan.estimators[0].particles.empty());
+  EXPECT_EQ(p.plan.estimators[0].overrides,
+            (nlohmann::json{{"resampling", true}, {"merge_threshold", 8}}));
+}
+
+TEST(PlanExperiment, StepsAndPdSweepsAndTheirClashes) {
+  Experiment x = OdometryExperiment();
+  x.steps = 0;
+  x.sweep = {ExperimentSweep{"steps", {10, 30}}, ExperimentSweep{"pd", {0.5}}};
+  const std::vector<ExperimentPart> parts = PlanExperiment(x, "/r", EstimatorTable());
+  ASSERT_EQ(parts.size(), 2u);
+  EXPECT_EQ(parts[1].out, fs::path("/r/sweep-steps-30-pd-0.5"));
+  EXPECT_EQ(parts[1].plan.scenario.options.at("steps"), 30);
+  EXPECT_EQ(parts[1].plan.scenario.options.at("detection_probability"), 0.5);
+  x.steps = 20;  // the swept step count is also set
+  EXPECT_NE(ErrorOf(x, "/r").find("'steps' is swept"), std::string::npos);
+  x = OdometryExperiment();
+  x.estimators = {{"phd3", {{"max_hypotheses", 7}}, {}}};
+  x.sweep = {ExperimentSweep{"max_hypotheses", {5}}};
+  EXPECT_NE(ErrorOf(x, "/r").find("'max_hypotheses' is swept"), std::string::npos);
+  x = OdometryExperiment();
+  x.pd = 0.8;
+  x.sweep = {ExperimentSweep{"detection_probability", {0.5}}};
+  EXPECT_NE(ErrorOf(x, "/r").find("'pd' and 'detection_probability' both set"), std::string::npos);
 }
 
 TEST(PlanExperiment, ErrorsNameTheExperimentFile) {
@@ -71,17 +113,38 @@ TEST(PlanExperiment, ErrorsNameTheExperimentFile) {
   x.estimators.push_back({"nosuch", nlohmann::json::object(), {}});
   EXPECT_NE(ErrorOf(x, "/r").find("unknown estimator 'nosuch'"), std::string::npos);
   x.source = {{"path", "experiments/t.yaml"}};
-  const std::string e = ErrorOf(x, "/r");
+  std::string e = ErrorOf(x, "/r");
   EXPECT_EQ(e.rfind("experiments/t.yaml: unknown estimator 'nosuch' (known: ", 0), 0u) << e;
 
   x = OdometryExperiment();
   x.pd = 0.9;
-  x.sweep = ExperimentSweep{"pd", {0.5}};
+  x.sweep = {ExperimentSweep{"pd", {0.5}}};
   EXPECT_NE(ErrorOf(x, "/r").find("'pd' is swept"), std::string::npos);
-  x.sweep = ExperimentSweep{"speed", {0.5}};
-  EXPECT_NE(ErrorOf(x, "/r").find("not one of"), std::string::npos);
+  x.sweep = {ExperimentSweep{"spede", {0.5}}};
+  e = ErrorOf(x, "/r");
+  EXPECT_NE(e.find("sweep parameter 'spede' (value 0.5) is not particles"), std::string::npos) << e;
+  EXPECT_NE(e.find("speed"), std::string::npos) << e;  // the scenario's options are listed
   x = OdometryExperiment();
-  x.sweep = ExperimentSweep{"pd", {0.5, 1.5}};  // pD out of range, found before any run
+  x.sweep = {ExperimentSweep{"landmarks", {10, 20.5}}};  // wrong type, found before any run
+  e = ErrorOf(x, "/r");
+  EXPECT_NE(e.find("'landmarks': expected an integer, got 20.5"), std::string::npos) << e;
+  x.sweep = {ExperimentSweep{"particles", {"many"}}};
+  e = ErrorOf(x, "/r");
+  EXPECT_NE(e.find("sweep parameter 'particles'"), std::string::npos) << e;
+  x.sweep = {ExperimentSweep{"landmarks", {}}};
+  EXPECT_NE(ErrorOf(x, "/r").find("'landmarks' has no values"), std::string::npos);
+  x.sweep = {ExperimentSweep{"nosuch:gate", {1}}};
+  EXPECT_NE(ErrorOf(x, "/r").find("estimator 'nosuch' is not among"), std::string::npos);
+  x = OdometryExperiment();
+  x.scenario_settings = {{"speed", 2.0}};
+  x.sweep = {ExperimentSweep{"speed", {1.0}}};
+  EXPECT_NE(ErrorOf(x, "/r").find("'speed' is swept"), std::string::npos);
+  x = OdometryExperiment();
+  x.scenario_settings = {{"speeed", 2.0}};
+  e = ErrorOf(x, "/r");
+  EXPECT_NE(e.find("unknown parameter 'speeed'"), std::string::npos) << e;
+  x = OdometryExperiment();
+  x.sweep = {ExperimentSweep{"pd", {0.5, 1.5}}};  // pD out of range, found before any run
   EXPECT_FALSE(ErrorOf(x, "/r").empty());
   x = OdometryExperiment();
   x.scenario = "nosuch";
@@ -91,7 +154,7 @@ TEST(PlanExperiment, ErrorsNameTheExperimentFile) {
 TEST(RunExperiment, SweepWritesAFolderPerValueAndTheSweepTable) {
   const fs::path out = datasets::testing::FreshTestDir();
   Experiment x = OdometryExperiment();
-  x.sweep = ExperimentSweep{"clutter_rate", {0, 2.5}};
+  x.sweep = {ExperimentSweep{"clutter_rate", {0, 2.5}}};
   x.source = {{"path", "sweep.yaml"}, {"text", "..."}};
   const ExperimentReport report = RunExperiment(x, Quiet(out));
   ASSERT_EQ(report.reports.size(), 2u);
@@ -125,10 +188,36 @@ TEST(RunExperiment, SweepWritesAFolderPerValueAndTheSweepTable) {
   EXPECT_EQ(again.reports[1].finished, 0u);
 }
 
+TEST(RunExperiment, GridWritesOneColumnPerParameter) {
+  const fs::path out = datasets::testing::FreshTestDir();
+  Experiment x = OdometryExperiment();
+  x.seeds = {1};
+  x.sweep = {ExperimentSweep{"clutter_rate", {0, 3}}, ExperimentSweep{"speed", {0.5, 2}}};
+  RunExperiment(x, Quiet(out));
+  const std::vector<std::string> table = SplitLines(ReadTextFile(out / kSweepTableFile));
+  const std::vector<std::string> last =
+      SplitLines(ReadTextFile(out / "sweep-clutter_rate-3-speed-2" / kSummaryFile));
+  ASSERT_EQ(table.size(), 5u);
+  EXPECT_EQ(table[0], "clutter_rate,speed," + last[0]);
+  EXPECT_EQ(table[4], "3,2," + last[1]);
+  EXPECT_EQ(table[2].rfind("0,2,odometry,1,", 0), 0u) << table[2];
+  const nlohmann::json config = ReadJsonObject(out / "sweep-clutter_rate-3-speed-2" / kConfigFile);
+  EXPECT_EQ(config.at("scenario").at("options").at("speed"), 2.0);
+  EXPECT_EQ(config.at("scenario").at("options").at("clutter_rate"), 3.0);
+  const nlohmann::json sweep = ReadJsonObject(out / kSweepFile);
+  EXPECT_EQ(sweep.at("parameters").size(), 2u);
+  EXPECT_FALSE(sweep.contains("parameter"));
+  EXPECT_EQ(ReadSweepFile(out).at(1).parameter, "speed");
+  // The speed changes the trajectory: the runs differ.
+  const CsvTable slow = ReadCsvFile(out / "sweep-clutter_rate-0-speed-0.5" / kRunsTableFile);
+  const CsvTable fast = ReadCsvFile(out / "sweep-clutter_rate-0-speed-2" / kRunsTableFile);
+  EXPECT_NE(slow.rows.at(0), fast.rows.at(0));
+}
+
 TEST(RunExperiment, ChecksEveryPartBeforeRunningAny) {
   const fs::path out = datasets::testing::FreshTestDir();
   Experiment x = OdometryExperiment();
-  x.sweep = ExperimentSweep{"pd", {0.5, 0.9}};
+  x.sweep = {ExperimentSweep{"pd", {0.5, 0.9}}};
   // The second value's folder holds other results: nothing may run.
   Experiment other = OdometryExperiment();
   other.name = "someone-else";
@@ -143,7 +232,7 @@ TEST(RunExperiment, ShardsPartitionTheJobsOfEverySweepValue) {
   // and value 0.9 seed 2.
   const fs::path out = datasets::testing::FreshTestDir();
   Experiment x = OdometryExperiment();
-  x.sweep = ExperimentSweep{"pd", {0.5, 0.9}};
+  x.sweep = {ExperimentSweep{"pd", {0.5, 0.9}}};
   ExperimentSettings s = Quiet(out);
   s.shard = Shard{1, 3};
   const ExperimentReport report = RunExperiment(x, s);

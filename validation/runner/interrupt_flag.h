@@ -1,6 +1,6 @@
-// Ctrl-C handling for long Monte Carlo invocations: the first SIGINT sets a flag that the runner
-// checks between runs (runs in progress finish and are kept); a second SIGINT terminates the
-// process as usual.
+// Ctrl-C and SIGTERM handling for long Monte Carlo invocations: the first SIGINT or SIGTERM sets a
+// flag that the runner checks between runs (runs in progress finish and are kept, the summary is
+// written); a second one terminates the process as usual.
 #pragma once
 
 #include <signal.h>
@@ -23,6 +23,7 @@ class InterruptFlag {
 
  private:
   struct sigaction previous_action_ {};
+  struct sigaction previous_term_action_ {};
 };
 
 }  // namespace phdslam::validation

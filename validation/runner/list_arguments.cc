@@ -111,6 +111,11 @@ std::vector<int> ParseParticleList(std::string_view text) {
       throw std::invalid_argument("particles '" + std::string(text) + "': " + std::to_string(n) +
                                   " is not a positive particle count");
     }
+    if (n > kMaxParticles) {
+      throw std::invalid_argument("particles '" + std::string(text) + "': " + std::to_string(n) +
+                                  " is more than the " + std::to_string(kMaxParticles) +
+                                  " particles accepted per filter");
+    }
     particles.push_back(n);
   }
   RejectDuplicates(particles, kWhat, text);

@@ -15,8 +15,12 @@ namespace phdslam::validation {
 /// range of more than 10^7 seeds or a seed listed twice.
 std::vector<std::uint64_t> ParseSeedList(std::string_view text);
 
+/// Most particles one filter may use (memory grows with particles x map size).
+inline constexpr int kMaxParticles = 100000;
+
 /// Parses a comma list of particle counts, each a positive decimal int. Throws
-/// std::invalid_argument for an empty list or item, a non-number, a value < 1 or a duplicate.
+/// std::invalid_argument for an empty list or item, a non-number, a value < 1 or
+/// > kMaxParticles, or a duplicate.
 std::vector<int> ParseParticleList(std::string_view text);
 
 /// Parses a comma list of names (no empty items, no duplicates); spaces are trimmed.

@@ -57,6 +57,17 @@ TEST(ParseParticleList, PositiveCounts) {
   }
 }
 
+TEST(ParseParticleList, UpperBoundIsNamed) {
+  EXPECT_EQ(ParseParticleList("100000"), (std::vector<int>{100000}));
+  try {
+    (void)ParseParticleList("10,100001");
+    FAIL() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("more than the 100000 particles"), std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(ParseNameList, TrimsAndRejectsEmptyOrDuplicateNames) {
   EXPECT_EQ(ParseNameList("phd3, odometry", "estimators"),
             (std::vector<std::string>{"phd3", "odometry"}));

@@ -12,11 +12,12 @@
 #include <system_error>
 #include <utility>
 
-#include "validation/runner/experiment_runner.h"
 #include "validation/runner/results_config.h"
 #include "validation/runner/results_io.h"
 #include "validation/runner/results_layout.h"
+#include "validation/runner/results_lock.h"
 #include "validation/runner/summary.h"
+#include "validation/runner/sweep.h"
 
 namespace phdslam::validation {
 namespace {
@@ -133,6 +134,7 @@ void RequireDistinct(const fs::path& out, const fs::path& input) {
 }
 
 // The plan of one results folder's merge, checked before anything is written.
+// NOLINTNEXTLINE(bugprone-exception-escape): its implicit moves only move maps and JSON values
 struct FolderMerge {
   nlohmann::json config;
   std::map<RunKey, RunSource> copies;  ///< runs to copy, by key
@@ -217,22 +219,19 @@ void ExecuteFolderMerge(const fs::path& out, const std::vector<fs::path>& inputs
   ++report.folders;
 }
 
-struct SweepRoot {
-  std::string parameter;
-  std::vector<double> values;
-};
-
-std::optional<SweepRoot> ReadSweepRoot(const fs::path& folder) {
-  const fs::path path = folder / kSweepFile;
-  if (!fs::exists(path)) return std::nullopt;
-  const nlohmann::json j = ReadJsonObject(path);
-  try {
-    return SweepRoot{j.at("parameter").get<std::string>(),
-                     j.at("values").get<std::vector<double>>()};
-  } catch (const nlohmann::json::exception& e) {
-    throw std::runtime_error(path.string() + ": expected 'parameter' and 'values' (" + e.what() +
-                             ")");
+// True when two sweeps have the same parameters and values (numbers compared by value).
+bool SameSweep(const std::vector<ExperimentSweep>& a, const std::vector<ExperimentSweep>& b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (a[i].parameter != b[i].parameter || a[i].values.size() != b[i].values.size()) return false;
+    for (std::size_t k = 0; k < a[i].values.size(); ++k) {
+      const nlohmann::json& x = a[i].values[k];
+      const nlohmann::json& y = b[i].values[k];
+      const bool numbers = x.is_number() && y.is_number();
+      if (numbers ? x.get<double>() != y.get<double>() : x != y) return false;
+    }
   }
+  return true;
 }
 
 }  // namespace
@@ -242,29 +241,29 @@ MergeReport MergeResults(const fs::path& out, const std::vector<fs::path>& input
   const std::string started_utc = UtcNow();
   if (inputs.empty()) throw std::invalid_argument("merge: no input folder given");
   for (const fs::path& input : inputs) RequireDistinct(out, input);
+  const ResultsLock lock(out);
   MergeReport report;
 
-  const std::optional<SweepRoot> first_sweep = ReadSweepRoot(inputs.front());
+  const std::vector<ExperimentSweep> first_sweep = ReadSweepFile(inputs.front());
   std::vector<std::pair<fs::path, std::vector<fs::path>>> folders;  // (output, inputs)
-  if (first_sweep) {
+  if (!first_sweep.empty()) {
     for (const fs::path& input : inputs) {
-      const std::optional<SweepRoot> sweep = ReadSweepRoot(input);
-      if (!sweep) {
+      const std::vector<ExperimentSweep> sweep = ReadSweepFile(input);
+      if (sweep.empty()) {
         throw std::invalid_argument("merge: " + inputs.front().string() + " is a sweep but " +
                                     input.string() + " is not (no sweep.json)");
       }
-      if (sweep->parameter != first_sweep->parameter || sweep->values != first_sweep->values) {
+      if (!SameSweep(sweep, first_sweep)) {
         throw std::invalid_argument("merge: " + input.string() + " sweeps other values than " +
                                     inputs.front().string());
       }
     }
-    if (const std::optional<SweepRoot> existing = ReadSweepRoot(out);
-        existing && (existing->parameter != first_sweep->parameter ||
-                     existing->values != first_sweep->values)) {
+    if (const std::vector<ExperimentSweep> existing = ReadSweepFile(out);
+        !existing.empty() && !SameSweep(existing, first_sweep)) {
       throw std::invalid_argument("merge: " + out.string() + " sweeps other values");
     }
-    for (double value : first_sweep->values) {
-      const std::string name = SweepFolderName(first_sweep->parameter, value);
+    for (const SweepPoint& point : SweepPoints(first_sweep)) {
+      const std::string name = SweepFolderName(first_sweep, point);
       std::vector<fs::path> sub;
       for (const fs::path& input : inputs) {
         if (fs::exists(input / name / kConfigFile)) sub.push_back(input / name);
@@ -273,7 +272,7 @@ MergeReport MergeResults(const fs::path& out, const std::vector<fs::path>& input
     }
   } else {
     for (const fs::path& input : inputs) {
-      if (ReadSweepRoot(input)) {
+      if (!ReadSweepFile(input).empty()) {
         throw std::invalid_argument("merge: " + input.string() + " is a sweep but " +
                                     inputs.front().string() + " is not");
       }
@@ -282,13 +281,15 @@ MergeReport MergeResults(const fs::path& out, const std::vector<fs::path>& input
   }
 
   std::vector<FolderMerge> plans;
+  plans.reserve(folders.size());
   for (const auto& [folder, sources] : folders) plans.push_back(PlanFolderMerge(folder, sources));
   for (std::size_t i = 0; i < folders.size(); ++i) {
     ExecuteFolderMerge(folders[i].first, folders[i].second, plans[i], report);
   }
-  if (first_sweep) WriteSweepFiles(out, first_sweep->parameter, first_sweep->values);
+  if (!first_sweep.empty()) WriteSweepFiles(out, first_sweep);
 
   std::vector<std::string> sources;
+  sources.reserve(inputs.size());
   for (const fs::path& input : inputs) sources.push_back(input.string());
   char host[256] = {};
   if (gethostname(host, sizeof(host) - 1) != 0) host[0] = '\0';

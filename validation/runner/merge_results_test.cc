@@ -117,7 +117,7 @@ TEST(MergeResults, ShardedSweepsMergeValueByValue) {
   const fs::path base = datasets::testing::FreshTestDir();
   Experiment x = SmallExperiment();
   x.estimators = {{"odometry", nlohmann::json::object(), {}}};
-  x.sweep = ExperimentSweep{"pd", {0.5, 0.9}};
+  x.sweep = {ExperimentSweep{"pd", {0.5, 0.9}}};
   RunExperiment(x, Quiet(base / "whole"));
   for (int i = 1; i <= 3; ++i)
     RunExperiment(x, Quiet(base / ("shard" + std::to_string(i)), {i, 3}));
@@ -126,6 +126,25 @@ TEST(MergeResults, ShardedSweepsMergeValueByValue) {
   EXPECT_EQ(report.runs_copied, 6u);
   EXPECT_EQ(report.folders, 2u);
   ExpectSameResults(base / "whole", base / "merged");
+}
+
+TEST(MergeResults, ShardedGridsMergePointByPoint) {
+  const fs::path base = datasets::testing::FreshTestDir();
+  Experiment x = SmallExperiment();
+  x.estimators = {{"odometry", nlohmann::json::object(), {}}};
+  x.sweep = {ExperimentSweep{"pd", {0.5, 0.9}}, ExperimentSweep{"landmarks", {5, 9}}};
+  RunExperiment(x, Quiet(base / "whole"));
+  for (int i = 1; i <= 4; ++i)
+    RunExperiment(x, Quiet(base / ("shard" + std::to_string(i)), {i, 4}));
+  const MergeReport report = MergeResults(
+      base / "merged", {base / "shard1", base / "shard2", base / "shard3", base / "shard4"});
+  EXPECT_EQ(report.folders, 4u);
+  ExpectSameResults(base / "whole", base / "merged");
+  EXPECT_TRUE(fs::exists(base / "merged" / "sweep-pd-0.9-landmarks-5" / kSummaryFile));
+  Experiment other = x;
+  other.sweep[1].values = {5, 10};
+  RunExperiment(other, Quiet(base / "other", {1, 4}));
+  EXPECT_THROW(MergeResults(base / "m2", {base / "shard1", base / "other"}), std::invalid_argument);
 }
 
 TEST(MergeResults, RefusesConflictingFoldersBeforeCopying) {

@@ -7,8 +7,10 @@
 #include <ctime>
 #include <map>
 #include <mutex>
+#include <new>
 #include <set>
 #include <stdexcept>
+#include <system_error>
 #include <thread>
 #include <utility>
 
@@ -17,6 +19,7 @@
 #include "validation/runner/results_config.h"
 #include "validation/runner/results_io.h"
 #include "validation/runner/results_layout.h"
+#include "validation/runner/results_lock.h"
 #include "validation/runner/run_estimator.h"
 #include "validation/runner/run_files.h"
 
@@ -131,15 +134,26 @@ bool IsFinished(const std::filesystem::path& folder, const nlohmann::json& ident
                           "scenario_options", "parameters"}) {
     const nlohmann::json a = stored.contains(key) ? stored.at(key) : nlohmann::json();
     const nlohmann::json& b = identity.at(key);
-    const bool same =
-        std::string(key) == "scenario_options" ? WithoutDataDir(a) == WithoutDataDir(b) : a == b;
-    if (!same) {
-      throw std::invalid_argument(path.string() +
-                                  " was made with other settings: " + FirstDifference(a, b, key) +
+    // data_dir is not compared (the same data may move), so it is left out of the message too.
+    const bool options = std::string(key) == "scenario_options";
+    const nlohmann::json stored_value = options ? WithoutDataDir(a) : a;
+    const nlohmann::json wanted_value = options ? WithoutDataDir(b) : b;
+    if (stored_value != wanted_value) {
+      throw std::invalid_argument(path.string() + " was made with other settings: " +
+                                  FirstDifference(stored_value, wanted_value, key) +
                                   "; use another --out or delete that run");
     }
   }
   return true;
+}
+
+// An exception's message; out-of-memory gets words instead of the bare "std::bad_alloc".
+std::string DescribeException(const std::exception& e) {
+  if (dynamic_cast<const std::bad_alloc*>(&e) != nullptr) {
+    return std::string("out of memory (") + e.what() +
+           "): fewer particles, a lower clutter rate or fewer --jobs need less";
+  }
+  return e.what();
 }
 
 std::string UtcNow() {
@@ -162,14 +176,33 @@ unsigned HardwareThreads() {
   return hardware == 0 ? 1 : hardware;
 }
 
-// What is known before any run starts: the jobs left to compute, their identities, the counts
-// and the config.json to write.
+// What is known before any run starts: the jobs left to compute, the resolved parameters their
+// identities are made from (one identity is made when needed, not kept per job: a million jobs
+// would hold gigabytes), the counts and the config.json to write.
+// NOLINTNEXTLINE(bugprone-exception-escape): its implicit moves only move vectors and JSON values
 struct PreparedRuns {
   std::vector<PlannedJob> todo;
-  std::vector<nlohmann::json> identities;
+  std::map<ParameterKey, nlohmann::json> params;
+  bool interrupted = false;  ///< the stop flag was set while planning: todo is incomplete
   MonteCarloReport report;
   nlohmann::json config;
 };
+
+// metrics.json's identity fields of one job.
+nlohmann::json RunIdentity(const MonteCarloPlan& plan,
+                           const std::map<ParameterKey, nlohmann::json>& params,
+                           const PlannedJob& job) {
+  const std::string& name = plan.estimators[job.estimator].entry.name;
+  return {{"estimator", name},
+          {"particles", job.particles},
+          {"seed", job.seed},
+          {"stream_seed", RunStreamSeed(plan.experiment, job.seed, name, job.particles)},
+          {"experiment", plan.experiment},
+          {"scenario", plan.scenario.name},
+          {"scenario_options", plan.scenario.options},
+          {"parameters", params.at({name, job.particles})},
+          {"program_version", ProgramVersion()}};
+}
 
 PreparedRuns Prepare(const MonteCarloPlan& plan, const MonteCarloSettings& settings) {
   ValidatePlan(plan);
@@ -178,35 +211,29 @@ PreparedRuns Prepare(const MonteCarloPlan& plan, const MonteCarloSettings& setti
       settings.shard.index > settings.shard.count) {
     throw std::invalid_argument("shard " + settings.shard.ToString() + " is not i/n with 1<=i<=n");
   }
-  const std::map<ParameterKey, nlohmann::json> params = ResolveParameters(plan);
-
   PreparedRuns prepared;
+  prepared.params = ResolveParameters(plan);
   MonteCarloReport& report = prepared.report;
   const std::vector<PlannedJob> jobs = PlanJobs(plan);
   for (std::size_t j = 0; j < jobs.size(); ++j) {
+    if (settings.stop != nullptr && settings.stop->load()) {
+      prepared.interrupted = true;  // no run starts; answer Ctrl-C now, not after planning
+      break;
+    }
     const PlannedJob& job = jobs[j];
     if (!settings.shard.Contains(settings.job_index_offset + j)) {
       ++report.outside_shard;
       continue;
     }
     const std::string& name = plan.estimators[job.estimator].entry.name;
-    nlohmann::json identity = {
-        {"estimator", name},
-        {"particles", job.particles},
-        {"seed", job.seed},
-        {"stream_seed", RunStreamSeed(plan.experiment, job.seed, name, job.particles)},
-        {"experiment", plan.experiment},
-        {"scenario", plan.scenario.name},
-        {"scenario_options", plan.scenario.options},
-        {"parameters", params.at({name, job.particles})},
-        {"program_version", ProgramVersion()}};
     ++report.planned;
-    if (IsFinished(RunFolder(settings.out, name, job.particles, job.seed), identity)) {
+    const std::filesystem::path folder = RunFolder(settings.out, name, job.particles, job.seed);
+    if (std::filesystem::exists(folder / kMetricsFile) &&
+        IsFinished(folder, RunIdentity(plan, prepared.params, job))) {
       ++report.skipped;
       continue;
     }
     prepared.todo.push_back(job);
-    prepared.identities.push_back(std::move(identity));
   }
 
   int threads = settings.jobs > 0 ? settings.jobs : static_cast<int>(HardwareThreads());
@@ -215,7 +242,7 @@ PreparedRuns Prepare(const MonteCarloPlan& plan, const MonteCarloSettings& setti
   report.jobs = threads;
 
   // config.json, merged with what the folder already holds.
-  prepared.config = BuildConfig(plan, params, settings, threads);
+  prepared.config = BuildConfig(plan, prepared.params, settings, threads);
   if (const auto path = settings.out / kConfigFile; std::filesystem::exists(path)) {
     const nlohmann::json existing = ReadJsonObject(path);
     const std::string conflict = ConfigConflict(existing, prepared.config, path.string());
@@ -247,8 +274,8 @@ MonteCarloReport RunMonteCarlo(const MonteCarloPlan& plan, const MonteCarloSetti
   const auto start = std::chrono::steady_clock::now();
   const std::string started_utc = UtcNow();
   PreparedRuns prepared = Prepare(plan, settings);
+  const ResultsLock folder_lock(settings.out);
   const std::vector<PlannedJob>& todo = prepared.todo;
-  const std::vector<nlohmann::json>& identities = prepared.identities;
   MonteCarloReport report = prepared.report;
   std::filesystem::create_directories(settings.out);
   WriteFileAtomically(settings.out / kConfigFile, prepared.config.dump(2) + "\n");
@@ -264,7 +291,7 @@ MonteCarloReport RunMonteCarlo(const MonteCarloPlan& plan, const MonteCarloSetti
   const auto run_job = [&](std::size_t i) {
     const PlannedJob& job = todo[i];
     const EstimatorSelection& selection = plan.estimators[job.estimator];
-    const nlohmann::json& identity = identities[i];
+    const nlohmann::json identity = RunIdentity(plan, prepared.params, job);
     const std::filesystem::path folder =
         RunFolder(settings.out, selection.entry.name, job.particles, job.seed);
     try {
@@ -281,14 +308,17 @@ MonteCarloReport RunMonteCarlo(const MonteCarloPlan& plan, const MonteCarloSetti
       request.overrides = selection.overrides;
       const RunRecord record = RunEstimator(
           selection.entry, request, scenario, [&](std::size_t n) { progress.StepsDone(n); },
-          settings.particles_trace);
+          settings.particles_trace, settings.map_ospa_trace);
       const RunEvaluation evaluation = EvaluateRun(record, scenario, settings.metrics);
+      if (const std::string why = NonFiniteMetrics(evaluation.metrics); !why.empty()) {
+        throw std::runtime_error(why);
+      }
       WriteRunFiles(folder, record, scenario, evaluation, identity);
       progress.RunFinished(false);
       const std::lock_guard<std::mutex> lock(results_mutex);
       ++report.finished;
     } catch (const std::exception& e) {
-      std::string message = e.what();
+      std::string message = DescribeException(e);
       try {
         WriteRunError(folder, identity, message);
       } catch (const std::exception& write_error) {
@@ -305,19 +335,40 @@ MonteCarloReport RunMonteCarlo(const MonteCarloPlan& plan, const MonteCarloSetti
       report.failures.push_back({selection.entry.name, job.particles, job.seed, message});
     }
   };
+  // A failure outside a run (out of memory while reporting one, say) stops every worker in order:
+  // runs in progress finish, the summary is written, and the reason is thrown at the end.
+  std::atomic<bool> aborted{false};
+  std::string abort_reason;  // guarded by results_mutex
   const auto worker = [&] {
-    while (settings.stop == nullptr || !settings.stop->load()) {
-      const std::size_t i = next.fetch_add(1);
-      if (i >= todo.size()) return;
-      run_job(i);
+    try {
+      while ((settings.stop == nullptr || !settings.stop->load()) && !aborted.load()) {
+        const std::size_t i = next.fetch_add(1);
+        if (i >= todo.size()) return;
+        run_job(i);
+      }
+    } catch (const std::exception& e) {
+      aborted.store(true);
+      const std::lock_guard<std::mutex> lock(results_mutex);
+      if (abort_reason.empty()) abort_reason = DescribeException(e);
     }
   };
   std::vector<std::thread> threads;
-  for (int t = 1; t < report.jobs; ++t) threads.emplace_back(worker);
+  threads.reserve(static_cast<std::size_t>(report.jobs));
+  for (int t = 1; t < report.jobs; ++t) {
+    try {
+      threads.emplace_back(worker);
+    } catch (const std::system_error& e) {
+      progress.Message("phdslam: could not start worker thread " + std::to_string(t + 1) + " of " +
+                       std::to_string(report.jobs) + " (" + e.what() + "); continuing with " +
+                       std::to_string(t));
+      report.jobs = t;
+      break;
+    }
+  }
   worker();
   for (std::thread& t : threads) t.join();
   progress.Finish();
-  report.interrupted = next.load() < todo.size();
+  report.interrupted = prepared.interrupted || next.load() < todo.size();
   std::sort(report.failures.begin(), report.failures.end(),
             [](const FailedRun& a, const FailedRun& b) {
               return std::tie(a.estimator, a.particles, a.seed) <
@@ -325,6 +376,10 @@ MonteCarloReport RunMonteCarlo(const MonteCarloPlan& plan, const MonteCarloSetti
             });
 
   WriteSummaryFiles(settings.out);
+  if (!abort_reason.empty()) {
+    throw std::runtime_error(abort_reason + "; the runs finished so far are kept in " +
+                             settings.out.string());
+  }
   report.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const nlohmann::json timing = {

@@ -52,6 +52,9 @@ struct MonteCarloSettings {
   std::size_t job_index_offset = 0;  ///< jobs of earlier parts of the experiment (sweeps)
   /// Write particles.csv (step,particle,x,y,log_weight) for estimators that expose particles.
   bool particles_trace = false;
+  /// Record the map estimate after every step and write the per-step map OSPA (map_ospa_trace.h)
+  /// as the last column of steps.csv, map_ospa_m.
+  bool map_ospa_trace = false;
 };
 
 struct MonteCarloReport {

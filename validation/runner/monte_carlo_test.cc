@@ -11,11 +11,14 @@
 #include <string>
 #include <vector>
 
+#include "datasets/data_dir.h"
 #include "datasets/test_temp_dir.h"
 #include "src/core/random.h"
 #include "validation/runner/parameter_overrides.h"
+#include "validation/runner/results_config.h"
 #include "validation/runner/results_io.h"
 #include "validation/runner/results_layout.h"
+#include "validation/runner/results_lock.h"
 
 namespace phdslam::validation {
 namespace {
@@ -381,6 +384,94 @@ TEST(MonteCarlo, StopFlagLetsNoNewRunStart) {
   const MonteCarloReport resumed = RunMonteCarlo(OdometryPlan("generated", 20, {1, 2}), settings);
   EXPECT_FALSE(resumed.interrupted);
   EXPECT_EQ(resumed.finished, 2u);
+}
+
+TEST(MonteCarlo, AnOverflowingErrorIsAFailedRunNotAPoisonedFolder) {
+  const fs::path out = datasets::testing::FreshTestDir();
+  MonteCarloPlan plan = OdometryPlan("generated", 20, {1, 2});
+  const auto make = plan.scenario.make;
+  plan.scenario.make = [make](std::uint64_t seed) {
+    datasets::Scenario s = make(seed);
+    if (seed == 2) s.steps[5].data.controls.front()(0) = 1e200;  // finite, but its square is not
+    return s;
+  };
+  const MonteCarloReport report = RunMonteCarlo(plan, Quiet(out, 1));
+  EXPECT_EQ(report.finished, 1u);
+  ASSERT_EQ(report.failures.size(), 1u);
+  EXPECT_EQ(report.failures[0].seed, 2u);
+  EXPECT_NE(report.failures[0].error.find("position error is not finite"), std::string::npos)
+      << report.failures[0].error;
+  EXPECT_FALSE(fs::exists(RunFolder(out, "odometry", 1, 2) / kMetricsFile));
+  // The folder stays usable: the summary is written now and again on resume.
+  EXPECT_NE(ReadTextFile(out / kSummaryFile).find("odometry,1,1,"), std::string::npos);
+  EXPECT_NO_THROW(RunMonteCarlo(plan, Quiet(out, 1)));
+  EXPECT_EQ(Lines(ReadTextFile(out / kRunsTableFile)).size(), 2u);  // header + the finished run
+}
+
+TEST(MonteCarlo, ResumeRefusesOtherDataFiles) {
+  const fs::path root = datasets::testing::FreshTestDir();
+  const fs::path data = root / "data";
+  const fs::path mat = data / "phdslam3-synthetic" / "Environment_SLAM.mat";
+  fs::create_directories(mat.parent_path());
+  fs::copy_file(
+      datasets::ResolveDataDir(std::nullopt) / "phdslam3-synthetic" / "Environment_SLAM.mat", mat);
+  const auto plan = [&](const fs::path& folder = {}, int steps = 5) {
+    MonteCarloPlan p = OdometryPlan("generated", 5, {1});
+    ScenarioOptions options;
+    options.steps = steps;
+    options.data_dir = (folder.empty() ? data : folder).string();
+    p.scenario = MakeScenarioSource("paper-synthetic", options);
+    return p;
+  };
+  const fs::path out = root / "out";
+  EXPECT_EQ(RunMonteCarlo(plan(), Quiet(out, 1)).finished, 1u);
+  const nlohmann::json config = ReadJsonObject(out / kConfigFile);
+  const std::string checksum = config.at("scenario")
+                                   .at("options")
+                                   .at("data_files")
+                                   .at("phdslam3-synthetic/Environment_SLAM.mat");
+  EXPECT_EQ(checksum.rfind("sha256:", 0), 0u) << checksum;
+  EXPECT_EQ(checksum.size(), 7u + 64u);
+  // The same content elsewhere is the same data: a conflict names the setting that differs, not
+  // the data folder.
+  const fs::path moved = root / "moved";
+  fs::create_directories(moved / "phdslam3-synthetic");
+  fs::copy_file(mat, moved / "phdslam3-synthetic" / "Environment_SLAM.mat");
+  try {
+    RunMonteCarlo(plan(moved, 6), Quiet(out, 1));
+    FAIL() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("steps"), std::string::npos) << e.what();
+    EXPECT_EQ(std::string(e.what()).find("data_dir"), std::string::npos) << e.what();
+  }
+  // A changed byte is other data.
+  std::string bytes = ReadTextFile(mat);
+  bytes[10] = static_cast<char>(bytes[10] ^ 1);  // in the descriptive header text
+  WriteFileAtomically(mat, bytes);
+  try {
+    RunMonteCarlo(plan(), Quiet(out, 1));
+    FAIL() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("data_files"), std::string::npos) << e.what();
+  }
+}
+
+TEST(MonteCarlo, ASecondWriterOfAFolderIsRefused) {
+  const fs::path out = datasets::testing::FreshTestDir();
+  {
+    const ResultsLock held(out);
+    EXPECT_TRUE(fs::exists(out / kLockFile));
+    try {
+      RunMonteCarlo(OdometryPlan("generated", 5, {1}), Quiet(out, 1));
+      FAIL() << "no exception";
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find("in use by another phdslam process"), std::string::npos)
+          << e.what();
+    }
+  }
+  EXPECT_FALSE(fs::exists(out / kLockFile));
+  EXPECT_EQ(RunMonteCarlo(OdometryPlan("generated", 5, {1}), Quiet(out, 1)).finished, 1u);
+  EXPECT_FALSE(fs::exists(out / kLockFile));
 }
 
 TEST(MonteCarlo, RejectsBadPlansBeforeRunning) {

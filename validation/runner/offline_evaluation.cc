@@ -5,6 +5,7 @@
 #include <numbers>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "validation/metrics/gospa.h"
 #include "validation/metrics/trajectory_error.h"
@@ -29,6 +30,12 @@ std::vector<Landmark> Positions(const std::vector<datasets::MapPoint>& points) {
   out.reserve(points.size());
   for (const datasets::MapPoint& p : points) out.push_back(p.position);
   return out;
+}
+
+std::pair<std::string, std::string> TimeSpan(const std::vector<datasets::StampedPose>& poses) {
+  const auto [lo, hi] = std::minmax_element(poses.begin(), poses.end(),
+                                            [](const auto& a, const auto& b) { return a.t < b.t; });
+  return {std::to_string(lo->t), std::to_string(hi->t)};
 }
 
 nlohmann::json OrNull(const std::optional<double>& v) {
@@ -68,8 +75,19 @@ nlohmann::json CompareMaps(const std::vector<datasets::MapPoint>& truth,
                            const std::vector<datasets::MapPoint>& estimate, double c, double p) {
   const std::vector<Landmark> x = Positions(truth);
   const std::vector<Landmark> y = Positions(estimate);
+  if (!std::isfinite(std::pow(c, p))) {
+    throw std::invalid_argument("c^p overflows for c = " + std::to_string(c) +
+                                " and p = " + std::to_string(p) + ": choose a smaller c or p");
+  }
   const GospaResult g = Gospa(x, y, c, p);
   const OspaResult o = Ospa(x, y, c, p);
+  for (double v :
+       {g.gospa, g.localisation, g.missed, g.false_, o.ospa, o.localisation, o.cardinality}) {
+    if (!std::isfinite(v)) {
+      throw std::invalid_argument("GOSPA/OSPA overflow for c = " + std::to_string(c) +
+                                  " and p = " + std::to_string(p) + ": choose a smaller c or p");
+    }
+  }
   return {{"gospa", g.gospa},
           {"localisation", g.localisation},
           {"missed", g.missed},
@@ -88,7 +106,18 @@ nlohmann::json CompareMaps(const std::vector<datasets::MapPoint>& truth,
 nlohmann::json CompareTrajectories(const std::vector<datasets::StampedPose>& truth,
                                    const std::vector<datasets::StampedPose>& estimate,
                                    double tolerance) {
+  if (truth.empty() || estimate.empty()) {
+    throw std::invalid_argument(std::string(truth.empty() ? "the true" : "the estimated") +
+                                " trajectory holds no poses");
+  }
   const TimeMatchedPoses matched = MatchByTime(truth, estimate, tolerance);
+  if (matched.truth.empty()) {
+    const auto [t0, t1] = TimeSpan(truth);
+    const auto [e0, e1] = TimeSpan(estimate);
+    throw std::invalid_argument("no true pose has an estimate within " + std::to_string(tolerance) +
+                                " s (truth spans " + t0 + ".." + t1 + " s, the estimate " + e0 +
+                                ".." + e1 + " s): the trajectories do not overlap in time");
+  }
   ErrorMoments position;
   ErrorMoments heading;
   if (!matched.truth.empty()) {

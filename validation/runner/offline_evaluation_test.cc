@@ -3,8 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <numbers>
 #include <stdexcept>
+#include <string>
 
 namespace phdslam::validation {
 namespace {
@@ -49,9 +51,43 @@ TEST(CompareTrajectories, RmseOverMatchedPoses) {
   EXPECT_DOUBLE_EQ(j.at("pos_rmse_m").get<double>(), std::sqrt(25.0 / 2.0));
   EXPECT_NEAR(j.at("heading_rmse_deg").get<double>(),
               std::sqrt(0.01 / 2.0) * 180.0 / std::numbers::pi, 1e-12);
-  const nlohmann::json none = CompareTrajectories(truth, {}, 0.0);
-  EXPECT_EQ(none.at("matched"), 0);
-  EXPECT_TRUE(none.at("pos_rmse_m").is_null());
+}
+
+std::string InvalidArgument(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(CompareTrajectories, EmptyOrDisjointTrajectoriesAreRefused) {
+  const auto truth = Track({0.0, 1.0, 2.0}, 0.0);
+  EXPECT_NE(InvalidArgument([&] {
+              (void)CompareTrajectories(truth, {}, 0.0);
+            }).find("estimated trajectory holds no poses"),
+            std::string::npos);
+  EXPECT_NE(InvalidArgument([&] {
+              (void)CompareTrajectories({}, truth, 0.0);
+            }).find("true trajectory holds no poses"),
+            std::string::npos);
+  const std::string disjoint = InvalidArgument([&] {
+    (void)CompareTrajectories(truth, Track({10.0, 11.0}, 0.0), 0.5);
+  });
+  EXPECT_NE(disjoint.find("do not overlap in time"), std::string::npos) << disjoint;
+  EXPECT_NE(disjoint.find("10.000000..11.000000"), std::string::npos) << disjoint;
+}
+
+TEST(CompareMaps, OverflowingCutOffOrOrderIsRefused) {
+  const std::vector<datasets::MapPoint> truth = {{Landmark(0.0, 0.0), 1.0, std::nullopt}};
+  const std::vector<datasets::MapPoint> estimate = {{Landmark(0.0, 3.0), 0.5, std::nullopt}};
+  EXPECT_NE(InvalidArgument([&] { (void)CompareMaps(truth, {}, 1e308, 2.0); }).find("overflow"),
+            std::string::npos);
+  EXPECT_NE(
+      InvalidArgument([&] { (void)CompareMaps(truth, estimate, 20.0, 1000.0); }).find("overflow"),
+      std::string::npos);
+  EXPECT_NO_THROW((void)CompareMaps(truth, estimate, 20.0, 2.0));
 }
 
 TEST(CompareMaps, GospaPartsAndOspa) {

@@ -146,7 +146,7 @@ std::string ComparisonCsv(const std::vector<PairedComparison>& comparisons) {
 std::vector<PairedComparison> WriteComparison(const std::filesystem::path& folder,
                                               const std::vector<std::string>& metrics) {
   const std::filesystem::path runs = folder / kRunsTableFile;
-  const std::vector<PairedComparison> comparisons =
+  std::vector<PairedComparison> comparisons =
       ComparePairs(ReadCsvFile(runs), metrics, runs.string());
   WriteFileAtomically(folder / kComparisonFile, ComparisonCsv(comparisons));
   return comparisons;

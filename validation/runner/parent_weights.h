@@ -19,7 +19,7 @@
 
 namespace phdslam::validation {
 
-/// One parent under the two weightings of CompareParentWeights.
+/// One parent under the three weightings of CompareParentWeights.
 struct ParentWeighting {
   double single_cluster = 0.0;  ///< normalised weight, single-cluster likelihood
   double rb_phd = 0.0;          ///< normalised weight, RB-PHD-SLAM weighting (46)
@@ -27,18 +27,26 @@ struct ParentWeighting {
   /// the parent's missed-detection mass sum pD w.
   double log_single_cluster = 0.0;
   double log_rb_phd = 0.0;
+  /// Normalised weight and log-likelihood under Mullane et al.'s single-feature map strategy
+  /// (filters/rb_phd_weighting.h), the comparator of the single-cluster paper.
+  double single_feature = 0.0;
+  double log_single_feature = 0.0;
 };
 
 /// For the report's weighting figure: parents with the same predicted map at the poses
 /// `parent_poses` and equal prior weights, updated with one scan. Returns, per parent, its
 /// weight under the single-cluster likelihood, with the missed-detection term exp(-sum pD w),
-/// and under the RB-PHD-SLAM weighting (46), sum_j log(lambda_c + ...) alone.
+/// under the RB-PHD-SLAM weighting (46), sum_j log(lambda_c + ...) alone, and under Mullane et
+/// al.'s single-feature map strategy on the same update.
 /// `params` supplies the gate; its two reference_* likelihood options are overridden.
 std::vector<ParentWeighting> CompareParentWeights(std::span<const Pose> parent_poses,
                                                   const phd::GmPhdMap& predicted_map,
                                                   std::span<const Measurement> measurements,
                                                   const models::SensorModel& sensor,
                                                   const phd::MapParams& params);
+
+/// Most parent poses a comparison draws.
+inline constexpr int kMaxParents = 100000;
 
 struct ParentWeightsSettings {
   std::size_t step = 100;  ///< the scan whose update is compared (0-based step index)
@@ -65,7 +73,9 @@ struct ParentWeights {
   std::vector<double> rb_phd;              ///< normalised weights, RB-PHD-SLAM (46) alone
   std::vector<double> log_single_cluster;  ///< unnormalised log-likelihood increments
   std::vector<double> log_rb_phd;
-  std::vector<double> missed_mass;  ///< sum pD w of the predicted map seen from each parent
+  std::vector<double> missed_mass;     ///< sum pD w of the predicted map seen from each parent
+  std::vector<double> single_feature;  ///< normalised weights, single-feature RB-PHD-SLAM
+  std::vector<double> log_single_feature;
 };
 
 /// Runs single-cluster PHD SLAM with one parent (the scenario's default parameters) over steps
@@ -77,13 +87,38 @@ struct ParentWeights {
 ParentWeights CompareParentWeightingAtStep(const datasets::Scenario& scenario,
                                            const ParentWeightsSettings& settings);
 
-/// `parent,x,y,theta,sc_weight,rb_weight,sc_log_weight,rb_log_weight,missed_mass`, one row per
-/// parent; the log-weights are normalised (log-sum-exp 0), so they stay finite where the weights
-/// underflow.
+/// `parent,x,y,theta,sc_weight,rb_weight,sc_log_weight,rb_log_weight,missed_mass,sf_weight,
+/// sf_log_weight`, one row per parent (sf: the single-feature strategy); the log-weights are
+/// normalised (log-sum-exp 0), so they stay finite where the weights underflow.
 std::string ParentWeightsCsv(const ParentWeights& w);
 
 /// Everything but the rows: scenario facts, the predicted Gaussian, the true pose (or null),
-/// and the effective sample size 1 / sum w^2 of each weighting.
+/// and the effective sample size 1 / sum w^2 of each weighting (ess_single_cluster, ess_rb_phd,
+/// ess_single_feature).
 nlohmann::json ParentWeightsJson(const ParentWeights& w);
+
+/// The three ESS of one compared step.
+struct StepEss {
+  std::size_t step = 0;
+  std::size_t measurements = 0;
+  std::size_t map_components = 0;
+  double single_cluster = 0.0;
+  double rb_phd = 0.0;
+  double single_feature = 0.0;
+};
+
+/// CompareParentWeightingAtStep at each of `steps` (increasing, each >= 1) with one filter run:
+/// the predicted states, parents and scans are identical for the three weightings. Steps without
+/// measurements are skipped.
+std::vector<StepEss> CompareParentWeightingOverSteps(const datasets::Scenario& scenario,
+                                                     const ParentWeightsSettings& settings,
+                                                     const std::vector<std::size_t>& steps);
+
+/// `step,measurements,map_components,ess_single_cluster,ess_rb_phd,ess_single_feature`.
+std::string StepEssCsv(const std::vector<StepEss>& rows);
+
+/// Paired comparisons over the steps: mean ESS of each weighting and the Wilcoxon signed-rank
+/// tests of single-cluster minus single-feature and single-cluster minus (46).
+nlohmann::json StepEssJson(const std::vector<StepEss>& rows);
 
 }  // namespace phdslam::validation

@@ -99,7 +99,7 @@ TEST(ParentWeights, WritesOneRowPerParentAndTheSettingsAsJson) {
   const ParentWeights w = CompareParentWeightingAtStep(s, settings);
   const std::string csv = ParentWeightsCsv(w);
   EXPECT_EQ(csv.rfind("parent,x,y,theta,sc_weight,rb_weight,sc_log_weight,rb_log_weight,"
-                      "missed_mass\n",
+                      "missed_mass,sf_weight,sf_log_weight\n",
                       0),
             0u);
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 8);
@@ -109,6 +109,56 @@ TEST(ParentWeights, WritesOneRowPerParentAndTheSettingsAsJson) {
   EXPECT_EQ(j.at("true_pose").size(), 3u);
   EXPECT_GE(j.at("ess_single_cluster").get<double>(), 1.0 - 1e-9);
   EXPECT_LE(j.at("ess_rb_phd").get<double>(), 7.0 + 1e-9);
+  EXPECT_GE(j.at("ess_single_feature").get<double>(), 1.0 - 1e-9);
+  EXPECT_LE(j.at("ess_single_feature").get<double>(), 7.0 + 1e-9);
+}
+
+TEST(ParentWeights, SingleFeatureWeightsAreNormalisedAndDifferFromTheOthers) {
+  const datasets::Scenario s = SmallScenario(3);
+  ParentWeightsSettings settings;
+  settings.step = StepWithMeasurements(s);
+  settings.parents = 200;
+  settings.spread = 10.0;
+  const ParentWeights w = CompareParentWeightingAtStep(s, settings);
+  ASSERT_EQ(w.single_feature.size(), 200u);
+  EXPECT_NEAR(std::accumulate(w.single_feature.begin(), w.single_feature.end(), 0.0), 1.0, 1e-9);
+  double largest_gap = 0.0;
+  for (std::size_t i = 0; i < w.poses.size(); ++i) {
+    ASSERT_TRUE(std::isfinite(w.log_single_feature[i]));
+    largest_gap = std::max(largest_gap, std::abs(w.single_feature[i] - w.rb_phd[i]));
+  }
+  EXPECT_GT(largest_gap, 1e-3);
+}
+
+TEST(ParentWeights, OverStepsGivesOneRowPerStepWithMeasurementsAndPairedTests) {
+  const datasets::Scenario s = SmallScenario(6);
+  ParentWeightsSettings settings;
+  settings.parents = 20;
+  settings.stream_seed = 2;
+  const std::vector<std::size_t> steps = {5, 10, 15, 20, 25, 30, 35};
+  const std::vector<StepEss> rows = CompareParentWeightingOverSteps(s, settings, steps);
+  std::size_t with_measurements = 0;
+  for (std::size_t k : steps) with_measurements += !s.steps[k].data.measurements.empty();
+  ASSERT_EQ(rows.size(), with_measurements);
+  double sum_sf = 0.0;
+  for (const StepEss& r : rows) {
+    EXPECT_EQ(r.measurements, s.steps[r.step].data.measurements.size());
+    for (double ess : {r.single_cluster, r.rb_phd, r.single_feature}) {
+      EXPECT_GE(ess, 1.0 - 1e-9);
+      EXPECT_LE(ess, 20.0 + 1e-9);
+    }
+    sum_sf += r.single_feature;
+  }
+  const nlohmann::json j = StepEssJson(rows);
+  EXPECT_NEAR(j.at("mean_ess_single_feature").get<double>(), sum_sf / rows.size(), 1e-12);
+  EXPECT_EQ(j.at("single_cluster_minus_single_feature").at("n").get<std::size_t>(), rows.size());
+  const std::string csv = StepEssCsv(rows);
+  EXPECT_EQ(csv.rfind("step,measurements,map_components,ess_single_cluster,ess_rb_phd,"
+                      "ess_single_feature\n",
+                      0),
+            0u);
+  EXPECT_EQ(StepEssCsv(CompareParentWeightingOverSteps(s, settings, steps)), csv);
+  EXPECT_THROW(CompareParentWeightingOverSteps(s, settings, {10, 5}), std::invalid_argument);
 }
 
 TEST(ParentWeights, RejectsStepsWithoutAScanAndTooFewParents) {

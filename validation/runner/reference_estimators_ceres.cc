@@ -1,6 +1,7 @@
 // Registry entries of the Ceres batch smoother (built only when phdslam_reference_ceres exists).
 #include <memory>
 #include <stdexcept>
+#include <utility>
 
 #include "reference/ceres/batch_smoother.h"
 #include "reference/ceres/filter_association.h"
@@ -12,16 +13,20 @@
 namespace phdslam::validation {
 namespace {
 
+// The association mode is fixed by the name: the table accepts an `association` override only
+// when it equals `mode` (so that resolved parameters can be fed back as overrides).
 reference::SmootherOptions ResolveSmoother(const EstimatorRequest& r,
                                            reference::AssociationMode mode) {
   RequireSingleParticle(r);
-  reference::SmootherOptions o;
+  reference::SmootherOptions defaults;
+  defaults.association = mode;
+  reference::SmootherOptions o =
+      ResolveParameters(r, reference::SmootherOptionsTable(), std::move(defaults));
   try {
-    reference::ApplyJson(r.overrides, o);
+    o.Validate();
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument("estimator '" + r.name + "': " + e.what());
   }
-  o.association = mode;
   if (mode == reference::AssociationMode::kKnown) RequireKnownOrigins(r);
   return o;
 }
@@ -49,9 +54,7 @@ EstimatorEntry SmootherEntry(const std::string& name, reference::AssociationMode
     phd3.particles = 1;
     const filters::PhdSlamParams params = ResolveParameters(phd3, filters::PhdSlamParamsTable());
     return std::make_unique<reference::FilterThenSmooth>(
-        filters::MakePhdSlam("phd3", RequireContext(r), params,
-                             r.stream_seed),
-        std::move(o));
+        filters::MakePhdSlam("phd3", RequireContext(r), params, r.stream_seed), std::move(o));
   };
   return e;
 }

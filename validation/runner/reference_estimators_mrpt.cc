@@ -11,18 +11,24 @@
 namespace phdslam::validation {
 namespace {
 
-// Track deletion is on by default here: stock MRPT (prune_after_steps = 0) keeps every clutter
-// point as a landmark and cannot run 4000 cluttered scans (reference/mrpt/README.md).
-reference::MrptEkfSlamOptions ResolveMrptEkf(const EstimatorRequest& r) {
-  RequireSingleParticle(r);
-  reference::MrptEkfSlamOptions o;
-  o.prune_after_steps = 5;
+// The options' own checks (Validate) after the table's, naming the estimator.
+template <class Options>
+Options Validated(const EstimatorRequest& r, Options o) {
   try {
-    reference::ApplyJson(r.overrides, o);
+    o.Validate();
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument("estimator '" + r.name + "': " + e.what());
   }
   return o;
+}
+
+// Track deletion is on by default here: stock MRPT (prune_after_steps = 0) keeps every clutter
+// point as a landmark and cannot run 4000 cluttered scans (reference/mrpt/README.md).
+reference::MrptEkfSlamOptions ResolveMrptEkf(const EstimatorRequest& r) {
+  RequireSingleParticle(r);
+  reference::MrptEkfSlamOptions defaults;
+  defaults.prune_after_steps = 5;
+  return Validated(r, ResolveParameters(r, reference::MrptEkfSlamOptionsTable(), defaults));
 }
 
 EstimatorEntry MrptEkfEntry() {
@@ -35,8 +41,7 @@ EstimatorEntry MrptEkfEntry() {
     return reference::ToJson(ResolveMrptEkf(r));
   };
   e.make_online = [](const EstimatorRequest& r) -> std::unique_ptr<filters::OnlineEstimator> {
-    return std::make_unique<reference::MrptEkfSlam>(
-        RequireContext(r), ResolveMrptEkf(r));
+    return std::make_unique<reference::MrptEkfSlam>(RequireContext(r), ResolveMrptEkf(r));
   };
   return e;
 }
@@ -62,8 +67,8 @@ EstimatorEntry MrptEkfPostProcessedEntry() {
       "mrpt-ekf with a POST-PROCESSED map: only landmarks associated at least min_associations "
       "times (not part of MRPT's filter; trajectory identical to mrpt-ekf)";
   e.make_online = [](const EstimatorRequest& r) -> std::unique_ptr<filters::OnlineEstimator> {
-    return std::make_unique<PostProcessedMrptEkf>(std::make_unique<reference::MrptEkfSlam>(
-        RequireContext(r), ResolveMrptEkf(r)));
+    return std::make_unique<PostProcessedMrptEkf>(
+        std::make_unique<reference::MrptEkfSlam>(RequireContext(r), ResolveMrptEkf(r)));
   };
   return e;
 }
@@ -73,15 +78,15 @@ reference::FastSlamOptions ResolveFastSlam(const EstimatorRequest& r,
   if (r.particles < 1) {
     throw std::invalid_argument("estimator '" + r.name + "': --particles must be >= 1");
   }
-  reference::FastSlamOptions o;
-  o.proposal = proposal;
-  try {
-    reference::ApplyJson(r.overrides, o);
-  } catch (const std::invalid_argument& e) {
-    throw std::invalid_argument("estimator '" + r.name + "': " + e.what());
-  }
+  reference::FastSlamOptions defaults;
+  defaults.proposal = proposal;
+  reference::FastSlamOptions o =
+      Validated(r, ResolveParameters(r, reference::FastSlamOptionsTable(), defaults));
   if (o.proposal != proposal) {
-    throw std::invalid_argument("estimator '" + r.name + "': 'proposal' is fixed by the name");
+    throw std::invalid_argument(
+        "estimator '" + r.name + "': parameter 'proposal': fixed by the estimator's name " +
+        "(fastslam1, fastslam2): expected " + reference::ToJson(defaults)["proposal"].dump() +
+        ", got " + reference::ToJson(o)["proposal"].dump());
   }
   return o;
 }
@@ -98,9 +103,8 @@ EstimatorEntry FastSlamEntry(const std::string& name, reference::FastSlamProposa
   };
   e.make_online =
       [proposal](const EstimatorRequest& r) -> std::unique_ptr<filters::OnlineEstimator> {
-    return std::make_unique<reference::FastSlam>(
-        RequireContext(r), r.particles, r.stream_seed,
-        ResolveFastSlam(r, proposal));
+    return std::make_unique<reference::FastSlam>(RequireContext(r), r.particles, r.stream_seed,
+                                                 ResolveFastSlam(r, proposal));
   };
   return e;
 }

@@ -50,9 +50,10 @@ void WriteFileAtomically(const std::filesystem::path& path,
   std::error_code ec;
   std::filesystem::rename(temp, path, ec);
   if (ec) {
+    const std::string reason = ec.message();  // before remove() overwrites ec
     std::filesystem::remove(temp, ec);
     throw std::runtime_error("cannot rename " + temp.string() + " to " + path.string() + ": " +
-                             ec.message());
+                             reason);
   }
 }
 

@@ -17,7 +17,7 @@ double MillisecondsSince(Clock::time_point start) {
 void RunOnline(const EstimatorEntry& entry, const EstimatorRequest& request,
                const datasets::Scenario& scenario,
                const std::function<void(std::size_t)>& on_steps_done, bool record_particles,
-               RunRecord& record) {
+               bool record_maps, RunRecord& record) {
   if (!entry.HasFactory()) {
     throw std::logic_error("estimator '" + entry.name + "' has no online factory");
   }
@@ -46,6 +46,7 @@ void RunOnline(const EstimatorEntry& entry, const EstimatorRequest& request,
     record.step_ms.push_back(ms);
     record.total_ms += ms;
     if (record_particles) record.particle_states.push_back(estimator->ParticleStates());
+    if (record_maps) record.step_maps.push_back(estimator->Map().means);
     if (on_steps_done) on_steps_done(1);
   }
   const bool exposes_particles =
@@ -97,8 +98,8 @@ datasets::Scenario WithoutTruth(const datasets::Scenario& scenario) {
 
 RunRecord RunEstimator(const EstimatorEntry& entry, const EstimatorRequest& request,
                        const datasets::Scenario& scenario,
-                       const std::function<void(std::size_t)>& on_steps_done,
-                       bool record_particles) {
+                       const std::function<void(std::size_t)>& on_steps_done, bool record_particles,
+                       bool record_maps) {
   RunRecord record;
   record.estimator = entry.name;
   record.particles = request.particles;
@@ -115,7 +116,7 @@ RunRecord RunEstimator(const EstimatorEntry& entry, const EstimatorRequest& requ
   if (entry.batch) {
     RunBatch(entry, request, scenario, on_steps_done, record);
   } else {
-    RunOnline(entry, request, scenario, on_steps_done, record_particles, record);
+    RunOnline(entry, request, scenario, on_steps_done, record_particles, record_maps, record);
   }
   return record;
 }

@@ -17,13 +17,15 @@ namespace phdslam::validation {
 /// number of poses. `on_steps_done(n)`, when set, is called after every online step with n = 1
 /// and once after a batch solve with n = the number of steps (progress reporting). With
 /// `record_particles`, an online estimator's ParticleStates() are kept after every step (outside
-/// the timed Step call); the record keeps none when the estimator exposes none.
+/// the timed Step call); the record keeps none when the estimator exposes none. With
+/// `record_maps`, an online estimator's map estimate means are kept after every step (outside the
+/// timed Step call; RunRecord::step_maps).
 /// A copy of `scenario` without its hidden parts: no origin labels and no ground truth.
 datasets::Scenario WithoutTruth(const datasets::Scenario& scenario);
 
 RunRecord RunEstimator(const EstimatorEntry& entry, const EstimatorRequest& request,
                        const datasets::Scenario& scenario,
                        const std::function<void(std::size_t)>& on_steps_done = {},
-                       bool record_particles = false);
+                       bool record_particles = false, bool record_maps = false);
 
 }  // namespace phdslam::validation

@@ -41,20 +41,24 @@ std::vector<datasets::MapPoint> MapPoints(const filters::MapEstimate& map) {
 
 std::string StepsCsv(const RunRecord& record, const datasets::Scenario& scenario,
                      const RunEvaluation& evaluation) {
-  std::string text = CsvRow({"step",       "t",
-                             "x",          "y",
-                             "theta",      "x_true",
-                             "y_true",     "theta_true",
-                             "pos_err_m",  "heading_err_deg",
-                             "ess",        "resampled",
-                             "hypotheses", "map_components",
-                             "ms",         "nees",
-                             "nees_rb",    "nis_sum",
-                             "nis_count",  "gps_nees_rb"});
+  std::vector<std::string> header = {"step",       "t",
+                                     "x",          "y",
+                                     "theta",      "x_true",
+                                     "y_true",     "theta_true",
+                                     "pos_err_m",  "heading_err_deg",
+                                     "ess",        "resampled",
+                                     "hypotheses", "map_components",
+                                     "ms",         "nees",
+                                     "nees_rb",    "nis_sum",
+                                     "nis_count",  "gps_nees_rb"};
+  // The opt-in map OSPA (phdslam run --map-ospa) is appended as the last column.
+  const bool has_map_ospa = evaluation.map_ospa_m.size() == record.poses.size();
+  if (has_map_ospa) header.push_back("map_ospa_m");
+  std::string text = CsvRow(header);
   const bool has_truth = scenario.truth.poses.size() == record.poses.size();
   const bool has_diag = record.diagnostics.size() == record.poses.size();
   const bool has_ms = record.step_ms.size() == record.poses.size();
-  std::vector<std::string> cells(20);
+  std::vector<std::string> cells(has_map_ospa ? 21 : 20);
   for (std::size_t k = 0; k < record.poses.size(); ++k) {
     const Pose& p = record.poses[k];
     cells[0] = FormatInteger(static_cast<std::int64_t>(k));
@@ -90,6 +94,7 @@ std::string StepsCsv(const RunRecord& record, const datasets::Scenario& scenario
     cells[18] = has_nis ? FormatInteger(record.diagnostics[k].nis_count) : std::string();
     cells[19] =
         k < evaluation.gps_nees_rb.size() ? FormatNumber(evaluation.gps_nees_rb[k]) : std::string();
+    if (has_map_ospa) cells[20] = FormatNumber(evaluation.map_ospa_m[k]);
     text += CsvRow(cells);
   }
   return text;

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "datasets/scenario.h"
@@ -91,12 +92,24 @@ struct RunEvaluation {
   /// Per step (data with GPS only): (x, y) NEES of the Rao-Blackwellised mean and covariance
   /// against the matched GPS fix; NaN where unmatched or unavailable.
   std::vector<double> gps_nees_rb;
+  /// Per step: the map OSPA of map_ospa_trace.h; empty unless the run recorded its maps.
+  std::vector<double> map_ospa_m;
 };
 
 /// Evaluates a run against its scenario's truth. Throws std::invalid_argument when the record
 /// does not have one pose per scenario step.
 RunEvaluation EvaluateRun(const RunRecord& record, const datasets::Scenario& scenario,
                           const MetricSettings& settings = {});
+
+/// Why the metrics of a run cannot be stored (an error statistic that overflowed to infinity or
+/// is NaN, e.g. after the estimate diverged), or "" when they can. The runner records such a run
+/// as failed with this reason instead of writing a metrics.json that later readers refuse.
+std::string NonFiniteMetrics(const RunMetrics& m);
+
+/// The first error-statistic field of a metrics.json that is null although it must be a number:
+/// what older versions wrote for an overflowed error. "" when there is none. Readers count such a
+/// run as failed.
+std::string OverflowedMetricsField(const nlohmann::json& j);
 
 /// metrics.json fields of RunMetrics (flat; "not available" is null). Derived values (RMSE,
 /// std, means) are written for readers; FromJson reads back the sufficient statistics.

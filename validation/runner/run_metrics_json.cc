@@ -92,7 +92,34 @@ const std::vector<std::pair<std::string, long AssociationCounts::*>>& Associatio
   return fields;
 }
 
+// The error-statistic fields every metrics.json holds as numbers.
+constexpr const char* kRequiredStatistics[] = {"pos_err_sum_m", "pos_err_sq_sum_m2",
+                                               "heading_err_sum_deg", "heading_err_sq_sum_deg2"};
+
+std::string NonFiniteMoments(const std::string& what, const ErrorMoments& m) {
+  if (std::isfinite(m.sum) && std::isfinite(m.sum_sq)) return "";
+  return what + " is not finite (sum " + std::to_string(m.sum) + ", sum of squares " +
+         std::to_string(m.sum_sq) + " over " + std::to_string(m.count) +
+         " steps): the estimate diverged or an error overflowed";
+}
+
 }  // namespace
+
+std::string NonFiniteMetrics(const RunMetrics& m) {
+  std::string why = NonFiniteMoments("the position error", m.position_m);
+  if (why.empty()) why = NonFiniteMoments("the heading error", m.heading_deg);
+  if (why.empty() && m.gospa && !std::isfinite(m.gospa->gospa)) {
+    why = "the final map's GOSPA is not finite";
+  }
+  return why;
+}
+
+std::string OverflowedMetricsField(const nlohmann::json& j) {
+  for (const char* key : kRequiredStatistics) {
+    if (j.contains(key) && j.at(key).is_null()) return key;
+  }
+  return "";
+}
 
 nlohmann::json ToJson(const RunMetrics& m) {
   nlohmann::json j = nlohmann::json::object();

@@ -44,6 +44,9 @@ struct RunRecord {
   /// Per step, when particles were recorded and the estimator exposes them: (pose, log-weight)
   /// of every particle after the step (OnlineEstimator::ParticleStates). Otherwise empty.
   std::vector<std::vector<std::pair<Pose, double>>> particle_states;
+  /// Per step, when map traces were requested (online estimators): the means of the map estimate
+  /// after the step. Otherwise empty.
+  std::vector<std::vector<Landmark>> step_maps;
 };
 
 }  // namespace phdslam::validation

@@ -7,7 +7,7 @@ namespace phdslam::validation {
 const std::vector<ScenarioDefaultsRow>& ScenarioDefaultsTable() {
   static const std::vector<ScenarioDefaultsRow> table = {
       {"victoria-park",
-       {"phd1", "phd2a", "phd2b", "phd3", "scphd"},
+       {"phd1", "phd2a", "phd2b", "phd3", "rbphd", "scphd"},
        {{"merge_threshold", 10.0}},
        "reference notes 17: the merge threshold U is 10 on Victoria Park"},
       {"victoria-park",
@@ -21,7 +21,7 @@ const std::vector<ScenarioDefaultsRow>& ScenarioDefaultsTable() {
       // 20.84 %, whereas the threshold 1 gives 1.0 about 3 % at N = 5 and a diverged trajectory
       // (about 178 m).
       {"victoria-park",
-       {"phd1", "phd2a"},
+       {"phd1", "phd2a", "rbphd"},
        {{"ess_threshold_kind", "absolute"}, {"ess_threshold", 2.5}},
        "reproduces the published resampling rates of PHD-SLAM 1.0 and 2.0a (not stated)"},
   };

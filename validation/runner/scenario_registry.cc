@@ -5,6 +5,9 @@
 #include "datasets/data_dir.h"
 #include "datasets/scenario_check.h"
 #include "datasets/scenario_generator.h"
+#include "datasets/scphd_simulation.h"
+#include "datasets/sha256.h"
+#include "validation/runner/scenario_option_tables.h"
 
 namespace phdslam::validation {
 namespace {
@@ -16,12 +19,31 @@ void RequireNonNegativeSteps(const ScenarioOptions& options) {
   }
 }
 
+// Applies ScenarioOptions::settings through `table`, naming the scenario in errors.
+template <class T>
+void ApplySettings(const params::ParameterTable<T>& table, const ScenarioOptions& options,
+                   const std::string& scenario, T& o) {
+  try {
+    table.Apply(options.settings, o);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument("scenario '" + scenario + "' option: " + e.what());
+  }
+}
+
+template <class T>
+std::vector<ScenarioOptionHelp> OptionKeys(const params::ParameterTable<T>& table) {
+  std::vector<ScenarioOptionHelp> keys;
+  for (const params::Field<T>& f : table.fields()) keys.push_back({f.key, f.help});
+  return keys;
+}
+
 datasets::SyntheticOptions ToSyntheticOptions(const ScenarioOptions& options) {
   RequireNonNegativeSteps(options);
   datasets::SyntheticOptions o;
   o.steps = options.steps;
   if (options.detection_probability) o.detection_probability = *options.detection_probability;
   if (options.clutter_rate) o.clutter_rate = *options.clutter_rate;
+  ApplySettings(PaperSyntheticOptionsTable(), options, "paper-synthetic", o);
   o.Validate();
   return o;
 }
@@ -35,6 +57,7 @@ datasets::VictoriaParkOptions ToVictoriaParkOptions(const ScenarioOptions& optio
     o.detection_probability_nominal = *options.detection_probability;
   }
   if (options.clutter_rate) o.clutter_rate = *options.clutter_rate;
+  ApplySettings(VictoriaParkOptionsTable(), options, "victoria-park", o);
   o.Validate();
   return o;
 }
@@ -45,18 +68,28 @@ datasets::GeneratorOptions ToGeneratorOptions(const ScenarioOptions& options) {
   if (options.steps > 0) o.steps = options.steps;
   if (options.detection_probability) o.detection_probability = *options.detection_probability;
   if (options.clutter_rate) o.clutter_rate = *options.clutter_rate;
+  ApplySettings(GeneratedOptionsTable(), options, "generated", o);
   o.Validate();
   return o;
 }
 
-nlohmann::json MatrixJson(const Mat2& m) {
-  return nlohmann::json::array(
-      {nlohmann::json::array({m(0, 0), m(0, 1)}), nlohmann::json::array({m(1, 0), m(1, 1)})});
+// {"<relative path>": "sha256:<hex>"} for the data files a scenario reads: part of a run's
+// identity, so results made from other data are never mixed with these.
+nlohmann::json DataFileChecksums(const std::filesystem::path& data_dir,
+                                 const std::vector<std::filesystem::path>& files) {
+  nlohmann::json out = nlohmann::json::object();
+  std::error_code ec;
+  for (const std::filesystem::path& file : files) {
+    if (!std::filesystem::is_regular_file(data_dir / file, ec)) continue;  // the loader says so
+    out[file.generic_string()] = "sha256:" + datasets::FileSha256Hex(data_dir / file);
+  }
+  return out;
 }
 
 ScenarioEntry PaperSyntheticEntry() {
   ScenarioEntry e;
   e.name = "paper-synthetic";
+  e.option_keys = OptionKeys(PaperSyntheticOptionsTable());
   e.description =
       "the paper's synthetic scenario (Environment_SLAM.mat: 160 landmarks, 4000 "
       "steps of 1 s); truth poses and map; measurements drawn per seed";
@@ -67,18 +100,12 @@ ScenarioEntry PaperSyntheticEntry() {
   };
   e.resolved_options = [](const ScenarioOptions& options) {
     const datasets::SyntheticOptions o = ToSyntheticOptions(options);
-    return nlohmann::json{
-        {"data_dir", datasets::ResolveDataDir(options.data_dir).string()},
-        {"steps", o.steps},
-        {"detection_probability", o.detection_probability},
-        {"clutter_rate", o.clutter_rate},
-        {"fov_range", o.fov_range},
-        {"fov_half_angle", o.fov_half_angle},
-        {"range_buffer", o.range_buffer},
-        {"angle_buffer", o.angle_buffer},
-        {"measurement_noise_cov", MatrixJson(o.measurement_noise_cov)},
-        {"control_noise_cov", MatrixJson(o.control_noise_cov)},
-    };
+    const std::filesystem::path data_dir = datasets::ResolveDataDir(options.data_dir);
+    nlohmann::json j = PaperSyntheticOptionsTable().ToJson(o);
+    j["data_dir"] = data_dir.string();
+    j["data_files"] = DataFileChecksums(data_dir, datasets::PaperSyntheticDataFiles());
+    j["steps"] = o.steps;
+    return j;
   };
   return e;
 }
@@ -86,6 +113,7 @@ ScenarioEntry PaperSyntheticEntry() {
 ScenarioEntry VictoriaParkEntry() {
   ScenarioEntry e;
   e.name = "victoria-park";
+  e.option_keys = OptionKeys(VictoriaParkOptionsTable());
   e.description =
       "ACFR Victoria Park: tree detections, car odometry, GPS as the only truth; "
       "artificial clutter drawn per seed";
@@ -96,19 +124,12 @@ ScenarioEntry VictoriaParkEntry() {
   };
   e.resolved_options = [](const ScenarioOptions& options) {
     const datasets::VictoriaParkOptions o = ToVictoriaParkOptions(options);
-    return nlohmann::json{
-        {"data_dir", datasets::ResolveDataDir(options.data_dir).string()},
-        {"steps", o.max_steps},
-        {"detection_probability_max", o.detection_probability_max},
-        {"detection_probability_nominal", o.detection_probability_nominal},
-        {"clutter_rate", o.clutter_rate},
-        {"fov_range", o.fov_range},
-        {"fov_half_angle", o.fov_half_angle},
-        {"range_buffer", o.range_buffer},
-        {"angle_buffer", o.angle_buffer},
-        {"measurement_noise_cov", MatrixJson(o.measurement_noise_cov)},
-        {"control_noise_cov", MatrixJson(o.control_noise_cov)},
-    };
+    const std::filesystem::path data_dir = datasets::ResolveDataDir(options.data_dir);
+    nlohmann::json j = VictoriaParkOptionsTable().ToJson(o);
+    j["data_dir"] = data_dir.string();
+    j["data_files"] = DataFileChecksums(data_dir, datasets::VictoriaParkDataFiles(data_dir));
+    j["steps"] = o.max_steps;
+    return j;
   };
   return e;
 }
@@ -116,6 +137,7 @@ ScenarioEntry VictoriaParkEntry() {
 ScenarioEntry GeneratedEntry() {
   ScenarioEntry e;
   e.name = "generated";
+  e.option_keys = OptionKeys(GeneratedOptionsTable());
   e.description =
       "a generated scenario of the paper's kind (100 landmarks along a smooth "
       "1000-step path; map and measurements drawn per seed); no data files";
@@ -125,23 +147,41 @@ ScenarioEntry GeneratedEntry() {
   };
   e.resolved_options = [](const ScenarioOptions& options) {
     const datasets::GeneratorOptions o = ToGeneratorOptions(options);
-    return nlohmann::json{
-        {"steps", o.steps},
-        {"dt", o.dt},
-        {"speed", o.speed},
-        {"turn_amplitude", o.turn_amplitude},
-        {"landmarks", o.landmarks},
-        {"corridor_half_width", o.corridor_half_width},
-        {"detection_probability", o.detection_probability},
-        {"clutter_rate", o.clutter_rate},
-        {"fov_range", o.fov_range},
-        {"fov_half_angle", o.fov_half_angle},
-        {"range_buffer", o.range_buffer},
-        {"angle_buffer", o.angle_buffer},
-        {"measurement_noise_cov", MatrixJson(o.measurement_noise_cov)},
-        {"control_noise_cov", MatrixJson(o.control_noise_cov)},
-        {"initial_pose", {o.initial_pose(0), o.initial_pose(1), o.initial_pose(2)}},
-    };
+    nlohmann::json j = GeneratedOptionsTable().ToJson(o);
+    j["steps"] = o.steps;
+    return j;
+  };
+  return e;
+}
+
+datasets::ScPhdSimOptions ToScPhdSimOptions(const ScenarioOptions& options) {
+  RequireNonNegativeSteps(options);
+  datasets::ScPhdSimOptions o;
+  if (options.steps > 0) o.steps = options.steps;
+  if (options.detection_probability) o.detection_probability = *options.detection_probability;
+  if (options.clutter_rate) o.clutter_rate = *options.clutter_rate;
+  ApplySettings(ScPhdSimOptionsTable(), options, "scphd-sim", o);
+  o.Validate();
+  return o;
+}
+
+ScenarioEntry ScPhdSimEntry() {
+  ScenarioEntry e;
+  e.name = "scphd-sim";
+  e.option_keys = OptionKeys(ScPhdSimOptionsTable());
+  e.description =
+      "the simulation of single-cluster PHD SLAM's paper (Lee, Clark & Salvi 2012): Ackermann "
+      "vehicle, two laps of a 40 m circle among 60 fixed landmarks, 838 steps of 0.2 s; odometry "
+      "and measurements drawn per seed (datasets/scphd_simulation.h); no data files";
+  e.uses_data_dir = false;
+  e.make = [](std::uint64_t seed, const ScenarioOptions& options, ScenarioCache&) {
+    return datasets::MakeScPhdSimScenario(ToScPhdSimOptions(options), seed);
+  };
+  e.resolved_options = [](const ScenarioOptions& options) {
+    const datasets::ScPhdSimOptions o = ToScPhdSimOptions(options);
+    nlohmann::json j = ScPhdSimOptionsTable().ToJson(o);
+    j["steps"] = o.steps;
+    return j;
   };
   return e;
 }
@@ -175,6 +215,7 @@ const std::vector<ScenarioEntry>& ScenarioTable() {
       PaperSyntheticEntry(),
       VictoriaParkEntry(),
       GeneratedEntry(),
+      ScPhdSimEntry(),
   };
   return table;
 }

@@ -28,6 +28,15 @@ struct ScenarioOptions {
   /// (Victoria Park, where it also sets the nominal pD of the estimate threshold).
   std::optional<double> detection_probability;
   std::optional<double> clutter_rate;  ///< Poisson mean of clutter points per scan
+  /// Further options by key (`scenario_options`, `--scenario-set`), applied after the two above
+  /// through the scenario's option table (scenario_option_tables.h).
+  nlohmann::json settings = nlohmann::json::object();
+};
+
+/// One key a scenario accepts in ScenarioOptions::settings, with the values it accepts.
+struct ScenarioOptionHelp {
+  std::string key;
+  std::string help;
 };
 
 /// Data files loaded once and shared by every run of an invocation (keyed by data folder).
@@ -48,12 +57,14 @@ struct ScenarioEntry {
   std::string name;
   std::string description;
   bool uses_data_dir = true;
+  /// The keys of ScenarioOptions::settings, in table order.
+  std::vector<ScenarioOptionHelp> option_keys;
   /// Monte Carlo run `seed` of the scenario; deterministic in (seed, options, data).
   std::function<datasets::Scenario(std::uint64_t seed, const ScenarioOptions&, ScenarioCache&)>
       make;
   /// Every scenario setting after defaults and options (for config.json); throws
-  /// std::invalid_argument for an out-of-range option and std::runtime_error for a missing data
-  /// folder, so a bad request fails before any run starts.
+  /// std::invalid_argument naming the key for an unknown key or an out-of-range option and
+  /// std::runtime_error for a missing data folder, so a bad request fails before any run starts.
   std::function<nlohmann::json(const ScenarioOptions&)> resolved_options;
 };
 
@@ -76,7 +87,8 @@ datasets::Scenario MakeScenario(const std::string& name, std::uint64_t seed,
 struct ScenarioSource {
   std::string name;
   /// Every resolved scenario setting, stored in config.json and metrics.json. A "data_dir" key,
-  /// if present, is not compared when resuming (the same data may move).
+  /// if present, is not compared when resuming (the same data may move); a "data_files" key
+  /// (relative path -> "sha256:<hex>" of each data file read) is, so other data is refused.
   nlohmann::json options = nlohmann::json::object();
   /// Monte Carlo run `seed`; called concurrently from the worker threads.
   std::function<datasets::Scenario(std::uint64_t seed)> make;

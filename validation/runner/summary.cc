@@ -321,6 +321,14 @@ ResultsInventory ReadResults(const std::filesystem::path& out) {
       const std::filesystem::path error_path = run.path() / kErrorFile;
       if (std::filesystem::exists(metrics_path)) {
         const nlohmann::json j = ReadJsonFile(metrics_path);
+        if (const std::string field = OverflowedMetricsField(j); !field.empty()) {
+          FailedRun f;  // written before overflowed errors were recorded as failures
+          ReadIdentity(j, metrics_path, f);
+          f.error = metrics_path.string() + ": field '" + field +
+                    "' is null (an error that overflowed); counted as a failed run";
+          inventory.failed.push_back(std::move(f));
+          continue;
+        }
         RunResult r;
         ReadIdentity(j, metrics_path, r);
         r.metrics = RunMetricsFromJson(j, metrics_path.string());

@@ -238,6 +238,35 @@ TEST_F(SummaryTest, WritesSummaryAndRunsCsv) {
   EXPECT_NE(table.find("35.00 (7.07)"), std::string::npos) << table;
 }
 
+TEST_F(SummaryTest, AnOverflowedErrorInAnOldMetricsFileCountsAsAFailedRun) {
+  nlohmann::json poisoned = Identity("a", 1, 3);
+  poisoned.update(ToJson(SecondRun()));
+  poisoned["pos_err_sq_sum_m2"] = nullptr;  // what an overflowed sum was written as
+  WriteJson(out_, "a", 1, 3, kMetricsFile, poisoned.dump());
+  const ResultsInventory inv = ReadResults(out_);
+  EXPECT_EQ(inv.runs.size(), 3u);
+  ASSERT_EQ(inv.failed.size(), 2u);
+  EXPECT_EQ(inv.failed[0].estimator, "a");
+  EXPECT_EQ(inv.failed[0].seed, 3u);
+  EXPECT_NE(inv.failed[0].error.find("pos_err_sq_sum_m2"), std::string::npos);
+  const std::vector<GroupSummary> groups = WriteSummaryFiles(out_);
+  ASSERT_EQ(groups.size(), 2u);
+  EXPECT_EQ(groups[0].failed_runs, 1u);
+  EXPECT_TRUE(std::filesystem::exists(out_ / "summary.csv"));
+}
+
+TEST(RunMetricsCheck, NonFiniteErrorsAreNamedAndFiniteOnesPass) {
+  RunMetrics m;
+  m.position_m.Add(1.0);
+  m.heading_deg.Add(2.0);
+  EXPECT_EQ(NonFiniteMetrics(m), "");
+  m.position_m.Add(1e200);  // its square overflows
+  EXPECT_NE(NonFiniteMetrics(m).find("position error is not finite"), std::string::npos);
+  RunMetrics h;
+  h.heading_deg.Add(std::numeric_limits<double>::infinity());
+  EXPECT_NE(NonFiniteMetrics(h).find("heading error"), std::string::npos);
+}
+
 TEST_F(SummaryTest, ReportsACorruptFile) {
   WriteJson(out_, "a", 1, 3, kMetricsFile, "{\"estimator\": \"a\", \"particles\": 1}");
   try {

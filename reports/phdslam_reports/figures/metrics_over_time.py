@@ -19,6 +19,9 @@ PANELS = (
     ("map_components", "Map size (GM-PHD components)"),
 )
 
+MAP_OSPA_PANEL = ("map_ospa_m", "Map OSPA (m; p = 1, c = 5 m, landmarks detected so far)")
+"""Drawn as a fifth panel when steps.csv has the opt-in column (phdslam run --map-ospa)."""
+
 
 @dataclass
 class GroupSeries:
@@ -37,6 +40,8 @@ def collect_series(results: ResultsFolder, group: Group) -> GroupSeries | None:
     columns: dict[str, list[np.ndarray]] = {name: [] for name, _ in PANELS}
     for seed in seeds:
         steps = results.steps(group, seed)
+        if steps.has(MAP_OSPA_PANEL[0]):
+            columns.setdefault(MAP_OSPA_PANEL[0], []).append(steps.num(MAP_OSPA_PANEL[0]))
         columns["pos_err_m"].append(steps.num("pos_err_m"))
         columns["heading_err_deg"].append(steps.num("heading_err_deg"))
         columns["ess_ratio"].append(steps.num("ess") / float(group.particles))
@@ -63,16 +68,23 @@ def needs_log_scale(means: list[np.ndarray], ratio: float = 20.0) -> bool:
 def plot_metrics_over_time(
     series: list[GroupSeries], display_name: Callable[[str], str] = str,
 ) -> Figure | None:
-    """Four panels (position error, heading error, ESS/N, map size) over the step index."""
+    """Four panels (position error, heading error, ESS/N, map size) over the step index, and the
+    map OSPA as a fifth when the runs have it."""
     series = [s for s in series if s is not None]
     if not series:
         return None
     estimators = [s.group.estimator for s in series]
     particles = [s.group.particles for s in series]
-    fig, axes = new_figure(13.0, 8.0, 2, 2)
-    for (name, label), ax in zip(PANELS, axes.flat):
+    with_ospa = any(MAP_OSPA_PANEL[0] in s.bands for s in series)
+    panels = PANELS + (MAP_OSPA_PANEL,) if with_ospa else PANELS
+    fig, axes = new_figure(13.0, 12.0, 3, 2) if with_ospa else new_figure(13.0, 8.0, 2, 2)
+    if with_ospa:
+        axes.flat[-1].set_visible(False)
+    for (name, label), ax in zip(panels, axes.flat):
         drawn = False
         for s in series:
+            if name not in s.bands:
+                continue
             band = s.bands[name]
             if not np.any(np.isfinite(band.mean)):
                 continue

@@ -32,6 +32,11 @@ WEIGHTINGS = (
 )
 """(weight column, log-weight column, panel title) of the two weightings, in panel order."""
 
+OPTIONAL_WEIGHTINGS = (
+    ("sf_weight", "sf_log_weight", "single-feature RB-PHD-SLAM (Mullane et al.)"),
+)
+"""Weightings drawn after those when parent_weights.csv has their columns (newer files)."""
+
 MISSED_MASS_COLUMN = "missed_mass"
 MISSED_MASS_TITLE = "missed-detection mass \u03a3 pD w\n(the single-cluster penalty)"
 LOG_WEIGHT_LABEL = "normalised log weight (nats)"
@@ -120,8 +125,10 @@ def parent_weights_data(table: CsvTable, meta: dict[str, Any] | None) -> ParentW
     x, y, theta = table.num("x"), table.num("y"), table.num("theta")
     missed = table.num(MISSED_MASS_COLUMN) if table.has(MISSED_MASS_COLUMN) else None
     in_file = all(table.has(log_column) for _, log_column, _ in WEIGHTINGS)
+    present = WEIGHTINGS + tuple(o for o in OPTIONAL_WEIGHTINGS if table.has(o[0]) and
+                                 table.has(o[1]))
     weightings = []
-    for column, log_column, title in WEIGHTINGS:
+    for column, log_column, title in present:
         w = table.num(column)
         log_w = table.num(log_column) if in_file else log_of_weights(w)
         weightings.append(WeightingSummary(
@@ -177,12 +184,14 @@ def _markers(ax, data: ParentWeightsData, weighted_mean: Pose | None, colour: An
 def plot_parent_weights(data: ParentWeightsData) -> Figure:
     """Parents sized by normalised weight and coloured by log-weight (one scale, shared axes).
 
-    Two panels (single-cluster, RB-PHD); a third, coloured by missed_mass and sized by the
-    RB-PHD weight, when the data have it.
+    One panel per weighting (single-cluster, RB-PHD (46), and single-feature RB-PHD when the
+    data have it); a last one, coloured by missed_mass and sized by the RB-PHD weight, when the
+    data have it.
     """
     third = data.missed_mass is not None
-    panels = 3 if third else 2
-    fig, axes = new_figure(16.0 if third else 11.5, 5.8, 1, panels, sharex=True, sharey=True,
+    drawn = len(data.weightings)
+    panels = drawn + 1 if third else drawn
+    fig, axes = new_figure(4.6 * panels + 2.3, 5.8, 1, panels, sharex=True, sharey=True,
                            layout="constrained")
     axes = list(axes[0])
     top = max(float(np.max(w.weights)) for w in data.weightings) or 1.0
@@ -200,7 +209,7 @@ def plot_parent_weights(data: ParentWeightsData) -> Figure:
         ax.set_title(f"{weighting.title}\nESS = 1/\u03a3w\u00b2 = {weighting.ess:.1f} of "
                      f"{data.parents}")
     if third:
-        ax = axes[2]
+        ax = axes[drawn]
         rb = data.weightings[1]
         missed = data.missed_mass
         low, high = float(np.min(missed)), float(np.max(missed))
@@ -222,6 +231,6 @@ def plot_parent_weights(data: ParentWeightsData) -> Figure:
         ax.legend(loc="upper center", bbox_to_anchor=(0.5, 0.0), borderaxespad=4.3,
                   ncol=legend_columns, frameon=False, markerscale=0.8)
     axes[0].set_ylabel("y (m)" if to_scale else "y (m; not to the scale of x)")
-    fig.colorbar(ScalarMappable(norm=norm, cmap=cmap), ax=axes[:2], shrink=0.85, extend="min",
+    fig.colorbar(ScalarMappable(norm=norm, cmap=cmap), ax=axes[:drawn], shrink=0.85, extend="min",
                  label=f"{LOG_WEIGHT_LABEL}; point area = weight")
     return fig

@@ -1,0 +1,59 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer targets of fuzz/ with clang under AddressSanitizer + UndefinedBehavior-
+# Sanitizer (build/fuzz, PHDSLAM_FUZZ=ON) and runs each for SECONDS (default 20) on a seed corpus
+# made at run time from the data folder ($PHDSLAM_DATA, else ../shared/datasets; nothing of it is
+# kept in the repository) and the experiment files. Prints each target's executions per second and
+# total executions; exits non-zero when a target crashes, leaks or trips a sanitizer (the input
+# is kept as build/fuzz/artifacts/<target>-crash-*; turn it into a regression test).
+#
+#   ci/run-fuzz.sh          20 s per target (what ci/run-tests.sh runs)
+#   ci/run-fuzz.sh 600      longer, on demand
+set -euo pipefail
+cd "$(dirname "$0")/.."
+seconds=${1:-20}
+root=$(pwd)
+data=${PHDSLAM_DATA:-$root/../shared/datasets}
+build=build/fuzz
+targets=(mat_file victoria_park tum_trajectory map_csv experiment_file)
+
+cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++-14 \
+  -DPHDSLAM_FUZZ=ON -DPHDSLAM_BUILD_TESTS=OFF -DPHDSLAM_BUILD_BENCHMARKS=OFF \
+  -DPHDSLAM_WITH_CERES=OFF -DPHDSLAM_WITH_MRPT=OFF >/dev/null
+cmake --build "$build" -j "$(nproc 2>/dev/null || echo 2)" --target "${targets[@]/#/fuzz_}" >/dev/null
+
+# Seed corpus, rebuilt on every call from the real files.
+corpus=$build/corpus
+rm -rf "$corpus" && mkdir -p "$corpus"/{mat_file,victoria_park,tum_trajectory,map_csv,experiment_file}
+cp "$data/phdslam3-synthetic/Environment_SLAM.mat" "$data/victoria-park/aa3_gpsx.mat" \
+  "$corpus/mat_file/"
+{ printf '\x00'; head -n 60 "$data/victoria-park/measurements.dat"; } >"$corpus/victoria_park/m"
+{ printf '\x01'; head -n 60 "$data/victoria-park/inputs.dat"; } >"$corpus/victoria_park/i"
+awk 'NR <= 60 { printf "%s %s %s 0 0 0 %.6f %.6f\n", $1, $2, $3, sin($3 / 2), cos($3 / 2) }' \
+  "$data/victoria-park/inputs.dat" >"$corpus/tum_trajectory/t.tum"
+awk 'BEGIN { print "x,y,weight,pxx,pxy,pyy" } !/^#/ && NF >= 3 { print $2 "," $3 ",1,0.01,0,0.01" }' \
+  "$data/utias-mrclam/MRCLAM_Dataset6/Landmark_Groundtruth.dat" >"$corpus/map_csv/m.csv"
+cp validation/experiments/*.yaml "$corpus/experiment_file/"
+
+mkdir -p "$build/artifacts"
+# The targets write their input to files under $TMPDIR (fuzz/fuzz_input_file.h): keep them here.
+export TMPDIR=$root/$build/tmp
+rm -rf "$TMPDIR" && mkdir -p "$TMPDIR"
+status=0
+printf '%-16s %10s %12s %8s\n' target "execs/s" "total execs" result
+for t in "${targets[@]}"; do
+  log=$build/fuzz_$t.log
+  result=ok
+  if ! "$build/fuzz/fuzz_$t" "$corpus/$t" -max_total_time="$seconds" -print_final_stats=1 \
+      -max_len=262144 -rss_limit_mb=2048 -timeout=10 \
+      -artifact_prefix="$build/artifacts/$t-" >"$log" 2>&1; then
+    result=FAILED
+    status=1
+  fi
+  execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
+  rate=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$log" | tail -1)
+  printf '%-16s %10s %12s %8s\n' "$t" "${rate:-?}" "${execs:-?}" "$result"
+  if [[ $result != ok ]]; then
+    grep -E "ERROR|runtime error|terminate|Test unit written" "$log" | head -5 >&2 || true
+  fi
+done
+exit $status

@@ -1,0 +1,117 @@
+#include "datasets/mat_v5_structure.h"
+
+#include <gtest/gtest.h>
+#include <matio.h>
+
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <functional>
+#include <iterator>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "datasets/data_dir.h"
+#include "datasets/mat_file.h"
+#include "datasets/paper_synthetic.h"
+#include "datasets/test_temp_dir.h"
+
+namespace phdslam::datasets {
+namespace {
+
+std::string ReadBytes(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+void WriteBytes(const std::filesystem::path& path, const std::string& bytes) {
+  std::filesystem::create_directories(path.parent_path());
+  std::ofstream(path, std::ios::binary) << bytes;
+}
+
+std::filesystem::path SyntheticMat(const std::filesystem::path& data_dir) {
+  return data_dir / "phdslam3-synthetic" / "Environment_SLAM.mat";
+}
+
+std::string ErrorOf(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const std::runtime_error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(MatV5Structure, TheRealFilesPass) {
+  const auto data = ResolveDataDir(std::nullopt);
+  for (const auto& path : {SyntheticMat(data), data / "victoria-park" / "aa3_dr.mat",
+                           data / "victoria-park" / "aa3_gpsx.mat"}) {
+    const std::string bytes = ReadBytes(path);
+    ASSERT_TRUE(IsMatV5(bytes)) << path;
+    EXPECT_NO_THROW(CheckMatV5Structure(bytes, path.string())) << path;
+  }
+}
+
+TEST(MatV5Structure, FileCutInsideAVariableIsRefusedNamingTheFile) {
+  const std::string good = ReadBytes(SyntheticMat(ResolveDataDir(std::nullopt)));
+  const auto dir = testing::FreshTestDir();
+  const auto path = SyntheticMat(dir);
+  WriteBytes(path, good.substr(0, good.size() * 6 / 10));
+  const std::string error = ErrorOf([&] { (void)LoadPaperSyntheticEnvironment(dir); });
+  EXPECT_NE(error.find(path.string()), std::string::npos) << error;
+  EXPECT_NE(error.find("truncated"), std::string::npos) << error;
+}
+
+TEST(MatV5Structure, EveryTruncationOfTheSyntheticFileFailsToLoad) {
+  const std::string good = ReadBytes(SyntheticMat(ResolveDataDir(std::nullopt)));
+  const auto dir = testing::FreshTestDir();
+  for (std::size_t cut = 1; cut < good.size(); cut += 2749) {
+    WriteBytes(SyntheticMat(dir), good.substr(0, cut));
+    EXPECT_THROW((void)LoadPaperSyntheticEnvironment(dir), std::runtime_error) << "cut " << cut;
+  }
+}
+
+TEST(MatV5Structure, ArrayDeclaringMoreElementsThanItStoresIsRefused) {
+  const auto path = testing::FreshTestDir() / "short.mat";
+  {
+    mat_t* mat = Mat_CreateVer(path.c_str(), nullptr, MAT_FT_MAT5);
+    ASSERT_NE(mat, nullptr);
+    double values[3] = {1.0, 2.0, 3.0};
+    size_t dims[2] = {3, 1};
+    matvar_t* var = Mat_VarCreate("x", MAT_C_DOUBLE, MAT_T_DOUBLE, 2, dims, values, 0);
+    ASSERT_NE(var, nullptr);
+    ASSERT_EQ(Mat_VarWrite(mat, var, MAT_COMPRESSION_NONE), 0);
+    Mat_VarFree(var);
+    Mat_Close(mat);
+  }
+  std::string bytes = ReadBytes(path);
+  // header (128) + matrix tag (8) + array flags (16) + dimensions tag (8): the row count.
+  constexpr std::size_t kRowsOffset = 128 + 8 + 16 + 8;
+  std::int32_t rows = 0;
+  std::memcpy(&rows, bytes.data() + kRowsOffset, sizeof(rows));
+  ASSERT_EQ(rows, 3);
+  rows = 3000;
+  std::memcpy(bytes.data() + kRowsOffset, &rows, sizeof(rows));
+  WriteBytes(path, bytes);
+  const std::string error = ErrorOf([&] { const MatFile file(path); });
+  EXPECT_NE(error.find("declare 3000 elements but its real part stores 3"), std::string::npos)
+      << error;
+  EXPECT_NE(error.find("('x')"), std::string::npos) << error;
+}
+
+TEST(MatV5Structure, CorruptCompressedDataIsRefused) {
+  std::string bytes = ReadBytes(SyntheticMat(ResolveDataDir(std::nullopt)));
+  for (std::size_t i = 400; i < 600; ++i) bytes[i] = static_cast<char>(bytes[i] ^ 0x5a);
+  const std::string error = ErrorOf([&] { CheckMatV5Structure(bytes, "f.mat"); });
+  EXPECT_NE(error.find("f.mat, variable #"), std::string::npos) << error;
+}
+
+TEST(MatV5Structure, OtherFormatsAreNotVersion5) {
+  EXPECT_FALSE(IsMatV5(""));
+  EXPECT_FALSE(IsMatV5(std::string(200, 'x')));
+  EXPECT_THROW(CheckMatV5Structure(std::string(64, '\0'), "f"), std::runtime_error);
+}
+
+}  // namespace
+}  // namespace phdslam::datasets

@@ -1,0 +1,125 @@
+#include "datasets/scphd_simulation.h"
+
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "datasets/range_bearing_simulator.h"
+#include "src/core/random.h"
+#include "src/models/car_motion_model.h"
+
+namespace phdslam::datasets {
+namespace {
+
+constexpr const char* kScenarioName = "scphd-sim";
+constexpr const char* kMapStreamName = "scphd-sim/map";
+
+[[noreturn]] void Fail(const std::string& field, const std::string& what) {
+  throw std::invalid_argument("ScPhdSimOptions." + field + " " + what);
+}
+
+void RequirePositive(const std::string& field, double v) {
+  if (!(v > 0.0) || !std::isfinite(v))
+    Fail(field, "must be finite and > 0, got " + std::to_string(v));
+}
+
+SimulationSettings ToSettings(const ScPhdSimOptions& o) {
+  SimulationSettings s;
+  s.detection_probability = o.detection_probability;
+  s.clutter_rate = o.clutter_rate;
+  s.fov_range = o.fov_range;
+  s.fov_half_angle = o.fov_half_angle;
+  s.range_buffer = o.range_buffer;
+  s.angle_buffer = o.angle_buffer;
+  s.measurement_noise_cov = o.measurement_noise_cov;
+  s.control_noise_cov = o.control_noise_cov;
+  return s;
+}
+
+models::CarGeometry Bicycle(const ScPhdSimOptions& o) {
+  models::CarGeometry g;
+  g.wheelbase_l = o.wheelbase;
+  g.encoder_offset_h = 0.0;
+  g.laser_a = 0.0;
+  g.laser_b = 0.0;
+  return g;
+}
+
+// The heading change per step that makes each Euler step of length v dt a chord of the circle.
+double TurnPerStep(const ScPhdSimOptions& o) {
+  return 2.0 * std::asin(o.speed * o.dt / (2.0 * o.circle_radius));
+}
+
+}  // namespace
+
+ScPhdSimOptions::ScPhdSimOptions() {
+  measurement_noise_cov = Vec2(1.0, DegToRad(2.0) * DegToRad(2.0)).asDiagonal();
+  control_noise_cov = Vec2(2.0 * 2.0, DegToRad(5.0) * DegToRad(5.0)).asDiagonal();
+}
+
+void ScPhdSimOptions::Validate() const {
+  if (steps < 1) Fail("steps", "must be >= 1, got " + std::to_string(steps));
+  RequirePositive("dt", dt);
+  RequirePositive("speed", speed);
+  RequirePositive("circle_radius", circle_radius);
+  RequirePositive("wheelbase", wheelbase);
+  if (speed * dt >= 2.0 * circle_radius) Fail("speed", "* dt must be below the circle's diameter");
+  if (landmarks < 0) Fail("landmarks", "must be >= 0, got " + std::to_string(landmarks));
+  if (!(map_inner_radius >= 0.0) || !(map_outer_radius > map_inner_radius) ||
+      !std::isfinite(map_outer_radius)) {
+    Fail("map_outer_radius", "must be finite and > map_inner_radius >= 0");
+  }
+  ToSettings(*this).Validate("ScPhdSimOptions");
+}
+
+std::vector<Landmark> ScPhdSimMap(const ScPhdSimOptions& o) {
+  RandomStream rng(HashName(kMapStreamName));
+  const double r0 = o.map_inner_radius * o.map_inner_radius;
+  const double r1 = o.map_outer_radius * o.map_outer_radius;
+  std::vector<Landmark> map;
+  map.reserve(static_cast<std::size_t>(o.landmarks));
+  for (int i = 0; i < o.landmarks; ++i) {
+    // Uniform over the annulus: r^2 uniform on [r0^2, r1^2], angle uniform.
+    const double r = std::sqrt(r0 + (r1 - r0) * rng.Uniform());
+    const double phi = 2.0 * std::numbers::pi * rng.Uniform();
+    map.emplace_back(r * std::cos(phi), r * std::sin(phi));
+  }
+  return map;
+}
+
+Scenario MakeScPhdSimScenario(const ScPhdSimOptions& options, std::uint64_t seed) {
+  options.Validate();
+  Scenario s;
+  s.name = kScenarioName;
+  s.seed = seed;
+  const double turn = TurnPerStep(options);
+  // Heading the first chord: the poses are the vertices of a regular polygon on the circle.
+  s.initial_pose = Pose(options.circle_radius, 0.0, std::numbers::pi / 2.0 + turn / 2.0);
+  s.motion = MotionKind::kCar;
+  s.car = Bicycle(options);
+  s.control_noise_cov = options.control_noise_cov;
+  const SimulationSettings settings = ToSettings(options);
+  s.sensor = settings.Sensor();
+  s.truth.landmarks = ScPhdSimMap(options);
+
+  const models::CarMotionModel motion(s.car);
+  const double step = options.speed * options.dt;
+  const Control u(options.speed, std::atan(options.wheelbase * turn / step));
+  std::vector<Pose> poses;
+  std::vector<Control> controls;
+  Pose x = s.initial_pose;
+  for (int k = 0; k < options.steps; ++k) {
+    poses.push_back(x);
+    controls.push_back(u);
+    x = motion.Predict(x, u, options.dt);
+  }
+  RandomStream rng(DeriveSeed(HashName(kScenarioName), seed));
+  s.steps =
+      SimulateRangeBearingSteps(poses, controls, s.truth.landmarks, settings, options.dt, rng);
+  s.truth.poses = std::move(poses);
+  return s;
+}
+
+}  // namespace phdslam::datasets

@@ -1,0 +1,28 @@
+// The options of every scenario as declarative parameter tables (src/core/parameter_table.h):
+// one table per options struct gives the keys `scenario_options` and `--scenario-set` accept,
+// their checks, and the resolved values config.json records. The step limit (`steps`) and the
+// data folder are experiment settings and are not in the tables.
+#pragma once
+
+#include "datasets/paper_synthetic.h"
+#include "datasets/scenario_generator.h"
+#include "datasets/scphd_simulation.h"
+#include "datasets/victoria_park.h"
+#include "src/core/parameter_table.h"
+
+namespace phdslam::validation {
+
+/// paper-synthetic: the sensor (pD, clutter, field of view, buffers) and the noise covariances.
+const params::ParameterTable<datasets::SyntheticOptions>& PaperSyntheticOptionsTable();
+
+/// victoria-park: the artificial clutter, the detection profile, the field of view and the
+/// noise covariances the filters assume.
+const params::ParameterTable<datasets::VictoriaParkOptions>& VictoriaParkOptionsTable();
+
+/// generated: every generator option (path, landmarks, sensor, noise, initial pose).
+const params::ParameterTable<datasets::GeneratorOptions>& GeneratedOptionsTable();
+
+/// scphd-sim: the simulated path and map, the sensor and the noise covariances.
+const params::ParameterTable<datasets::ScPhdSimOptions>& ScPhdSimOptionsTable();
+
+}  // namespace phdslam::validation
