@@ -118,8 +118,8 @@ Workload MakeWorkload(int landmarks_in_view, const filters::PhdSlamParams& base_
   }
   const auto joint = filters::MakeImportanceDensity("phd2b", params);
   for (const StoredState& s : w.states) {
-    const filters::ProposalOutput out =
-        joint->Build({s.predicted_mean, s.predicted_cov, s.map.active(), s.measurements, &w.sensor, {}});
+    const filters::ProposalOutput out = joint->Build(
+        {s.predicted_mean, s.predicted_cov, s.map.active(), s.measurements, &w.sensor, {}});
     for (int c : out.best_association) w.mean_associated += c >= 0 ? 1.0 : 0.0;
     w.mean_active += static_cast<double>(s.map.active().size());
   }
@@ -147,9 +147,14 @@ void BenchmarkBuild(benchmark::State& state, const Workload* workload,
 double MeanMixtureSize(const Workload& workload, const filters::ImportanceDensity& density) {
   double total = 0.0;
   for (const StoredState& s : workload.states) {
-    total += static_cast<double>(
-        density.Build({s.predicted_mean, s.predicted_cov, s.map.active(), s.measurements, &workload.sensor, {}})
-            .mixture.size());
+    total += static_cast<double>(density
+                                     .Build({s.predicted_mean,
+                                             s.predicted_cov,
+                                             s.map.active(),
+                                             s.measurements,
+                                             &workload.sensor,
+                                             {}})
+                                     .mixture.size());
   }
   return total / static_cast<double>(workload.states.size());
 }

@@ -52,7 +52,7 @@ struct Scenario {
   std::uint64_t seed = 0;  ///< Monte Carlo seed the measurements were generated with
   Pose initial_pose = Pose::Zero();
   MotionKind motion = MotionKind::kVelocity;
-  models::CarGeometry car;  ///< used when motion == kCar
+  models::CarGeometry car;                    ///< used when motion == kCar
   Mat2 control_noise_cov = Mat2::Identity();  ///< Q_u
   models::SensorModel sensor;
   std::vector<ScenarioStep> steps;

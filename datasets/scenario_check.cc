@@ -131,9 +131,10 @@ void CheckStep(const ScenarioStep& step, std::size_t k, double* last_time,
         o == kClutter || o == kUnknownOrigin ||
         (o >= 0 && (landmark_count == 0 || static_cast<std::size_t>(o) < landmark_count));
     if (!valid) {
-      rep.Fail(where, "origin[" + std::to_string(j) + "] is " + std::to_string(o) +
-                          ", expected kClutter (-1), kUnknownOrigin (-2) or a landmark index below " +
-                          std::to_string(landmark_count));
+      rep.Fail(where,
+               "origin[" + std::to_string(j) + "] is " + std::to_string(o) +
+                   ", expected kClutter (-1), kUnknownOrigin (-2) or a landmark index below " +
+                   std::to_string(landmark_count));
     }
   }
 }

@@ -25,8 +25,8 @@ filters::ProposalOutput KnownAssociationIplDensity::Build(
   std::vector<filters::IplPair> pairs;
   for (std::size_t c = 0; c < input.landmarks.size(); ++c) {
     if (measurement_of[c] < 0) continue;
-    pairs.push_back({input.landmarks[c].mean, input.landmarks[c].cov,
-                     input.measurements[measurement_of[c]]});
+    pairs.push_back(
+        {input.landmarks[c].mean, input.landmarks[c].cov, input.measurements[measurement_of[c]]});
   }
   if (!pairs.empty()) {
     const filters::IplResult ipl = filters::PartitionedIpl(

@@ -161,8 +161,8 @@ int OracleMapModel::ComponentCount(const Map& map) const {
 
 std::unique_ptr<OracleRbpf> MakeKnownAssociationFilter(
     filters::EstimatorContext context, std::vector<std::vector<int>> origins,
-    const OracleParams& params,
-    std::unique_ptr<filters::ImportanceDensity> density, std::uint64_t stream_seed) {
+    const OracleParams& params, std::unique_ptr<filters::ImportanceDensity> density,
+    std::uint64_t stream_seed) {
   params.Validate();
   if (!context.motion) throw std::invalid_argument("oracle RBPF: the context has no motion model");
   OracleMapModel model(std::move(origins), context.sensor.noise_cov);

@@ -117,8 +117,8 @@ std::unique_ptr<OracleRbpf> MakeOracle(filters::EstimatorContext context,
 /// FastSLAM 1.0 with known association); `params` as for the oracle.
 std::unique_ptr<OracleRbpf> MakeKnownAssociationFilter(
     filters::EstimatorContext context, std::vector<std::vector<int>> origins,
-    const OracleParams& params,
-    std::unique_ptr<filters::ImportanceDensity> density, std::uint64_t stream_seed);
+    const OracleParams& params, std::unique_ptr<filters::ImportanceDensity> density,
+    std::uint64_t stream_seed);
 
 /// Origin labels of every step of a scenario, checked against its measurement counts. Throws
 /// std::invalid_argument naming the scenario and step when a step's labels are missing.

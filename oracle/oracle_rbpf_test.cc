@@ -244,7 +244,8 @@ TEST(OracleRbpf, SingleParticleWeightIncrementEqualsTheHandComputation) {
   ASSERT_TRUE(p.map.landmarks[1].seen);
   EXPECT_LT((p.map.landmarks[1].mean - models::InverseMeasurement(x, s1.measurements[2])).norm(),
             1e-10);
-  EXPECT_LT((p.map.landmarks[1].cov - models::BirthCovariance(x, s1.measurements[2], r)).norm(), 1e-12);
+  EXPECT_LT((p.map.landmarks[1].cov - models::BirthCovariance(x, s1.measurements[2], r)).norm(),
+            1e-12);
   // Association: the updated landmark's prior mean; NaN for clutter and the first sighting.
   ASSERT_EQ(out.association.size(), 3u);
   EXPECT_EQ(out.association[0], lm0.mean);

@@ -10,10 +10,10 @@
 #include <string>
 #include <vector>
 
+#include "datasets/batch_estimator.h"
 #include "datasets/scenario.h"
 #include "reference/ceres/landmark_association.h"
 #include "reference/ceres/odometry_increment.h"
-#include "datasets/batch_estimator.h"
 #include "src/filters/estimator.h"
 
 namespace phdslam::reference {

@@ -6,8 +6,8 @@
 #include <memory>
 #include <vector>
 
-#include "reference/ceres/batch_smoother.h"
 #include "datasets/batch_estimator.h"
+#include "reference/ceres/batch_smoother.h"
 #include "src/filters/estimator.h"
 
 namespace phdslam::reference {

@@ -66,8 +66,7 @@ TEST(FastSlam, Version2TracksTheTruthWithClutter) {
 TEST(FastSlam, Version1TracksTheTruthWithClutter) {
   for (std::uint64_t seed : {1, 2}) {
     const datasets::Scenario s = MakeCircleScenario(WithClutter(), seed);
-    FastSlam fs(s.PublicContext(), 50, 200 + seed,
-                Version(FastSlamProposal::kMotionModel));
+    FastSlam fs(s.PublicContext(), 50, 200 + seed, Version(FastSlamProposal::kMotionModel));
     const double rmse = PositionRmse(s, RunOnline(fs, s));
     ::testing::Test::RecordProperty("rmse_v1_seed" + std::to_string(seed), std::to_string(rmse));
     EXPECT_LT(rmse, 1.0) << "seed " << seed;
@@ -84,8 +83,7 @@ TEST(FastSlam, Version2IsNotWorseThanVersion1) {
   double sum2 = 0.0;
   for (std::uint64_t seed : {1, 2, 3}) {
     const datasets::Scenario s = MakeCircleScenario(CircleScenarioOptions{}, seed);
-    FastSlam v1(s.PublicContext(), 10, 300 + seed,
-                Version(FastSlamProposal::kMotionModel));
+    FastSlam v1(s.PublicContext(), 10, 300 + seed, Version(FastSlamProposal::kMotionModel));
     FastSlam v2(s.PublicContext(), 10, 300 + seed,
                 Version(FastSlamProposal::kMeasurementConditioned));
     sum1 += PositionRmse(s, RunOnline(v1, s));
@@ -158,10 +156,8 @@ TEST(FastSlam, ReportsDiagnostics) {
   CircleScenarioOptions o = WithClutter();
   o.steps = 40;
   const datasets::Scenario s = MakeCircleScenario(o, 8);
-  FastSlam single(s.PublicContext(), 1, 1,
-                  Version(FastSlamProposal::kMeasurementConditioned));
-  FastSlam many(s.PublicContext(), 10, 1,
-                Version(FastSlamProposal::kMotionModel));
+  FastSlam single(s.PublicContext(), 1, 1, Version(FastSlamProposal::kMeasurementConditioned));
+  FastSlam many(s.PublicContext(), 10, 1, Version(FastSlamProposal::kMotionModel));
   for (const datasets::ScenarioStep& step : s.steps) {
     const filters::StepOutput one = single.Step(step.data);
     EXPECT_DOUBLE_EQ(one.diag.ess, 1.0);

@@ -127,7 +127,8 @@ std::vector<Assignment> BlockMurtyKBest(const Eigen::MatrixXd& cost, int k, doub
     if (mb.ranked.empty()) return {};
     if (mb.ranked.size() == 1) {
       base.cost += mb.ranked[0].cost;
-      for (int i = 0; i < nr; ++i) base.row_to_col[mb.rows[i]] = mb.cols[mb.ranked[0].row_to_col[i]];
+      for (int i = 0; i < nr; ++i)
+        base.row_to_col[mb.rows[i]] = mb.cols[mb.ranked[0].row_to_col[i]];
     } else {
       multi.push_back(std::move(mb));
     }

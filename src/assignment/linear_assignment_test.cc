@@ -44,9 +44,7 @@ void ExpectValidAssignment(const Eigen::MatrixXd& cost, const Assignment& a) {
 
 TEST(SolveLinearAssignment, HandComputedSquareCase) {
   Eigen::MatrixXd cost(3, 3);
-  cost << 4, 1, 3,
-          2, 0, 5,
-          3, 2, 2;
+  cost << 4, 1, 3, 2, 0, 5, 3, 2, 2;
   const auto a = SolveLinearAssignment(cost);
   ASSERT_TRUE(a.has_value());
   EXPECT_EQ(a->row_to_col, (std::vector<int>{1, 0, 2}));
@@ -55,8 +53,7 @@ TEST(SolveLinearAssignment, HandComputedSquareCase) {
 
 TEST(SolveLinearAssignment, RectangularPrefersCheapColumnsAndAvoidsForbidden) {
   Eigen::MatrixXd cost(2, 4);
-  cost << 5, kForbidden, 1, 7,
-          kForbidden, 3, 1, 9;
+  cost << 5, kForbidden, 1, 7, kForbidden, 3, 1, 9;
   const auto a = SolveLinearAssignment(cost);
   ASSERT_TRUE(a.has_value());
   // Options: (2, 1) = 4, (0, 2) = 6, (0, 1) = 8, ...
@@ -66,13 +63,11 @@ TEST(SolveLinearAssignment, RectangularPrefersCheapColumnsAndAvoidsForbidden) {
 
 TEST(SolveLinearAssignment, InfeasibleCasesGiveNullopt) {
   Eigen::MatrixXd all_forbidden_row(2, 3);
-  all_forbidden_row << 1, 2, 3,
-                       kForbidden, kForbidden, kForbidden;
+  all_forbidden_row << 1, 2, 3, kForbidden, kForbidden, kForbidden;
   EXPECT_FALSE(SolveLinearAssignment(all_forbidden_row).has_value());
   // Two rows that can only use the same column.
   Eigen::MatrixXd shared_column(2, 3);
-  shared_column << kForbidden, 1, kForbidden,
-                   kForbidden, 2, kForbidden;
+  shared_column << kForbidden, 1, kForbidden, kForbidden, 2, kForbidden;
   EXPECT_FALSE(SolveLinearAssignment(shared_column).has_value());
 }
 

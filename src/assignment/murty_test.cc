@@ -90,8 +90,7 @@ std::vector<Assignment> TruncateByGap(const std::vector<Assignment>& all, int k,
 
 TEST(MurtyKBest, HandComputedRanking) {
   Eigen::MatrixXd cost(2, 3);
-  cost << 1, 2, 10,
-          3, 1, kForbidden;
+  cost << 1, 2, 10, 3, 1, kForbidden;
   // Assignments: (0,1)=2, (1,0)=5, (2,0)=13, (2,1)=11; forbidden (0,2), (1,2).
   const auto ranked = MurtyKBest(cost, 10);
   ASSERT_EQ(ranked.size(), 4u);
@@ -111,8 +110,7 @@ TEST(MurtyKBest, HandComputedRanking) {
 
 TEST(MurtyKBest, EdgeCases) {
   Eigen::MatrixXd all_forbidden_row(2, 3);
-  all_forbidden_row << 1, 2, 3,
-                       kForbidden, kForbidden, kForbidden;
+  all_forbidden_row << 1, 2, 3, kForbidden, kForbidden, kForbidden;
   EXPECT_TRUE(MurtyKBest(all_forbidden_row, 5).empty());
   EXPECT_TRUE(MurtyKBest(all_forbidden_row, 5, 1.0).empty());
   EXPECT_TRUE(MurtyKBest(Eigen::MatrixXd::Ones(2, 2), 0).empty());
@@ -173,7 +171,8 @@ TEST(MurtyKBest, EarlyStopMatchesBruteForceTruncatedByGap) {
     for (const double gap : {0.0, 1.0, 2.0, 2.5, 6.9078, 1e9}) {
       for (const int k : {1, 2, 5, 50}) {
         SCOPED_TRACE(::testing::Message()
-                     << "trial " << trial << " gap " << gap << " k " << k << "\n" << cost);
+                     << "trial " << trial << " gap " << gap << " k " << k << "\n"
+                     << cost);
         ExpectSameRanking(cost, MurtyKBest(cost, k, gap), TruncateByGap(all, k, gap), tol);
       }
     }

@@ -36,8 +36,8 @@ TEST(Gaussian, LogPdfMatchesClosedFormAndRejectsIndefinite) {
   const Eigen::Vector2d x(0.4, -0.2);
   const Eigen::Vector2d mu(0.1, 0.1);
   const Eigen::Vector2d r = x - mu;
-  const double expect = -std::log(2 * M_PI) - 0.5 * std::log(s.determinant()) -
-                        0.5 * r.dot(s.inverse() * r);
+  const double expect =
+      -std::log(2 * M_PI) - 0.5 * std::log(s.determinant()) - 0.5 * r.dot(s.inverse() * r);
   EXPECT_NEAR(*LogNormalPdf<2>(x, mu, s), expect, 1e-13);
   EXPECT_NEAR(EvalGaussian2(r, s).log_pdf, expect, 1e-13);
   Eigen::Matrix2d bad;

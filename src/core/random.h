@@ -43,9 +43,7 @@ class RandomStream {
   explicit RandomStream(std::uint64_t seed) : engine_(MixSeed(seed)) {}
 
   /// Uniform on [0, 1).
-  double Uniform() {
-    return static_cast<double>(engine_() >> 11) * 0x1.0p-53;
-  }
+  double Uniform() { return static_cast<double>(engine_() >> 11) * 0x1.0p-53; }
   /// Uniform on [a, b).
   double Uniform(double a, double b) { return a + (b - a) * Uniform(); }
 

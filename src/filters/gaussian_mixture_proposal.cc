@@ -22,8 +22,7 @@ PreparedProposal PrepareProposal(GaussianMixtureProposal mixture) {
     if (p.chol[t]) {
       const Mat3& l = *p.chol[t];
       p.inv_chol[t] = l.triangularView<Eigen::Lower>().solve(Mat3::Identity());
-      p.log_norm[t] =
-          -1.5 * std::log(2.0 * std::numbers::pi) - l.diagonal().array().log().sum();
+      p.log_norm[t] = -1.5 * std::log(2.0 * std::numbers::pi) - l.diagonal().array().log().sum();
     }
   }
   p.mixture = std::move(mixture);
@@ -45,7 +44,8 @@ double LogMixtureDensity(const PreparedProposal& proposal, const Pose& x) {
   for (std::size_t t = 0; t < proposal.mixture.size(); ++t) {
     if (!proposal.chol[t]) continue;
     const Vec3 w = proposal.inv_chol[t] * (x - proposal.mixture.means[t]);
-    acc = LogAddExp(acc, proposal.mixture.log_weights[t] + proposal.log_norm[t] - 0.5 * w.squaredNorm());
+    acc = LogAddExp(acc,
+                    proposal.mixture.log_weights[t] + proposal.log_norm[t] - 0.5 * w.squaredNorm());
   }
   return acc;
 }

@@ -30,10 +30,10 @@ struct GaussianMixtureProposal {
 /// The mixture with its log-weights normalised and the lower Cholesky factors precomputed
 /// (nullopt for a component whose covariance is not positive definite).
 struct PreparedProposal {
-  GaussianMixtureProposal mixture;            ///< log_weights normalised
-  std::vector<std::optional<Mat3>> chol;      ///< lower Cholesky factors
-  std::vector<double> log_norm;               ///< log of each component's Gaussian normaliser
-  std::vector<Mat3> inv_chol;                 ///< inverse lower factors, where chol exists
+  GaussianMixtureProposal mixture;        ///< log_weights normalised
+  std::vector<std::optional<Mat3>> chol;  ///< lower Cholesky factors
+  std::vector<double> log_norm;           ///< log of each component's Gaussian normaliser
+  std::vector<Mat3> inv_chol;             ///< inverse lower factors, where chol exists
 };
 
 PreparedProposal PrepareProposal(GaussianMixtureProposal mixture);

@@ -48,8 +48,8 @@ AssociationCosts BuildAssociationCosts(const ProposalInput& input, const PhdSlam
     if (pd <= 0.0) continue;
     const auto j = models::MeasurementJacobians(input.predicted_mean, comp.mean);
     const Measurement z_hat = models::PredictMeasurement(input.predicted_mean, comp.mean);
-    Mat2 s = j.hx * input.predicted_cov * j.hx.transpose() +
-             j.hm * comp.cov * j.hm.transpose() + input.sensor->noise_cov;
+    Mat2 s = j.hx * input.predicted_cov * j.hx.transpose() + j.hm * comp.cov * j.hm.transpose() +
+             input.sensor->noise_cov;
     Symmetrize(s);
     const double base =
         std::log(pd) + comp.log_weight - log_clutter - log_two_pi - 0.5 * std::log(s.determinant());
@@ -103,8 +103,8 @@ ProposalOutput GmIplDensity::Build(const ProposalInput& input) const {
   if (r == 0) {
     hypotheses.push_back({{}, 0.0});
   } else {
-    hypotheses = assignment::BlockMurtyKBest(costs.cost, params_.max_hypotheses,
-                                        params_.murty_max_cost_gap);
+    hypotheses =
+        assignment::BlockMurtyKBest(costs.cost, params_.max_hypotheses, params_.murty_max_cost_gap);
   }
 
   ProposalOutput out;
@@ -144,7 +144,8 @@ ProposalOutput GmIplDensity::Build(const ProposalInput& input) const {
     out.mixture.Add(log_kappa, ipl.mean, ipl.cov);
     if (h == 0) {
       for (std::size_t p = 0; p < pairs.size(); ++p) {
-        out.best_association[costs.cols[row_to_col[detected_rows[p]]]] = costs.rows[detected_rows[p]];
+        out.best_association[costs.cols[row_to_col[detected_rows[p]]]] =
+            costs.rows[detected_rows[p]];
       }
     }
   }

@@ -18,11 +18,11 @@ class GmIplDensity final : public ImportanceDensity {
 
 /// The gated log-gain cost structure of notes 10.1, shared by the GM density and PHD-SLAM 2.0b.
 struct AssociationCosts {
-  std::vector<double> pd;            ///< pD of every active component at the predicted mean
-  std::vector<double> miss;          ///< log(1 - pD_i) + eta_i for every active component
-  std::vector<int> rows;             ///< active components with at least one gated measurement
-  std::vector<int> cols;             ///< measurements gated by at least one component
-  Eigen::MatrixXd cost;              ///< rows x (cols + rows): -log gains, +inf forbidden
+  std::vector<double> pd;    ///< pD of every active component at the predicted mean
+  std::vector<double> miss;  ///< log(1 - pD_i) + eta_i for every active component
+  std::vector<int> rows;     ///< active components with at least one gated measurement
+  std::vector<int> cols;     ///< measurements gated by at least one component
+  Eigen::MatrixXd cost;      ///< rows x (cols + rows): -log gains, +inf forbidden
 };
 AssociationCosts BuildAssociationCosts(const ProposalInput& input, const PhdSlamParams& params);
 

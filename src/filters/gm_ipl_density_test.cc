@@ -71,8 +71,8 @@ TEST(GmIplDensity, OneDetectionIsTheIplPosteriorWeightedByEquation44) {
   // (1 - pD) w, so the landmark's weight w cancels in the ratio.
   const double pd = sensor.DetectionProbability(kPriorMean, map[0].mean);
   const auto jac = models::MeasurementJacobians(ipl.mean, map[0].mean);
-  const Mat2 s = jac.hx * ipl.cov * jac.hx.transpose() +
-                 jac.hm * map[0].cov * jac.hm.transpose() + sensor.noise_cov;
+  const Mat2 s = jac.hx * ipl.cov * jac.hx.transpose() + jac.hm * map[0].cov * jac.hm.transpose() +
+                 sensor.noise_cov;
   Vec2 nu = z[0] - models::PredictMeasurement(ipl.mean, map[0].mean);
   nu(1) = WrapAngle(nu(1));
   const double expected = std::log(pd) + *LogNormalPdf<2>(nu, Vec2::Zero(), s) -
@@ -94,9 +94,9 @@ TEST(GmIplDensity, TheAllClutterComponentIsAnOption) {
 
 TEST(GmIplDensity, HypothesesAreCappedAndRankedBestFirst) {
   const models::SensorModel sensor = Sensor();
-  const std::vector<phd::GaussianComponent> map = Landmarks(
-      {Landmark(340.0, 410.0), Landmark(342.0, 411.0), Landmark(320.0, 350.0),
-       Landmark(321.0, 352.0)});
+  const std::vector<phd::GaussianComponent> map =
+      Landmarks({Landmark(340.0, 410.0), Landmark(342.0, 411.0), Landmark(320.0, 350.0),
+                 Landmark(321.0, 352.0)});
   const std::vector<Measurement> z = {models::PredictMeasurement(kTruth, map[0].mean),
                                       models::PredictMeasurement(kTruth, map[2].mean),
                                       Measurement(60.0, 0.9)};

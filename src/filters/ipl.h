@@ -17,14 +17,14 @@ struct IplPair {
 };
 
 struct IplOptions {
-  int max_iterations = 5;       ///< L
-  double kl_tolerance = 1e-3;   ///< epsilon: stop when KL(previous || new) < epsilon
+  int max_iterations = 5;      ///< L
+  double kl_tolerance = 1e-3;  ///< epsilon: stop when KL(previous || new) < epsilon
 };
 
 struct IplResult {
   Pose mean;
   Mat3 cov;
-  int iterations = 0;         ///< iterations whose result was accepted
+  int iterations = 0;  ///< iterations whose result was accepted
   bool cholesky_failed = false;
 };
 

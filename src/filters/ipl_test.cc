@@ -54,7 +54,8 @@ TEST(PartitionedIpl, IteratesToAFixedPointAndStopsOnKl) {
   const Pose mu0(11.5, -6.0, 0.25);
   const Mat3 sigma0 = Vec3(2.0, 2.0, 0.01).asDiagonal();
   std::vector<IplPair> pairs;
-  for (const Landmark& m : {Landmark(40, 5), Landmark(30, -30), Landmark(60, 20), Landmark(20, 15)}) {
+  for (const Landmark& m :
+       {Landmark(40, 5), Landmark(30, -30), Landmark(60, 20), Landmark(20, 15)}) {
     pairs.push_back({m, Mat2::Identity() * 1e-4, models::PredictMeasurement(truth, m)});
   }
   const IplResult r = PartitionedIpl(mu0, sigma0, pairs, NoiseCov(), {20, 1e-10});

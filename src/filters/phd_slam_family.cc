@@ -11,12 +11,15 @@ namespace phdslam::filters {
 const std::vector<PhdSlamVariant>& PhdSlamVariants() {
   static const std::vector<PhdSlamVariant> variants = {
       {"phd1", "PHD-SLAM 1.0: RB-PHD-SLAM with the transition density as importance density"},
-      {"phd2a", "PHD-SLAM 2.0a: EKF conditionals on every gated (component, measurement) pair, "
-                "moment-matched into one Gaussian"},
-      {"phd2b", "PHD-SLAM 2.0b: joint IPL of the pose and the landmarks of the single best "
-                "association, pose marginal as proposal"},
-      {"phd3", "PHD-SLAM 3.0 (system under test): GM importance density over Murty-ranked "
-               "associations with partitioned IPL"},
+      {"phd2a",
+       "PHD-SLAM 2.0a: EKF conditionals on every gated (component, measurement) pair, "
+       "moment-matched into one Gaussian"},
+      {"phd2b",
+       "PHD-SLAM 2.0b: joint IPL of the pose and the landmarks of the single best "
+       "association, pose marginal as proposal"},
+      {"phd3",
+       "PHD-SLAM 3.0 (system under test): GM importance density over Murty-ranked "
+       "associations with partitioned IPL"},
   };
   return variants;
 }

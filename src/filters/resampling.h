@@ -18,6 +18,7 @@ double EffectiveSampleSize(std::span<const double> weights);
 /// with an accumulator of N w_i, emitting floor copies and one more copy when the accumulator
 /// passes the uniform of the next output slot. `uniforms` holds N i.i.d. U[0,1) draws.
 /// Returns exactly N sorted source indices.
-std::vector<int> StratifiedResample(std::span<const double> weights, std::span<const double> uniforms);
+std::vector<int> StratifiedResample(std::span<const double> weights,
+                                    std::span<const double> uniforms);
 
 }  // namespace phdslam::filters

@@ -15,14 +15,14 @@ TEST(StratifiedResample, HandComputedCounts) {
             (std::vector<int>{0, 0, 1, 2}));
   // N w = [0.9, 0.9, 1.2], r = [0.5, 0.95, 0.1]:
   // i=0: c=0.9 >= r0 -> emit 0, c=-0.1; i=1: c=0.8 < r1; i=2: c=2.0 -> emit 2, 2.
-  EXPECT_EQ(StratifiedResample(std::vector<double>{0.3, 0.3, 0.4},
-                               std::vector<double>{0.5, 0.95, 0.1}),
-            (std::vector<int>{0, 2, 2}));
+  EXPECT_EQ(
+      StratifiedResample(std::vector<double>{0.3, 0.3, 0.4}, std::vector<double>{0.5, 0.95, 0.1}),
+      (std::vector<int>{0, 2, 2}));
   // Same weights, r = [0.95, 0.5, 0.1]: i=0: c=0.9 < r0; i=1: c=1.8 -> emit 1, c=0.8 >= r1 ->
   // emit 1, c=-0.2; i=2: c=1.0 -> emit 2.
-  EXPECT_EQ(StratifiedResample(std::vector<double>{0.3, 0.3, 0.4},
-                               std::vector<double>{0.95, 0.5, 0.1}),
-            (std::vector<int>{1, 1, 2}));
+  EXPECT_EQ(
+      StratifiedResample(std::vector<double>{0.3, 0.3, 0.4}, std::vector<double>{0.95, 0.5, 0.1}),
+      (std::vector<int>{1, 1, 2}));
 }
 
 TEST(StratifiedResample, IsUnbiasedAndSorted) {

@@ -43,9 +43,9 @@
 #include "src/core/random.h"
 #include "src/core/types.h"
 #include "src/filters/estimator.h"
+#include "src/filters/sc_phd_slam_params.h"
 #include "src/phd/gaussian_component.h"
 #include "src/phd/gm_phd_map.h"
-#include "src/filters/sc_phd_slam_params.h"
 #include "src/phd/map_params.h"
 
 namespace phdslam::filters {

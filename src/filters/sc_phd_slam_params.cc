@@ -16,18 +16,21 @@ const params::ParameterTable<ScPhdSlamParams>& ScPhdSlamParamsTable() {
   using params::AtLeast;
   using P = ScPhdSlamParams;
   static const params::ParameterTable<P> table(params::Rows<P>({
-      {params::IntField<P>("particles", [](auto& p) -> auto& { return p.particles; }, AtLeast(1)),
-       params::IntField<P>("shotgun", [](auto& p) -> auto& { return p.shotgun; }, AtLeast(1))},
-      params::Embed<P>(MapParamsTable(), [](auto& p) -> auto& { return p.map; }),
-      {params::DiagonalField<P, 3>("pose_regularisation",
-                                   [](auto& p) -> auto& { return p.pose_regularisation; },
-                                   AtLeast(0.0)),
+      {params::IntField<P>(
+           "particles", [](auto& p) -> auto& { return p.particles; }, AtLeast(1)),
+       params::IntField<P>(
+           "shotgun", [](auto& p) -> auto& { return p.shotgun; }, AtLeast(1))},
+      params::Embed<P>(
+          MapParamsTable(), [](auto& p) -> auto& { return p.map; }),
+      {params::DiagonalField<P, 3>(
+           "pose_regularisation", [](auto& p) -> auto& { return p.pose_regularisation; },
+           AtLeast(0.0)),
        params::EnumField<P, ScPredictionSampling>(
            "prediction", [](auto& p) -> auto& { return p.prediction; },
            {{ScPredictionSampling::kControlNoise, "control-noise"},
             {ScPredictionSampling::kLinearisedGaussian, "linearised-gaussian"}}),
-       params::BoolField<P>("empty_scan_update",
-                            [](auto& p) -> auto& { return p.empty_scan_update; })},
+       params::BoolField<P>(
+           "empty_scan_update", [](auto& p) -> auto& { return p.empty_scan_update; })},
   }));
   return table;
 }

@@ -20,9 +20,10 @@ TEST(VelocityMotionModel, JacobiansMatchFiniteDifferences) {
   for (const Control& u : {Control(1.0, 0.01), Control(0.9, -0.0172), Control(1.1, 0.3)}) {
     const Pose x(300.0, 400.0, DegToRad(-5.0));
     const auto j = f.Jacobians(x, u, 1.0);
-    ExpectJacobianNear<3, 3>(j.fx, [&](const Vec3& xx) { return f.Predict(xx, u, 1.0); }, x);
-    ExpectJacobianNear<3, 2>(j.fu, [&](const Vec2& uu) { return f.Predict(x, uu, 1.0); }, u,
-                             1e-5);
+    ExpectJacobianNear<3, 3>(
+        j.fx, [&](const Vec3& xx) { return f.Predict(xx, u, 1.0); }, x);
+    ExpectJacobianNear<3, 2>(
+        j.fu, [&](const Vec2& uu) { return f.Predict(x, uu, 1.0); }, u, 1e-5);
   }
 }
 
@@ -39,8 +40,8 @@ TEST(VelocityMotionModel, StraightLineLimitIsContinuous) {
   EXPECT_LT((j0.fu - j1.fu).cwiseAbs().maxCoeff(), 1e-4);
   // The straight-line Jacobians are exact derivatives of the straight-line model at omega = 0
   // along the pose; the omega column is the limit of the turning model.
-  ExpectJacobianNear<3, 3>(j0.fx, [&](const Vec3& xx) { return f.Predict(xx, Control(1, 0), 2); },
-                           x);
+  ExpectJacobianNear<3, 3>(
+      j0.fx, [&](const Vec3& xx) { return f.Predict(xx, Control(1, 0), 2); }, x);
 }
 
 TEST(CarMotionModel, PoseJacobianMatchesFiniteDifferencesAndControlJacobianIsTheReferenceOne) {
@@ -49,7 +50,8 @@ TEST(CarMotionModel, PoseJacobianMatchesFiniteDifferencesAndControlJacobianIsThe
   const Control u(2.5, 0.1);
   const double dt = 0.025;
   const auto j = f.Jacobians(x, u, dt);
-  ExpectJacobianNear<3, 3>(j.fx, [&](const Vec3& xx) { return f.Predict(xx, u, dt); }, x);
+  ExpectJacobianNear<3, 3>(
+      j.fx, [&](const Vec3& xx) { return f.Predict(xx, u, dt); }, x);
   // The reference Fu is deliberately approximate (notes 3.5): with alpha = 0 the v_e column is
   // exact, and the alpha column equals the derivative with v_c held fixed.
   const Control u0(2.5, 0.0);
@@ -80,8 +82,9 @@ TEST(RangeBearingModel, InverseModelRoundTripsAndItsJacobianMatches) {
   const Measurement back = PredictMeasurement(x, m);
   EXPECT_NEAR(back(0), z(0), 1e-12);
   EXPECT_NEAR(back(1), z(1), 1e-12);
-  ExpectJacobianNear<2, 2>(InverseMeasurementJacobian(x, z),
-                           [&](const Vec2& zz) { return InverseMeasurement(x, zz); }, z);
+  ExpectJacobianNear<2, 2>(
+      InverseMeasurementJacobian(x, z), [&](const Vec2& zz) { return InverseMeasurement(x, zz); },
+      z);
   Mat2 r;
   r << 0.64, 0.0, 0.0, 2.7416e-5;
   ExpectSymmetricPositiveDefinite(BirthCovariance(x, z, r));

@@ -17,15 +17,15 @@ enum class DetectionProfile {
 };
 
 struct SensorModel {
-  double fov_range = 150.0;                  ///< m
-  double fov_half_angle = DegToRad(90.0);    ///< rad
-  double range_buffer = 10.0;                ///< m, enlarges the FOV for the active set only
-  double angle_buffer = DegToRad(10.0);      ///< rad, likewise
+  double fov_range = 150.0;                ///< m
+  double fov_half_angle = DegToRad(90.0);  ///< rad
+  double range_buffer = 10.0;              ///< m, enlarges the FOV for the active set only
+  double angle_buffer = DegToRad(10.0);    ///< rad, likewise
   DetectionProfile profile = DetectionProfile::kConstant;
-  double pd_max = 0.95;                      ///< constant pD, or the pD at zero range
-  double pd_nominal = 0.95;                  ///< the nominal pD used by the estimate threshold
-  Mat2 noise_cov = Mat2::Identity();         ///< R
-  double clutter_rate = 5.0;                 ///< expected clutter points per scan (lambda)
+  double pd_max = 0.95;               ///< constant pD, or the pD at zero range
+  double pd_nominal = 0.95;           ///< the nominal pD used by the estimate threshold
+  Mat2 noise_cov = Mat2::Identity();  ///< R
+  double clutter_rate = 5.0;          ///< expected clutter points per scan (lambda)
 
   /// The smallest clutter rate the filters' likelihoods use (points per scan). The RB-PHD-SLAM
   /// family explains every measurement no component accounts for (clutter, but also a landmark's
@@ -39,8 +39,7 @@ struct SensorModel {
   /// Cartesian area of the FOV sector, used by the filters as a density in (r, phi) (reference
   /// notes 10.1, kept to reproduce the published numbers).
   [[nodiscard]] double ClutterIntensity() const {
-    return std::max(clutter_rate, kMinFilterClutterRate) /
-           (fov_half_angle * fov_range * fov_range);
+    return std::max(clutter_rate, kMinFilterClutterRate) / (fov_half_angle * fov_range * fov_range);
   }
 
   /// pD evaluated at the landmark point m from pose x (a point evaluation, notes section 9).
@@ -65,8 +64,8 @@ class FovView {
         cos_half_(std::cos(sensor.fov_half_angle)),
         enlarged_range2_((sensor.fov_range + sensor.range_buffer) *
                          (sensor.fov_range + sensor.range_buffer)),
-        cos_enlarged_half_(std::cos(std::min(sensor.fov_half_angle + sensor.angle_buffer,
-                                             std::numbers::pi))) {}
+        cos_enlarged_half_(
+            std::cos(std::min(sensor.fov_half_angle + sensor.angle_buffer, std::numbers::pi))) {}
 
   [[nodiscard]] double DetectionProbability(const Landmark& m) const {
     const double dx = m(0) - x_;

@@ -14,8 +14,8 @@ Pose VelocityMotionModel::Predict(const Pose& x, const Control& u, double dt) co
     return out;
   }
   const double th1 = th + w * dt;
-  out << x(0) + v / w * (std::sin(th1) - std::sin(th)), x(1) + v / w * (std::cos(th) - std::cos(th1)),
-      th1;
+  out << x(0) + v / w * (std::sin(th1) - std::sin(th)),
+      x(1) + v / w * (std::cos(th) - std::cos(th1)), th1;
   return out;
 }
 

@@ -30,7 +30,7 @@ datasets::Scenario ContractScenario(int steps) {
 }
 
 RunRecord RunOnce(const EstimatorEntry& entry, const datasets::Scenario& scenario, int particles,
-              std::uint64_t stream_seed) {
+                  std::uint64_t stream_seed) {
   const filters::EstimatorContext context = scenario.PublicContext();
   EstimatorRequest request;
   request.name = entry.name;
@@ -167,9 +167,9 @@ std::vector<DensityCase> Densities() {
   for (const filters::PhdSlamVariant& v : filters::PhdSlamVariants()) {
     cases.push_back({v.name, filters::MakeImportanceDensity(v.name, params), false});
   }
-  cases.push_back({"oracle", std::make_shared<oracle::KnownAssociationIplDensity>(
-                                 filters::IplOptions{5, 1e-3}),
-                   true});
+  cases.push_back(
+      {"oracle", std::make_shared<oracle::KnownAssociationIplDensity>(filters::IplOptions{5, 1e-3}),
+       true});
   return cases;
 }
 
@@ -197,8 +197,9 @@ struct DensityScene {
     known = {1, -1, 0};
   }
   filters::ProposalInput Input(const DensityCase& c) const {
-    return {mu0, sigma0, landmarks, z, &sensor,
-            c.known_association ? std::span<const int>(known) : std::span<const int>()};
+    return {mu0,       sigma0,
+            landmarks, z,
+            &sensor,   c.known_association ? std::span<const int>(known) : std::span<const int>()};
   }
 };
 

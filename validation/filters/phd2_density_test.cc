@@ -251,7 +251,8 @@ TEST(JointIplDensity, WithoutAnAssociationTheProposalIsThePrior) {
   phd::GmPhdMap map;
   const std::vector<Measurement> z = {Measurement(50.0, 0.2)};
   // Empty map.
-  ProposalOutput out = JointIplDensity(params).Build({PriorMean(), PriorCov(), map.active(), z, &sensor, {}});
+  ProposalOutput out =
+      JointIplDensity(params).Build({PriorMean(), PriorCov(), map.active(), z, &sensor, {}});
   ASSERT_EQ(out.mixture.size(), 1u);
   EXPECT_EQ(out.mixture.means[0], PriorMean());
   EXPECT_EQ(out.mixture.covs[0], PriorCov());
@@ -339,8 +340,8 @@ TEST(MergedEkfDensity, WithoutAGatedPairTheProposalIsThePrior) {
   map.SetActive({{Landmark(340.0, 410.0), Mat2::Identity() * 0.3, 0.0},
                  {Landmark(250.0, 400.0), Mat2::Identity() * 0.3, 0.0}});  // behind: pD = 0
   const std::vector<Measurement> zs = {Measurement(90.0, -0.8), Measurement(60.0, 3.1)};
-  const ProposalOutput out =
-      MergedEkfDensity(PhdSlamParams{}).Build({PriorMean(), PriorCov(), map.active(), zs, &sensor, {}});
+  const ProposalOutput out = MergedEkfDensity(PhdSlamParams{})
+                                 .Build({PriorMean(), PriorCov(), map.active(), zs, &sensor, {}});
   ASSERT_EQ(out.mixture.size(), 1u);
   EXPECT_EQ(out.mixture.log_weights[0], 0.0);
   EXPECT_EQ(out.mixture.means[0], PriorMean());

@@ -20,8 +20,7 @@ TEST(Nees, IdentityCovarianceGivesSquaredError) {
 
 TEST(Nees, UsesTheInverseCovariance) {
   Mat2 cov;
-  cov << 4.0, 1.0,
-         1.0, 2.0;
+  cov << 4.0, 1.0, 1.0, 2.0;
   const Vec2 e(1.0, -1.0);
   EXPECT_NEAR(LandmarkNees(e, Landmark::Zero(), cov), e.dot(cov.inverse() * e), 1e-14);
   Mat3 pose_cov = Mat3::Zero();
@@ -32,15 +31,11 @@ TEST(Nees, UsesTheInverseCovariance) {
 TEST(Nees, RejectsSingularOrBadCovariance) {
   EXPECT_THROW(PoseNees(Pose::Zero(), Pose::Zero(), Mat3::Zero()), std::invalid_argument);
   Mat2 indefinite;
-  indefinite << 1.0, 2.0,
-                2.0, 1.0;
-  EXPECT_THROW(LandmarkNees(Landmark::Zero(), Landmark::Zero(), indefinite),
-               std::invalid_argument);
+  indefinite << 1.0, 2.0, 2.0, 1.0;
+  EXPECT_THROW(LandmarkNees(Landmark::Zero(), Landmark::Zero(), indefinite), std::invalid_argument);
   Mat2 asymmetric;
-  asymmetric << 1.0, 0.5,
-                0.0, 1.0;
-  EXPECT_THROW(LandmarkNees(Landmark::Zero(), Landmark::Zero(), asymmetric),
-               std::invalid_argument);
+  asymmetric << 1.0, 0.5, 0.0, 1.0;
+  EXPECT_THROW(LandmarkNees(Landmark::Zero(), Landmark::Zero(), asymmetric), std::invalid_argument);
 }
 
 TEST(AveragedNeesBounds, ChiSquareQuantilesOverRuns) {
@@ -64,8 +59,7 @@ TEST(AveragedNeesBounds, ChiSquareQuantilesOverRuns) {
 
 TEST(SummariseNees, AveragesOverRunsAndCountsStepsInside) {
   // Two runs of a 2-D state: bounds chi2_4(0.025) / 2 = 0.2422 and chi2_4(0.975) / 2 = 5.5716.
-  const std::vector<std::vector<double>> nees = {{1.0, 12.0, 0.1, 0.4},
-                                                 {3.0, 10.0, 0.1, 0.2}};
+  const std::vector<std::vector<double>> nees = {{1.0, 12.0, 0.1, 0.4}, {3.0, 10.0, 0.1, 0.2}};
   const NeesConsistency s = SummariseNees(nees, 2);
   ASSERT_EQ(s.mean_nees.size(), 4u);
   EXPECT_DOUBLE_EQ(s.mean_nees[0], 2.0);

@@ -63,8 +63,7 @@ struct EstimatorEntry {
   /// True when the factory the entry's kind needs is set.
   [[nodiscard]] bool HasFactory() const {
     if (batch) return static_cast<bool>(make_batch);
-    return reads_truth ? static_cast<bool>(make_online_with_truth)
-                       : static_cast<bool>(make_online);
+    return reads_truth ? static_cast<bool>(make_online_with_truth) : static_cast<bool>(make_online);
   }
 };
 

@@ -1,4 +1,3 @@
-#include "validation/runner/map_ospa_trace.h"
 #include "validation/runner/run_metrics.h"
 
 #include <algorithm>
@@ -13,6 +12,7 @@
 #include "validation/metrics/gps_position_error.h"
 #include "validation/metrics/nees.h"
 #include "validation/metrics/trajectory_error.h"
+#include "validation/runner/map_ospa_trace.h"
 
 namespace phdslam::validation {
 namespace {

@@ -158,8 +158,7 @@ const params::ParameterTable<datasets::ScPhdSimOptions>& ScPhdSimOptionsTable() 
               "map_inner_radius", [](auto& o) -> auto& { return o.map_inner_radius; },
               AtLeast(0.0)),
           NumberField<O>(
-              "map_outer_radius", [](auto& o) -> auto& { return o.map_outer_radius; },
-              Above(0.0)),
+              "map_outer_radius", [](auto& o) -> auto& { return o.map_outer_radius; }, Above(0.0)),
       },
       DetectionRows<O>(),
       SensorRows<O>(),
