@@ -48,6 +48,7 @@
 #include "src/filters/importance_density.h"
 #include "src/filters/innovation_stats.h"
 #include "src/filters/particle_filter_params.h"
+#include "src/filters/particle_spread.h"
 #include "src/filters/pose_mixture_moments.h"
 #include "src/filters/pose_prediction.h"
 #include "src/filters/resampling.h"
@@ -260,12 +261,8 @@ StepOutput ParticleFilter<Model>::Step(const StepData& step) {
   for (int i = 0; i < n; ++i) log_w[i] = particles_[i].log_weight;
   const std::vector<double> w = NormalisedWeights(log_w);
   if (n > 1) {
-    Mat3 spread = Mat3::Zero();
-    for (int i = 0; i < n; ++i) {
-      const Vec3 d = particles_[i].pose - out.pose;
-      spread += w[i] * d * d.transpose();
-    }
-    out.pose_cov = spread;
+    out.pose_cov = WeightedSpread(particles_, w, out.pose,
+                                  [](const ParticleType& p) -> const Pose& { return p.pose; });
   }
   out.diag.ess = n == 1 ? 1.0 : EffectiveSampleSize(w);
   const double threshold = params_.ess_threshold_kind == EssThresholdKind::kRelative

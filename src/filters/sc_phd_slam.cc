@@ -9,6 +9,7 @@
 
 #include "src/core/gaussian.h"
 #include "src/core/log_sum_exp.h"
+#include "src/filters/particle_spread.h"
 #include "src/filters/resampling.h"
 #include "src/models/sensor_model.h"
 
@@ -208,12 +209,8 @@ StepOutput ScPhdSlam::Step(const StepData& step) {
     if (parents_[i].log_weight > parents_[best_].log_weight) best_ = static_cast<int>(i);
   }
   if (parents_.size() > 1) {
-    Mat3 spread = Mat3::Zero();
-    for (std::size_t i = 0; i < parents_.size(); ++i) {
-      const Vec3 d = parents_[i].pose - out.pose;
-      spread += w[i] * d * d.transpose();
-    }
-    out.pose_cov = spread;
+    out.pose_cov = WeightedSpread(parents_, w, out.pose,
+                                  [](const ScParent& p) -> const Pose& { return p.pose; });
   }
   last_map_ = CardinalityMapEstimate(parents_[best_].map);
   out.diag.ess = parents_.size() == 1 ? 1.0 : EffectiveSampleSize(w);
