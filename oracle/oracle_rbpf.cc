@@ -178,8 +178,8 @@ std::unique_ptr<OracleRbpf> MakeKnownAssociationFilter(
 }
 
 std::unique_ptr<OracleRbpf> MakeOracle(filters::EstimatorContext context,
-                                       std::vector<std::vector<int>> origins, OracleParams params,
-                                       std::uint64_t stream_seed) {
+                                       std::vector<std::vector<int>> origins,
+                                       const OracleParams& params, std::uint64_t stream_seed) {
   auto density = std::make_unique<KnownAssociationIplDensity>(
       filters::IplOptions{params.ipl_iterations, params.ipl_kl_tolerance});
   return MakeKnownAssociationFilter(std::move(context), std::move(origins), params,
@@ -202,11 +202,11 @@ std::vector<std::vector<int>> ScenarioOrigins(const datasets::Scenario& scenario
   return origins;
 }
 
-std::unique_ptr<OracleRbpf> MakeOracle(const datasets::Scenario& scenario, OracleParams params,
-                                       std::uint64_t stream_seed) {
+std::unique_ptr<OracleRbpf> MakeOracle(const datasets::Scenario& scenario,
+                                       const OracleParams& params, std::uint64_t stream_seed) {
   std::vector<std::vector<int>> origins = ScenarioOrigins(scenario);
   try {
-    return MakeOracle(scenario.PublicContext(), std::move(origins), std::move(params), stream_seed);
+    return MakeOracle(scenario.PublicContext(), std::move(origins), params, stream_seed);
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument("scenario '" + scenario.name + "': " + e.what());
   }

@@ -110,8 +110,8 @@ using OracleRbpf = filters::ParticleFilter<OracleMapModel>;
 /// The oracle with explicit origin labels. Throws std::invalid_argument for invalid params,
 /// a context without motion model, or invalid labels (OracleMapModel).
 std::unique_ptr<OracleRbpf> MakeOracle(filters::EstimatorContext context,
-                                       std::vector<std::vector<int>> origins, OracleParams params,
-                                       std::uint64_t stream_seed);
+                                       std::vector<std::vector<int>> origins,
+                                       const OracleParams& params, std::uint64_t stream_seed);
 
 /// The known-association map model with another importance density (e.g. the transition density:
 /// FastSLAM 1.0 with known association); `params` as for the oracle.
@@ -127,8 +127,8 @@ std::vector<std::vector<int>> ScenarioOrigins(const datasets::Scenario& scenario
 /// The oracle of a scenario: its public context, origins from its steps. Throws
 /// std::invalid_argument naming the scenario when a step with measurements has no origin labels
 /// or a label is unknown.
-std::unique_ptr<OracleRbpf> MakeOracle(const datasets::Scenario& scenario, OracleParams params,
-                                       std::uint64_t stream_seed);
+std::unique_ptr<OracleRbpf> MakeOracle(const datasets::Scenario& scenario,
+                                       const OracleParams& params, std::uint64_t stream_seed);
 
 }  // namespace phdslam::oracle
 

@@ -12,7 +12,7 @@ namespace phdslam::apps {
 inline std::string OptionWithoutValue(const CLI::App& app, int argc, char** argv) {
   const CLI::App* sub = nullptr;
   for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
+    std::string arg = argv[i];
     if (sub == nullptr) {
       for (const CLI::App* candidate : app.get_subcommands({})) {
         if (candidate->get_name() == arg) sub = candidate;

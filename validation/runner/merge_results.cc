@@ -134,7 +134,6 @@ void RequireDistinct(const fs::path& out, const fs::path& input) {
 }
 
 // The plan of one results folder's merge, checked before anything is written.
-// NOLINTNEXTLINE(bugprone-exception-escape): its implicit moves only move maps and JSON values
 struct FolderMerge {
   nlohmann::json config;
   std::map<RunKey, RunSource> copies;  ///< runs to copy, by key

@@ -179,7 +179,6 @@ unsigned HardwareThreads() {
 // What is known before any run starts: the jobs left to compute, the resolved parameters their
 // identities are made from (one identity is made when needed, not kept per job: a million jobs
 // would hold gigabytes), the counts and the config.json to write.
-// NOLINTNEXTLINE(bugprone-exception-escape): its implicit moves only move vectors and JSON values
 struct PreparedRuns {
   std::vector<PlannedJob> todo;
   std::map<ParameterKey, nlohmann::json> params;

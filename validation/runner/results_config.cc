@@ -32,7 +32,7 @@ std::string FirstDifference(const nlohmann::json& a, const nlohmann::json& b,
       const std::string sub = path.empty() ? key : path + "." + key;
       if (!a.contains(key)) return sub + " (absent before, now " + b.at(key).dump() + ")";
       if (!b.contains(key)) return sub + " (was " + a.at(key).dump() + ", now absent)";
-      const std::string d = FirstDifference(a.at(key), b.at(key), sub);
+      std::string d = FirstDifference(a.at(key), b.at(key), sub);
       if (!d.empty()) return d;
     }
   }

@@ -127,6 +127,7 @@ struct Column {
 template <typename Row>
 std::string RenderCsv(const std::vector<Column<Row>>& columns, const std::vector<Row>& rows) {
   std::vector<std::string> cells;
+  cells.reserve(columns.size());
   for (const auto& c : columns) cells.push_back(c.name);
   std::string text = CsvRow(cells);
   for (const Row& row : rows) {
@@ -440,6 +441,7 @@ void SummariseConsistency(const std::vector<const RunResult*>& runs, GroupSummar
   g.gps_coverage_rb = Fraction(inside_gps, g.gps_nees_rb.count);
   if (g.pose_nees_rb.count > 0) {
     std::vector<const std::vector<double>*> nees;
+    nees.reserve(runs.size());
     for (const RunResult* r : runs) nees.push_back(&r->step_nees_rb);
     g.nees_rb = SummariseGroupNees(nees);
   }
