@@ -186,8 +186,8 @@ TEST(MonteCarlo, OdometryRunWritesEveryFileWithItsHeader) {
     ASSERT_EQ(steps.size(), 201u);
     EXPECT_EQ(steps[0],
               "step,t,x,y,theta,x_true,y_true,theta_true,pos_err_m,heading_err_deg,ess,resampled,"
-              "hypotheses,map_components,ms,nees");
-    EXPECT_EQ(Cells(steps[1]).size(), 16u);
+              "hypotheses,map_components,ms,nees,nees_rb,nis_sum,nis_count,gps_nees_rb");
+    EXPECT_EQ(Cells(steps[1]).size(), 20u);
     EXPECT_EQ(steps[1].rfind("0,0,300,400,", 0), 0u) << steps[1];  // the initial pose
     EXPECT_EQ(FirstLine(run / kTrajectoryFile), "# t x y z qx qy qz qw");
     EXPECT_EQ(Lines(ReadTextFile(run / kTrajectoryFile)).size(), 201u);
