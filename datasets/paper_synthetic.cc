@@ -40,19 +40,6 @@ Eigen::MatrixXd ReadChecked(const MatFile& file, const std::string& name, Eigen:
   return m;
 }
 
-SimulationSettings ToSettings(const SyntheticOptions& o) {
-  SimulationSettings s;
-  s.detection_probability = o.detection_probability;
-  s.clutter_rate = o.clutter_rate;
-  s.fov_range = o.fov_range;
-  s.fov_half_angle = o.fov_half_angle;
-  s.range_buffer = o.range_buffer;
-  s.angle_buffer = o.angle_buffer;
-  s.measurement_noise_cov = o.measurement_noise_cov;
-  s.control_noise_cov = o.control_noise_cov;
-  return s;
-}
-
 }  // namespace
 
 std::vector<std::filesystem::path> PaperSyntheticDataFiles() {
@@ -86,7 +73,7 @@ void SyntheticOptions::Validate() const {
     throw std::invalid_argument("SyntheticOptions.steps must be >= 0 (0 = all), got " +
                                 std::to_string(steps));
   }
-  ToSettings(*this).Validate("SyntheticOptions");
+  SimulationSettings::Of(*this).Validate("SyntheticOptions");
 }
 
 Scenario MakePaperSyntheticScenario(const PaperSyntheticEnvironment& env, std::uint64_t seed,
@@ -111,7 +98,7 @@ Scenario MakePaperSyntheticScenario(const PaperSyntheticEnvironment& env, std::u
   s.initial_pose = env.initial_pose;
   s.motion = MotionKind::kVelocity;
   s.control_noise_cov = options.control_noise_cov;
-  const SimulationSettings settings = ToSettings(options);
+  const SimulationSettings settings = SimulationSettings::Of(options);
   s.sensor = settings.Sensor();
 
   // Truth: x_1 = x_0; x_k = f(x_{k-1}, u_true_{k-1}, dt) (notes 2.2 item 1).

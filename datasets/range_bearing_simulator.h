@@ -13,10 +13,10 @@
 
 namespace phdslam::datasets {
 
-/// The sensor and noise settings of a simulated scenario.
 /// Largest mean clutter count per scan accepted (each clutter point costs every filter an update).
 inline constexpr double kMaxClutterRate = 1000.0;
 
+/// The sensor and noise settings of a simulated scenario.
 struct SimulationSettings {
   double detection_probability = 0.95;
   double clutter_rate = 5.0;  ///< Poisson mean per scan, before pD thinning
@@ -34,6 +34,21 @@ struct SimulationSettings {
   void Validate(std::string_view owner) const;
   /// The sensor model filters use: constant profile, pd_max = pd_nominal = detection_probability.
   [[nodiscard]] models::SensorModel Sensor() const;
+
+  /// The settings of a scenario's options struct with fields of the same names.
+  template <class Options>
+  static SimulationSettings Of(const Options& o) {
+    SimulationSettings s;
+    s.detection_probability = o.detection_probability;
+    s.clutter_rate = o.clutter_rate;
+    s.fov_range = o.fov_range;
+    s.fov_half_angle = o.fov_half_angle;
+    s.range_buffer = o.range_buffer;
+    s.angle_buffer = o.angle_buffer;
+    s.measurement_noise_cov = o.measurement_noise_cov;
+    s.control_noise_cov = o.control_noise_cov;
+    return s;
+  }
 };
 
 /// A factor L with L L^T = cov for a symmetric positive semi-definite 2x2 matrix (the Cholesky

@@ -120,19 +120,6 @@ CorridorRaster RasteriseCorridor(const std::vector<Pose>& poses, double half_wid
   return r;
 }
 
-SimulationSettings ToSettings(const GeneratorOptions& o) {
-  SimulationSettings s;
-  s.detection_probability = o.detection_probability;
-  s.clutter_rate = o.clutter_rate;
-  s.fov_range = o.fov_range;
-  s.fov_half_angle = o.fov_half_angle;
-  s.range_buffer = o.range_buffer;
-  s.angle_buffer = o.angle_buffer;
-  s.measurement_noise_cov = o.measurement_noise_cov;
-  s.control_noise_cov = o.control_noise_cov;
-  return s;
-}
-
 [[noreturn]] void Fail(const std::string& field, const std::string& what) {
   throw std::invalid_argument("GeneratorOptions." + field + " " + what);
 }
@@ -159,7 +146,7 @@ void GeneratorOptions::Validate() const {
     Fail("corridor_half_width", "must be finite and > 0 (m), got " + str(corridor_half_width));
   }
   if (!initial_pose.allFinite()) Fail("initial_pose", "must be finite");
-  ToSettings(*this).Validate("GeneratorOptions");
+  SimulationSettings::Of(*this).Validate("GeneratorOptions");
 }
 
 Scenario GenerateScenario(const GeneratorOptions& options, std::uint64_t seed) {
@@ -172,7 +159,7 @@ Scenario GenerateScenario(const GeneratorOptions& options, std::uint64_t seed) {
   s.initial_pose = options.initial_pose;
   s.motion = MotionKind::kVelocity;
   s.control_noise_cov = options.control_noise_cov;
-  const SimulationSettings settings = ToSettings(options);
+  const SimulationSettings settings = SimulationSettings::Of(options);
   s.sensor = settings.Sensor();
 
   const CorridorRaster corridor = RasteriseCorridor(path.poses, options.corridor_half_width);

@@ -25,19 +25,6 @@ void RequirePositive(const std::string& field, double v) {
     Fail(field, "must be finite and > 0, got " + std::to_string(v));
 }
 
-SimulationSettings ToSettings(const ScPhdSimOptions& o) {
-  SimulationSettings s;
-  s.detection_probability = o.detection_probability;
-  s.clutter_rate = o.clutter_rate;
-  s.fov_range = o.fov_range;
-  s.fov_half_angle = o.fov_half_angle;
-  s.range_buffer = o.range_buffer;
-  s.angle_buffer = o.angle_buffer;
-  s.measurement_noise_cov = o.measurement_noise_cov;
-  s.control_noise_cov = o.control_noise_cov;
-  return s;
-}
-
 models::CarGeometry Bicycle(const ScPhdSimOptions& o) {
   models::CarGeometry g;
   g.wheelbase_l = o.wheelbase;
@@ -71,7 +58,7 @@ void ScPhdSimOptions::Validate() const {
       !std::isfinite(map_outer_radius)) {
     Fail("map_outer_radius", "must be finite and > map_inner_radius >= 0");
   }
-  ToSettings(*this).Validate("ScPhdSimOptions");
+  SimulationSettings::Of(*this).Validate("ScPhdSimOptions");
 }
 
 std::vector<Landmark> ScPhdSimMap(const ScPhdSimOptions& o) {
@@ -100,7 +87,7 @@ Scenario MakeScPhdSimScenario(const ScPhdSimOptions& options, std::uint64_t seed
   s.motion = MotionKind::kCar;
   s.car = Bicycle(options);
   s.control_noise_cov = options.control_noise_cov;
-  const SimulationSettings settings = ToSettings(options);
+  const SimulationSettings settings = SimulationSettings::Of(options);
   s.sensor = settings.Sensor();
   s.truth.landmarks = ScPhdSimMap(options);
 
