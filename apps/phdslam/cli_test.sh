@@ -130,7 +130,13 @@ expect_in "$scratch/err" "--seeds needs a value"
 "$phdslam" run --scenario paper-synthetic --data-dir "$data_dir" --estimator phd3 --particles 10 \
   --seeds 1-100000 --steps 200 --jobs 1 --quiet --out "$scratch/term" >/dev/null 2>"$scratch/err" &
 term_pid=$!
-sleep 3
+# The signal handler is in place before the results folder is locked: wait for the lock (slow
+# under the sanitizers and valgrind) instead of a fixed time.
+for _ in $(seq 1200); do
+  [ -e "$scratch/term/phdslam.lock" ] && break
+  sleep 0.1
+done
+[ -e "$scratch/term/phdslam.lock" ] || fail "SIGTERM: the run did not start within 120 s"
 kill -TERM "$term_pid"
 wait "$term_pid"
 term_exit=$?
