@@ -152,6 +152,17 @@ filters::StepOutput FastSlam::Step(const datasets::StepData& step) {
   out.diag.hypotheses = 1;
   out.diag.map_components = static_cast<int>(best_.landmarks.size());
   out.diag.ess = static_cast<double>(n) * set.ESS();
+  out.diag.nis_sum = best_.nis.nis_sum;
+  out.diag.nis_count = best_.nis.count;
+  if (step.times.size() > 1) {
+    std::vector<filters::PoseMoments> proposals;
+    proposals.reserve(n);
+    for (const auto& p : set.m_particles) proposals.push_back(p.d.proposal);
+    if (const auto rb = filters::MatchMoments(proposals)) {
+      out.pose_mean_rb = rb->mean;
+      out.pose_cov_rb = rb->cov;
+    }
+  }
   if (n > 1) {
     // Weighted spread of the particle poses (weights are normalised to max 0 by executeOn).
     double sum = 0.0;

@@ -16,9 +16,12 @@
 //            estimates (best particle, weighted pose spread) and every random draw except
 //            resampling.
 //   Covariances: StepOutput::pose_cov is the weighted particle spread (the classical
-//            particle NEES). No Rao-Blackwellised covariance (pose_cov_rb) and no NIS are
-//            reported yet: the FastSLAM 2.0 conditional and the predicted Gaussian of 1.0 are
-//            available per particle inside the MRPT-based step but are not collected.
+//            particle NEES). pose_mean_rb / pose_cov_rb (Rao-Blackwellised) are the moments of
+//            the mixture over particles of the Gaussian each particle drew its pose from
+//            (FastSLAM 1.0: the predicted Gaussian; 2.0: the measurement-conditioned one), weighted
+//            by the weights carried into the step; none for a step with a single time stamp.
+//            The NIS is the estimate's (highest-weight particle's) associated measurements with
+//            the innovation covariances its weight used (fastslam_particle.h).
 #pragma once
 
 #include <cstdint>

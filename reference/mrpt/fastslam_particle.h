@@ -5,6 +5,8 @@
 #include <vector>
 
 #include "src/core/types.h"
+#include "src/filters/innovation_stats.h"
+#include "src/filters/pose_mixture_moments.h"
 
 namespace phdslam::reference {
 
@@ -23,6 +25,12 @@ struct FastSlamLandmark {
 struct FastSlamParticle {
   Pose pose = Pose::Zero();  ///< sampled pose; the heading is not wrapped
   std::vector<FastSlamLandmark> landmarks;
+  /// The Gaussian the last step drew `pose` from (FastSLAM 1.0: the predicted Gaussian; 2.0: the
+  /// measurement-conditioned one), with the log-weight the particle carried into that step.
+  filters::PoseMoments proposal;
+  /// NIS of the last step's associated measurements, with the innovation covariances the weight
+  /// used (1.0: at the sampled pose; 2.0: the sequential ones including the pose uncertainty).
+  filters::InnovationStats nis;
 };
 
 }  // namespace phdslam::reference

@@ -144,6 +144,8 @@ void FastSlamParticleSet::UpdateParticle(FastSlamParticle& particle, double& log
   // FastSLAM 1.0 samples first and associates at the sampled pose; FastSLAM 2.0 associates at
   // the predicted mean with the pose uncertainty in the innovation covariances.
   Pose x = prior.mean;
+  particle.proposal = {log_w, prior.mean, prior.cov};
+  particle.nis = filters::InnovationStats{};
   if (!condition_on_measurements) x = SamplePose(prior.mean, prior.cov, *rng_);
 
   std::vector<Candidate> candidates;
@@ -180,7 +182,10 @@ void FastSlamParticleSet::UpdateParticle(FastSlamParticle& particle, double& log
       sigma -= k * s * k.transpose();
       Symmetrize(sigma);
       log_w += EvalGaussian2(v, s).log_pdf;
+      particle.nis.Add(v, s);
     }
+    particle.proposal.mean = mu;
+    particle.proposal.cov = sigma;
     x = SamplePose(mu, sigma, *rng_);
   } else {
     for (const auto& [j, i] : associations) {
@@ -190,6 +195,7 @@ void FastSlamParticleSet::UpdateParticle(FastSlamParticle& particle, double& log
       Symmetrize(s);
       const Measurement v = Residual(step.measurements[j], models::PredictMeasurement(x, lm.mean));
       log_w += EvalGaussian2(v, s).log_pdf;
+      particle.nis.Add(v, s);
     }
   }
 

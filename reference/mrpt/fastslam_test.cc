@@ -10,6 +10,7 @@
 #include <thread>
 #include <vector>
 
+#include "reference/mrpt/motion_increment.h"
 #include "reference/mrpt/test_scenarios.h"
 #include "src/core/angles.h"
 #include "src/filters/odometry_estimator.h"
@@ -170,6 +171,47 @@ TEST(FastSlam, ReportsDiagnostics) {
     ASSERT_TRUE(ten.pose_cov.has_value());
     EXPECT_GE(ten.pose_cov->eigenvalues().real().minCoeff(), -1e-12);
   }
+}
+
+// With one particle the Rao-Blackwellised covariance is the Gaussian that particle drew its pose
+// from: FastSLAM 1.0's predicted Gaussian (with no measurements, also 2.0's). With ten it is a
+// positive semi-definite matrix at least as wide as the particle spread's smallest direction.
+TEST(FastSlam, RaoBlackwellisedCovarianceOfOneParticleIsItsProposal) {
+  CircleScenarioOptions o = WithClutter();
+  o.steps = 30;
+  const datasets::Scenario s = MakeCircleScenario(o, 3);
+  const FastSlamOptions options = Version(FastSlamProposal::kMotionModel);
+  FastSlam fs1(s.PublicContext(), 1, 4, options);
+  Pose previous = s.initial_pose;
+  int checked = 0;
+  for (const datasets::ScenarioStep& step : s.steps) {
+    const Mat3 regulariser = options.pose_regulariser_diag.asDiagonal();
+    const PoseGaussian prior =
+        PropagateOverStep(*s.PublicContext().motion, s.PublicContext().control_noise_cov, step.data,
+                          PoseGaussian{previous, regulariser});
+    const filters::StepOutput out = fs1.Step(step.data);
+    previous = out.pose;
+    if (step.data.times.size() < 2) {  // no propagation, no proposal
+      EXPECT_FALSE(out.pose_cov_rb.has_value());
+      continue;
+    }
+    ASSERT_TRUE(out.pose_cov_rb.has_value());
+    ++checked;
+    EXPECT_TRUE(out.pose_mean_rb->isApprox(prior.mean, 1e-12));
+    EXPECT_TRUE(out.pose_cov_rb->isApprox(prior.cov, 1e-12));
+  }
+  EXPECT_EQ(checked, static_cast<int>(s.steps.size()) - 1);
+  FastSlam fs2(s.PublicContext(), 10, 4, Version(FastSlamProposal::kMeasurementConditioned));
+  int nis_count = 0;
+  for (const datasets::ScenarioStep& step : s.steps) {
+    const filters::StepOutput out = fs2.Step(step.data);
+    ASSERT_EQ(out.pose_cov_rb.has_value(), step.data.times.size() > 1);
+    if (!out.pose_cov_rb) continue;
+    EXPECT_GE(out.pose_cov_rb->eigenvalues().real().minCoeff(), -1e-12);
+    EXPECT_GE(out.diag.nis_sum, 0.0);
+    nis_count += out.diag.nis_count;
+  }
+  EXPECT_GT(nis_count, 30);  // landmarks were associated and their NIS reported
 }
 
 filters::EstimatorContext StaticContext() {

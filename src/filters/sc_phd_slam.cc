@@ -37,11 +37,13 @@ Eigen::Matrix<double, N, N> PsdFactor(const Eigen::Matrix<double, N, N>& q,
 double UpdateDaughterMap(phd::GmPhdMap& map, const Pose& pose,
                          std::span<const Measurement> measurements,
                          const models::SensorModel& sensor, const phd::MapParams& params,
-                         bool empty_scan_update, std::vector<int>* ungated) {
+                         bool empty_scan_update, std::vector<int>* ungated, InnovationStats* nis) {
   if (ungated != nullptr) ungated->clear();
+  if (nis != nullptr) *nis = InnovationStats{};
   if (!measurements.empty()) {
     phd::PhdUpdateResult result = map.Update(pose, measurements, sensor, params);
     if (ungated != nullptr) *ungated = std::move(result.ungated);
+    if (nis != nullptr) *nis = InnovationStats{result.nis_sum, result.nis_count};
     return result.log_likelihood;
   }
   if (!empty_scan_update) return 0.0;
@@ -108,17 +110,34 @@ Pose ScPhdSlam::SamplePose(const Pose& pose, const StepData& step,
     return x;
   }
   // Linearised Gaussian, as the RB-PHD-SLAM family propagates it, then one draw.
-  Pose mean = pose;
-  Mat3 cov = params_.pose_regularisation;
-  for (std::size_t i = 0; i < intervals; ++i) {
+  const PoseMoments predicted = LinearisedPrediction(pose, step);
+  const auto chol = CholeskyLower<3>(predicted.cov);
+  return chol ? Pose(predicted.mean + *chol * xi_pose) : predicted.mean;
+}
+
+PoseMoments ScPhdSlam::LinearisedPrediction(const Pose& pose, const StepData& step) const {
+  PoseMoments predicted{0.0, pose, params_.pose_regularisation};
+  for (std::size_t i = 0; i + 1 < step.times.size(); ++i) {
     const double dt = step.times[i + 1] - step.times[i];
-    const auto j = context_.motion->Jacobians(mean, step.controls[i], dt);
-    mean = context_.motion->Predict(mean, step.controls[i], dt);
-    cov = j.fx * cov * j.fx.transpose() + j.fu * context_.control_noise_cov * j.fu.transpose();
-    Symmetrize(cov);
+    const auto j = context_.motion->Jacobians(predicted.mean, step.controls[i], dt);
+    predicted.mean = context_.motion->Predict(predicted.mean, step.controls[i], dt);
+    predicted.cov = j.fx * predicted.cov * j.fx.transpose() +
+                    j.fu * context_.control_noise_cov * j.fu.transpose();
+    Symmetrize(predicted.cov);
   }
-  const auto chol = CholeskyLower<3>(cov);
-  return chol ? Pose(mean + *chol * xi_pose) : mean;
+  return predicted;
+}
+
+std::optional<PoseMoments> ScPhdSlam::PredictedMixtureMoments(const StepData& step) const {
+  if (step.times.size() < 2) return std::nullopt;
+  std::vector<PoseMoments> components;
+  components.reserve(parents_.size());
+  for (const ScParent& p : parents_) {
+    PoseMoments m = LinearisedPrediction(p.pose, step);
+    m.log_weight = p.log_weight;
+    components.push_back(m);
+  }
+  return MatchMoments(components);
 }
 
 StepOutput ScPhdSlam::Step(const StepData& step) {
@@ -137,6 +156,8 @@ StepOutput ScPhdSlam::Step(const StepData& step) {
   // The step's random numbers, child by child (parent-major), drawn before anything else.
   std::vector<double> normals(static_cast<std::size_t>(num_parents) * copies * per_child);
   for (double& v : normals) v = rng_.Normal();
+
+  const std::optional<PoseMoments> rb = PredictedMixtureMoments(step);
 
   // 1. Births from the previous step's measurements at the pose they were taken from.
   for (ScParent& p : parents_) {
@@ -167,7 +188,7 @@ StepOutput ScPhdSlam::Step(const StepData& step) {
       child.log_weight =
           parent.log_weight + UpdateDaughterMap(child.map, child.pose, step.measurements,
                                                 context_.sensor, params_.map,
-                                                params_.empty_scan_update, &ungated);
+                                                params_.empty_scan_update, &ungated, &child.nis);
       child.births.reserve(ungated.size());
       for (int j : ungated) child.births.push_back(step.measurements[j]);
       children_.push_back({i, child.pose, child.log_weight, false});
@@ -217,6 +238,12 @@ StepOutput ScPhdSlam::Step(const StepData& step) {
   out.diag.resampled = false;
   out.diag.hypotheses = copies;
   out.diag.map_components = static_cast<int>(parents_[best_].map.size());
+  out.diag.nis_sum = parents_[best_].nis.nis_sum;
+  out.diag.nis_count = parents_[best_].nis.count;
+  if (rb) {
+    out.pose_mean_rb = rb->mean;
+    out.pose_cov_rb = rb->cov;
+  }
   return out;
 }
 

@@ -29,12 +29,17 @@
 //     project. The map comes from the highest-weight parent (first on ties): its
 //     round(sum of component weights) highest-weight components, active and passive.
 // Every random number comes from one RandomStream seeded by the constructor's stream seed.
-// Covariances: pose_cov is the weighted spread of the parents about the estimate; no
-// Rao-Blackwellised covariance and no NIS are reported (not implemented: the children are drawn
-// from each parent's predicted Gaussian, which would be the mixture's components).
+// Covariances: pose_cov is the weighted spread of the parents about the estimate.
+// pose_mean_rb / pose_cov_rb (Rao-Blackwellised) are the moments of the mixture over parents of
+// each parent's linearised predicted Gaussian (the density kLinearisedGaussian samples from, and
+// the Gaussian approximation of kControlNoise's draws), weighted by the parent weights carried
+// into the step; a step with a single time stamp has no propagation and reports none. The NIS is
+// that of the highest-weight parent's daughter update (GmPhdMap::Update's selection of the
+// measurements it explains best by a landmark).
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <utility>
@@ -43,6 +48,8 @@
 #include "src/core/random.h"
 #include "src/core/types.h"
 #include "src/filters/estimator.h"
+#include "src/filters/innovation_stats.h"
+#include "src/filters/pose_mixture_moments.h"
 #include "src/filters/sc_phd_slam_params.h"
 #include "src/phd/gaussian_component.h"
 #include "src/phd/gm_phd_map.h"
@@ -56,6 +63,7 @@ struct ScParent {
   double log_weight = 0.0;
   phd::GmPhdMap map;
   std::vector<Measurement> births;  ///< measurements that become births at the next step
+  InnovationStats nis;              ///< NIS of the daughter update of the last step
 };
 
 /// A child of the last step before pruning (diagnostics and tests).
@@ -69,11 +77,13 @@ struct ScChild {
 /// The daughter update of one child: GmPhdMap::Update at `pose`, returning the log-likelihood
 /// increment of the parent weight. With no measurements and `empty_scan_update`, components with
 /// pD > 0 get log(1 - pD) added and the increment is -sum pD w; otherwise it is whatever
-/// GmPhdMap::Update returns. `ungated` receives the measurement indices that become births.
+/// GmPhdMap::Update returns. `ungated` receives the measurement indices that become births;
+/// `nis` (when given) the update's NIS (zero for an empty scan).
 double UpdateDaughterMap(phd::GmPhdMap& map, const Pose& pose,
                          std::span<const Measurement> measurements,
                          const models::SensorModel& sensor, const phd::MapParams& params,
-                         bool empty_scan_update, std::vector<int>* ungated);
+                         bool empty_scan_update, std::vector<int>* ungated,
+                         InnovationStats* nis = nullptr);
 
 /// The map estimate of one daughter process: round(sum of component weights) components of the
 /// active and passive lists, highest log-weight first (stable on ties, active before passive).
@@ -99,6 +109,11 @@ class ScPhdSlam final : public OnlineEstimator {
   /// Predicts `pose` over the step's sub-intervals with the normals `xi` (3 + 2 per sub-interval).
   [[nodiscard]] Pose SamplePose(const Pose& pose, const StepData& step,
                                 std::span<const double> xi) const;
+  /// The linearised predicted Gaussian of `pose` over the step (Q_n once, then Fx P Fx^T +
+  /// Fu Q_u Fu^T per sub-interval); log_weight 0.
+  [[nodiscard]] PoseMoments LinearisedPrediction(const Pose& pose, const StepData& step) const;
+  /// Moments of the mixture of the parents' linearised predicted Gaussians (before sampling).
+  [[nodiscard]] std::optional<PoseMoments> PredictedMixtureMoments(const StepData& step) const;
 
   EstimatorContext context_;
   ScPhdSlamParams params_;

@@ -517,5 +517,77 @@ TEST(ScPhdSlam, ChildSpreadMatchesThePropagatedCovariance) {
   }
 }
 
+// The Rao-Blackwellised covariance is the mixture of the parents' linearised predicted Gaussians:
+// with one parent it is that Gaussian (Fx Q_n Fx^T + Fu Q_u Fu^T over one interval); with several
+// equal-weight parents at one pose it is the same Gaussian again.
+TEST(ScPhdSlam, RaoBlackwellisedCovarianceIsThePredictedGaussian) {
+  const models::VelocityMotionModel motion;
+  const Pose x0(1.0, 2.0, 0.3);
+  const Control u(1.0, 0.05);
+  const Mat2 qu = Vec2(0.1 * 0.1, 0.01 * 0.01).asDiagonal();
+  const Mat3 qn = Vec3(1e-4, 4e-4, 1e-6).asDiagonal();
+  const auto j = motion.Jacobians(x0, u, 1.0);
+  const Mat3 expected = j.fx * qn * j.fx.transpose() + j.fu * qu * j.fu.transpose();
+  StepData st;
+  st.times = {0.0, 1.0};
+  st.controls = {u};
+  for (int particles : {1, 5}) {
+    EstimatorContext c;
+    c.initial_pose = x0;
+    c.motion = std::make_shared<models::VelocityMotionModel>();
+    c.control_noise_cov = qu;
+    ScPhdSlamParams params;
+    params.particles = particles;
+    params.pose_regularisation = qn;
+    ScPhdSlam f(c, params, 5);
+    const StepOutput out = f.Step(st);
+    ASSERT_TRUE(out.pose_cov_rb.has_value()) << particles;
+    ASSERT_TRUE(out.pose_mean_rb.has_value()) << particles;
+    EXPECT_TRUE(out.pose_mean_rb->isApprox(motion.Predict(x0, u, 1.0), 1e-12)) << particles;
+    EXPECT_TRUE(out.pose_cov_rb->isApprox(expected, 1e-9)) << particles;
+  }
+  // A step with one time stamp has no propagation and no Rao-Blackwellised covariance.
+  EstimatorContext c;
+  c.motion = std::make_shared<models::VelocityMotionModel>();
+  ScPhdSlam f(c, ScPhdSlamParams{}, 5);
+  StepData still;
+  still.times = {0.0};
+  EXPECT_FALSE(f.Step(still).pose_cov_rb.has_value());
+}
+
+// The NIS is that of the best parent's daughter update: with one parent and one child and no
+// noise it is GmPhdMap::Update's at the dead-reckoned pose.
+TEST(ScPhdSlam, NisIsTheBestParentsDaughterUpdate) {
+  const datasets::Scenario s = SmallScenario(4);
+  EstimatorContext context = s.PublicContext();
+  context.control_noise_cov.setZero();
+  ScPhdSlamParams params;
+  params.shotgun = 1;
+  params.pose_regularisation.setZero();
+  ScPhdSlam filter(context, params, 9);
+  const models::VelocityMotionModel motion;
+  Pose pose = s.initial_pose;
+  GmPhdMap map;
+  std::vector<Measurement> previous;
+  Pose previous_pose = pose;
+  int total = 0;
+  for (const datasets::ScenarioStep& st : s.steps) {
+    if (!previous.empty()) map.AddBirths(previous_pose, previous, s.sensor.noise_cov, params.map);
+    for (std::size_t i = 0; i + 1 < st.data.times.size(); ++i) {
+      pose = motion.Predict(pose, st.data.controls[i], st.data.times[i + 1] - st.data.times[i]);
+    }
+    const phd::PhdUpdateResult update =
+        map.Update(pose, st.data.measurements, s.sensor, params.map);
+    map.Reduce(pose, s.sensor, params.map);
+    previous = st.data.measurements;
+    previous_pose = pose;
+    const StepOutput out = filter.Step(st.data);
+    EXPECT_EQ(out.diag.nis_count, update.nis_count);
+    EXPECT_DOUBLE_EQ(out.diag.nis_sum, update.nis_sum);
+    total += out.diag.nis_count;
+  }
+  EXPECT_GT(total, 20);  // landmarks were re-observed
+}
+
 }  // namespace
 }  // namespace phdslam::filters
