@@ -21,6 +21,7 @@ from .comparison import (
 from .csv_table import ResultsFormatError
 from .figures.metrics_over_time import collect_series, plot_metrics_over_time
 from .figures.nees import nees_series, plot_nees
+from .figures.nis import nis_series, plot_nis
 from .figures.parent_weights import (
     LOG_WEIGHT_RANGE,
     parent_weights_data,
@@ -58,10 +59,14 @@ from .results import (
     Group,
     ResultsFolder,
 )
-from .stats import relative_difference, standard_error_of_values
+from .stats import relative_difference, stack_ragged, standard_error_of_values
 from .style import save_figure
 from .sweep_table import SweepTable, read_sweep_table, sweep_point_of, sweep_root_of
 from .tables_shared import matched_paper_tables, ours_with_se, paper_table_rows
+
+#: Estimators whose pose covariances are the Ceres batch smoother's marginals: the consistency
+#: reference the particle filters' NEES is read against.
+REFERENCE_SMOOTHER = "smoother-"
 
 FOLDER_SECTIONS = ("summary", "paper-tables", "fig1", "fig2", "fig3", "nees", "scaling",
                    "parent-weights")
@@ -328,8 +333,42 @@ class ReportBuilder:
                 series.append(s)
         return series
 
-    def _nees_table(self, series: list) -> str:
+    def _nis_series(self, folder: ResultsFolder) -> list:
+        """Pooled NIS series (nis_sum / nis_count of steps.csv) per group that reports any."""
+        series = []
+        for group in folder.groups():
+            seeds = folder.seeds(group)
+            if not seeds or not folder.steps(group, seeds[0]).has("nis_count"):
+                continue
+            sums, counts = [], []
+            for seed in seeds:
+                steps = folder.steps(group, seed)
+                for column in ("nis_sum", "nis_count"):
+                    if not steps.has(column):
+                        raise ResultsFormatError(
+                            f"{steps.path}: column '{column}' is missing (seed {seeds[0]} of "
+                            "the same group has it)")
+                sums.append(steps.num("nis_sum"))
+                counts.append(steps.num("nis_count"))
+            folder.forget_steps()
+            s = nis_series(group.estimator, group.particles, stack_ragged(sums),
+                           stack_ragged(counts))
+            if s is not None:
+                series.append(s)
+        return series
+
+    def _nis_table(self, series: list) -> str:
         rows = [[(self._name(s.estimator), "name"), (str(s.particles), ""), (str(s.runs), ""),
+                 (format_value(s.pooled_mean), ""), (format_value(s.median), ""),
+                 (f"{100 * s.inside:.1f} %", "")]
+                for s in series]
+        return table_html(["Estimator", "N", "runs", "NIS per measurement (pooled)",
+                           "median over steps", "steps inside"], rows)
+
+    def _nees_table(self, series: list) -> str:
+        rows = [[(self._name(s.estimator) + (" (reference: batch marginals)"
+                                             if s.estimator.startswith(REFERENCE_SMOOTHER) else ""),
+                  "name"), (str(s.particles), ""), (str(s.runs), ""),
                  (f"[{s.low:.3f}, {s.high:.3f}]", ""),
                  (format_value(float(np.nanmean(s.mean))), ""),
                  (format_value(s.median), ""),
@@ -342,10 +381,11 @@ class ReportBuilder:
     def nees_section(self, sid: str, prefix: str, folder: ResultsFolder) -> Section:
         """Run-averaged pose NEES with 95 % chi-square bounds: the particle-spread NEES ('nees'
         of steps.csv) and, when present, the Rao-Blackwellised one ('nees_rb')."""
-        title = "Pose NEES (consistency)"
+        title = "Pose NEES and NIS (consistency)"
         series = self._nees_series(folder, "nees")
         series_rb = self._nees_series(folder, "nees_rb")
-        if not series and not series_rb:
+        series_nis = self._nis_series(folder)
+        if not series and not series_rb and not series_nis:
             return Section(sid, title, skipped_note="steps.csv has no 'nees' column")
         body = ("<p>Pose NEES averaged over runs at each step (steps where every run has a "
                 "value). Bounds: chi2.ppf(0.025 and 0.975, 3 \u00d7 runs) / runs. Coverage: "
@@ -362,6 +402,14 @@ class ReportBuilder:
                      + self._figure(plot_nees(series_rb, self._name), f"{prefix}nees-rb.png",
                                     "Run-averaged Rao-Blackwellised pose NEES and its two-sided "
                                     "95 % chi-square bounds."))
+        if series_nis:
+            body += ("<h4>NIS of the associated measurements (no ground truth needed)</h4>"
+                     "<p>At each step the runs' NIS sums and measurement counts C are pooled; "
+                     "bounds chi2.ppf(0.025 and 0.975, 2C) / C (2 expected).</p>"
+                     + self._nis_table(series_nis)
+                     + self._figure(plot_nis(series_nis, self._name), f"{prefix}nis.png",
+                                    "NIS per measurement pooled over runs, with its two-sided "
+                                    "95 % chi-square band."))
         return Section(sid, title, body=body)
 
     def scaling_section(self, sid: str, prefix: str, folder: ResultsFolder) -> Section:

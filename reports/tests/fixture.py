@@ -193,7 +193,7 @@ def make_results_folder(root: Path, spec: FixtureSpec | None = None) -> Path:
                 np.zeros(spec.steps, int)
             map_components = np.minimum(spec.landmarks, 2 + k // 3)
             ms = rng.uniform(0.5, 1.5, spec.steps) * 0.1 * particles
-            header = list(STEPS_COLUMNS) + (["nees"] if spec.nees else [])
+            header = list(STEPS_COLUMNS) + (["nees", "nis_sum", "nis_count"] if spec.nees else [])
             rows = []
             if spec.gps_only:  # no true poses: empty truth and heading columns
                 head_err = np.full(spec.steps, math.nan)
@@ -206,6 +206,9 @@ def make_results_folder(root: Path, spec: FixtureSpec | None = None) -> Path:
                        3 if estimator != "odometry" else 0, int(map_components[i]), float(ms[i])]
                 if spec.nees:
                     row.append(float(rng.chisquare(3)) if i > 0 else "")
+                    count = int(i % 4)  # steps with 0-3 associated measurements
+                    row += [float(rng.chisquare(2 * count)) if count else "",
+                            count if count else ""]
                 rows.append(row)
             _write_csv(folder / "steps.csv", header, rows)
             est_map = landmarks + rng.normal(0, 1.0 * scale, landmarks.shape)

@@ -51,12 +51,12 @@ class FullReportTest(unittest.TestCase):
     def test_figures_are_written_and_embedded(self):
         names = sorted(p.name for p in self.report.figure_files)
         self.assertEqual(names, ["fig1-trajectory-map.png", "fig2-metrics-over-time.png",
-                                 "fig3-particle-paths.png", "nees.png", "parent-weights.png",
-                                 "scaling.png"])
+                                 "fig3-particle-paths.png", "nees.png", "nis.png",
+                                 "parent-weights.png", "scaling.png"])
         for path in self.report.figure_files:
             self.assertTrue(path.read_bytes().startswith(PNG_MAGIC), path)
         embedded = re.findall(r'<img src="data:image/png;base64,([A-Za-z0-9+/=]+)"', self.html)
-        self.assertEqual(len(embedded), 6)
+        self.assertEqual(len(embedded), 7)
         for data in embedded:
             self.assertTrue(base64.b64decode(data).startswith(PNG_MAGIC))
         png_files = {p.read_bytes() for p in self.report.figure_files}
@@ -96,6 +96,11 @@ class FullReportTest(unittest.TestCase):
         self.assertIn("[0.900, 6.341]", body)
         self.assertIn("<th>coverage</th>", body)
         self.assertIn("<th>median</th>", body)
+
+    def test_nees_section_pools_nis_with_its_bounds(self):
+        body = self.report.section("nees").body
+        self.assertIn("NIS per measurement (pooled)", body)
+        self.assertIn("nis.png", body)
 
     def test_scaling_exponents(self):
         body = self.report.section("scaling").body
