@@ -144,6 +144,36 @@ term_exit=$?
 [ -f "$scratch/term/summary.csv" ] || fail "SIGTERM: no summary.csv"
 [ ! -e "$scratch/term/phdslam.lock" ] || fail "SIGTERM: the lock file stayed"
 
+# A worker thread that cannot be created (here: too little address space for 150 thread stacks)
+# leaves the run going on fewer threads, with a message; if memory then runs out, no further run
+# starts (exit 1, "no further run was started") and a rerun with one job computes the rest;
+# nothing is lost, nothing is left behind, and the program never aborts. The limit
+# is found for this build: the smallest address space (300 MB - 2 GB) in which the program starts,
+# plus 100 MB. A sanitizer build reserves terabytes of shadow memory and never starts under any of
+# them, so the check is skipped there.
+vlimit=""
+for mb in $(seq 300 50 2000); do
+  if (ulimit -v $((mb * 1024)) && "$phdslam" list >/dev/null 2>&1); then vlimit=$(((mb + 100) * 1024)); break; fi
+done
+if [ -n "$vlimit" ]; then
+  (ulimit -v "$vlimit" && "$phdslam" run --scenario generated --estimator odometry --seeds 1-40 \
+    --steps 20 --jobs 150 --quiet --out "$scratch/threads") >/dev/null 2>"$scratch/err"
+  threads_exit=$?
+  expect_in "$scratch/err" "could not start worker thread"
+  if [ "$threads_exit" -eq 1 ]; then
+    expect_in "$scratch/err" "no further run was started"
+  elif [ "$threads_exit" -ne 0 ]; then
+    fail "--jobs 150 under ulimit -v $vlimit: exit $threads_exit: $(cat "$scratch/err")"
+  fi
+  [ -z "$(find "$scratch/threads" -name '*.tmp-*')" ] || fail "--jobs 150: temporary files left"
+  (ulimit -v "$vlimit" && "$phdslam" run --scenario generated --estimator odometry --seeds 1-40 \
+    --steps 20 --jobs 1 --quiet --out "$scratch/threads") >/dev/null 2>"$scratch/err" ||
+    fail "--jobs 1 rerun under ulimit -v $vlimit: $(cat "$scratch/err")"
+  [ "$(($(wc -l <"$scratch/threads/runs.csv") - 1))" -eq 40 ] || fail "--jobs 150 + rerun: not all 40 runs"
+else
+  echo "cli_test: the program does not start under any address-space limit up to 2 GB (a sanitizer build?): thread-creation check skipped" >&2
+fi
+
 # Files of a results folder with the timing columns (ms, ms_*) dropped.
 without_timing() {
   awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) drop[i] = ($i == "ms" || $i ~ /^ms_/) }

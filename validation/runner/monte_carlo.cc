@@ -14,6 +14,7 @@
 #include <thread>
 #include <utility>
 
+#include "validation/runner/out_of_memory_valve.h"
 #include "validation/runner/parameter_overrides.h"
 #include "validation/runner/progress_line.h"
 #include "validation/runner/results_config.h"
@@ -147,6 +148,10 @@ bool IsFinished(const std::filesystem::path& folder, const nlohmann::json& ident
   return true;
 }
 
+/// Address space held back for out-of-memory handling (out_of_memory_valve.h): 16 x 4 MB.
+constexpr std::size_t kOutOfMemoryReserveChunks = 16;
+constexpr std::size_t kOutOfMemoryReserveChunkBytes = std::size_t{4} << 20;
+
 // An exception's message; out-of-memory gets words instead of the bare "std::bad_alloc".
 std::string DescribeException(const std::exception& e) {
   if (dynamic_cast<const std::bad_alloc*>(&e) != nullptr) {
@@ -154,6 +159,17 @@ std::string DescribeException(const std::exception& e) {
            "): fewer particles, a lower clutter rate or fewer --jobs need less";
   }
   return e.what();
+}
+
+// The message of the exception being handled (DescribeException for std::exception types).
+std::string DescribeCurrentException() {
+  try {
+    throw;
+  } catch (const std::exception& e) {
+    return DescribeException(e);
+  } catch (...) {
+    return "unknown exception";
+  }
 }
 
 std::string UtcNow() {
@@ -285,6 +301,13 @@ MonteCarloReport RunMonteCarlo(const MonteCarloPlan& plan, const MonteCarloSetti
   }
 
   ProgressLine progress(todo.size(), settings.show_progress);
+  // Out of memory is an orderly stop (out_of_memory_valve.h): no new run starts, the runs in
+  // progress finish on the reserve, and the reason is thrown at the end.
+  OutOfMemoryValve valve(kOutOfMemoryReserveChunks, kOutOfMemoryReserveChunkBytes);
+  if (const std::size_t removed = RemoveLeftoverTemporaries(settings.out); removed > 0) {
+    progress.Message("phdslam: removed " + std::to_string(removed) +
+                     " temporary file(s) a killed process left in " + settings.out.string());
+  }
   std::atomic<std::size_t> next{0};
   std::mutex results_mutex;  // guards report.finished and report.failures
   const auto run_job = [&](std::size_t i) {
@@ -317,6 +340,7 @@ MonteCarloReport RunMonteCarlo(const MonteCarloPlan& plan, const MonteCarloSetti
       const std::lock_guard<std::mutex> lock(results_mutex);
       ++report.finished;
     } catch (const std::exception& e) {
+      if (dynamic_cast<const std::bad_alloc*>(&e) != nullptr) valve.Trip();
       std::string message = DescribeException(e);
       try {
         WriteRunError(folder, identity, message);
@@ -335,31 +359,43 @@ MonteCarloReport RunMonteCarlo(const MonteCarloPlan& plan, const MonteCarloSetti
     }
   };
   // A failure outside a run (out of memory while reporting one, say) stops every worker in order:
-  // runs in progress finish, the summary is written, and the reason is thrown at the end.
+  // runs in progress finish, the summary is written, and the reason is thrown at the end. Nothing
+  // may escape a worker (that would terminate the program): when even the reason cannot be kept
+  // (out of memory again), the flag alone says so.
   std::atomic<bool> aborted{false};
   std::string abort_reason;  // guarded by results_mutex
-  const auto worker = [&] {
+  const auto worker = [&]() noexcept {
     try {
-      while ((settings.stop == nullptr || !settings.stop->load()) && !aborted.load()) {
+      while ((settings.stop == nullptr || !settings.stop->load()) && !aborted.load() &&
+             !valve.tripped()) {
         const std::size_t i = next.fetch_add(1);
         if (i >= todo.size()) return;
         run_job(i);
       }
-    } catch (const std::exception& e) {
+    } catch (...) {
+      valve.Trip();
       aborted.store(true);
-      const std::lock_guard<std::mutex> lock(results_mutex);
-      if (abort_reason.empty()) abort_reason = DescribeException(e);
+      try {
+        const std::lock_guard<std::mutex> lock(results_mutex);
+        if (abort_reason.empty()) abort_reason = DescribeCurrentException();
+      } catch (...) {  // the flag is set; the reason is given after the join
+      }
     }
   };
   std::vector<std::thread> threads;
   threads.reserve(static_cast<std::size_t>(report.jobs));
+  // A thread that cannot be created (std::system_error, or std::bad_alloc for its state) leaves
+  // the work to those that were; nothing may escape here while threads are running.
   for (int t = 1; t < report.jobs; ++t) {
     try {
       threads.emplace_back(worker);
-    } catch (const std::system_error& e) {
-      progress.Message("phdslam: could not start worker thread " + std::to_string(t + 1) + " of " +
-                       std::to_string(report.jobs) + " (" + e.what() + "); continuing with " +
-                       std::to_string(t));
+    } catch (const std::exception& e) {
+      try {
+        progress.Message("phdslam: could not start worker thread " + std::to_string(t + 1) +
+                         " of " + std::to_string(report.jobs) + " (" + e.what() +
+                         "); continuing with " + std::to_string(t));
+      } catch (const std::exception&) {  // out of memory for the message: go on without it
+      }
       report.jobs = t;
       break;
     }
@@ -375,9 +411,18 @@ MonteCarloReport RunMonteCarlo(const MonteCarloPlan& plan, const MonteCarloSetti
             });
 
   WriteSummaryFiles(settings.out);
-  if (!abort_reason.empty()) {
-    throw std::runtime_error(abort_reason + "; the runs finished so far are kept in " +
-                             settings.out.string());
+  if (valve.tripped() && !aborted.load()) {
+    throw std::runtime_error(
+        "memory ran out (a run that failed for it says so in its error.json); no further run "
+        "was started. The runs finished so far are kept in " +
+        settings.out.string() +
+        ": rerun the same command with fewer --jobs (or fewer particles, a lower clutter rate) "
+        "to compute the rest");
+  }
+  if (aborted.load()) {
+    throw std::runtime_error(
+        (abort_reason.empty() ? std::string("out of memory while reporting a run") : abort_reason) +
+        "; the runs finished so far are kept in " + settings.out.string());
   }
   report.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

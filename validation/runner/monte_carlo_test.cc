@@ -6,6 +6,7 @@
 #include <atomic>
 #include <chrono>
 #include <fstream>
+#include <new>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -97,13 +98,17 @@ nlohmann::json WithoutTiming(nlohmann::json j) {
 
 std::string FirstLine(const fs::path& path) { return Lines(ReadTextFile(path)).at(0); }
 
-// An online estimator that stands still and throws at step 3 of seed `failing_seed`.
+// An online estimator that stands still and throws at step 3 of seed `failing_seed`: a
+// runtime_error, or std::bad_alloc when `out_of_memory`.
 class StillEstimator final : public filters::OnlineEstimator {
  public:
-  StillEstimator(const datasets::Scenario& s, std::uint64_t failing_seed)
-      : pose_(s.initial_pose), fail_(s.seed == failing_seed) {}
+  StillEstimator(const datasets::Scenario& s, std::uint64_t failing_seed, bool out_of_memory)
+      : pose_(s.initial_pose), fail_(s.seed == failing_seed), out_of_memory_(out_of_memory) {}
   filters::StepOutput Step(const datasets::StepData&) override {
-    if (fail_ && ++steps_ == 3) throw std::runtime_error("diverged at step 3");
+    if (fail_ && ++steps_ == 3) {
+      if (out_of_memory_) throw std::bad_alloc();
+      throw std::runtime_error("diverged at step 3");
+    }
     filters::StepOutput out;
     out.pose = pose_;
     return out;
@@ -113,17 +118,19 @@ class StillEstimator final : public filters::OnlineEstimator {
  private:
   Pose pose_;
   bool fail_;
+  bool out_of_memory_;
   int steps_ = 0;
 };
 
-EstimatorEntry StillEntry(const std::uint64_t* failing_seed) {
+EstimatorEntry StillEntry(const std::uint64_t* failing_seed, bool out_of_memory = false) {
   EstimatorEntry e;
   e.name = "still";
   e.description = "stands at the initial pose";
   // It fails on one seed, so it reads the scenario's seed: a truth-reading entry.
   e.reads_truth = true;
-  e.make_online_with_truth = [failing_seed](const EstimatorRequest&, const datasets::Scenario& s) {
-    return std::make_unique<StillEstimator>(s, *failing_seed);
+  e.make_online_with_truth = [failing_seed, out_of_memory](const EstimatorRequest&,
+                                                           const datasets::Scenario& s) {
+    return std::make_unique<StillEstimator>(s, *failing_seed, out_of_memory);
   };
   e.resolved_parameters = [](const EstimatorRequest& r) {
     return ApplyOverrides(nlohmann::json{{"speed", 0.0}}, r.overrides, "still");
@@ -369,6 +376,59 @@ TEST(MonteCarlo, AFailingRunIsReportedAndTheOthersGoOn) {
   EXPECT_TRUE(rerun.failures.empty());
   EXPECT_TRUE(fs::exists(failed / kMetricsFile));
   EXPECT_FALSE(fs::exists(failed / kErrorFile));
+}
+
+// Out of memory inside a run is an orderly stop: that run's error.json says so in words a user
+// can act on, no further run starts, the finished runs and the summary are kept, no temporary
+// file is left behind, and a rerun computes the rest.
+TEST(MonteCarlo, OutOfMemoryInARunIsAnOrderlyStop) {
+  const fs::path out = datasets::testing::FreshTestDir();
+  std::uint64_t failing_seed = 2;
+  MonteCarloPlan plan = OdometryPlan("generated", 20, {1, 2, 3});
+  plan.estimators = {{StillEntry(&failing_seed, /*out_of_memory=*/true), nlohmann::json::object()}};
+  try {
+    RunMonteCarlo(plan, Quiet(out, 1));  // one job: seeds in order, seed 3 never starts
+    ADD_FAILURE() << "out of memory was not reported";
+  } catch (const std::runtime_error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("no further run was started"), std::string::npos) << what;
+    EXPECT_NE(what.find("fewer --jobs"), std::string::npos) << what;
+  }
+  const std::string why =
+      nlohmann::json::parse(ReadTextFile(RunFolder(out, "still", 1, 2) / kErrorFile))
+          .at("error")
+          .get<std::string>();
+  EXPECT_NE(why.find("out of memory (std::bad_alloc)"), std::string::npos) << why;
+  EXPECT_NE(why.find("fewer particles"), std::string::npos) << why;
+  EXPECT_TRUE(fs::exists(RunFolder(out, "still", 1, 1) / kMetricsFile));
+  EXPECT_FALSE(fs::exists(RunFolder(out, "still", 1, 3)));
+  EXPECT_EQ(Lines(ReadTextFile(out / kSummaryFile)).size(), 2u);
+  for (const auto& entry : fs::recursive_directory_iterator(out)) {
+    EXPECT_EQ(entry.path().filename().string().find(".tmp-"), std::string::npos) << entry.path();
+  }
+  failing_seed = 99;
+  const MonteCarloReport rerun = RunMonteCarlo(plan, Quiet(out, 2));
+  EXPECT_EQ(rerun.finished, 2u);
+  EXPECT_EQ(rerun.skipped, 1u);
+  EXPECT_TRUE(rerun.failures.empty());
+}
+
+// Temporary files of a killed process are removed by the next run of the folder.
+TEST(MonteCarlo, LeftoverTemporaryFilesAreRemoved) {
+  const fs::path out = datasets::testing::FreshTestDir();
+  RunMonteCarlo(OdometryPlan("generated", 20, {1}), Quiet(out, 1));
+  const fs::path folder = RunFolder(out, "odometry", 1, 1);
+  WriteFileAtomically(folder / "keep.txt", "kept\n");
+  { std::ofstream(folder / "metrics.json.tmp-3") << "{"; }
+  { std::ofstream(out / "runs.csv.tmp-merge") << "x"; }
+  EXPECT_EQ(RemoveLeftoverTemporaries(out), 2u);
+  EXPECT_FALSE(fs::exists(folder / "metrics.json.tmp-3"));
+  EXPECT_TRUE(fs::exists(folder / "keep.txt"));
+  { std::ofstream(folder / "steps.csv.tmp-0") << "x"; }
+  const MonteCarloReport again =
+      RunMonteCarlo(OdometryPlan("generated", 20, {1, 2}), Quiet(out, 1));
+  EXPECT_EQ(again.finished, 1u);
+  EXPECT_FALSE(fs::exists(folder / "steps.csv.tmp-0"));
 }
 
 TEST(MonteCarlo, StopFlagLetsNoNewRunStart) {

@@ -71,6 +71,24 @@ void WriteFileAtomically(const std::filesystem::path& path, std::string_view con
       tag);
 }
 
+std::size_t RemoveLeftoverTemporaries(const std::filesystem::path& folder) {
+  std::error_code ec;
+  if (!std::filesystem::is_directory(folder, ec)) return 0;
+  std::vector<std::filesystem::path> leftovers;
+  for (auto it = std::filesystem::recursive_directory_iterator(folder, ec);
+       !ec && it != std::filesystem::recursive_directory_iterator(); it.increment(ec)) {
+    if (it->is_regular_file(ec) &&
+        it->path().filename().string().find(".tmp-") != std::string::npos) {
+      leftovers.push_back(it->path());
+    }
+  }
+  std::size_t removed = 0;
+  for (const std::filesystem::path& path : leftovers) {
+    if (std::filesystem::remove(path, ec)) ++removed;
+  }
+  return removed;
+}
+
 std::string ReadTextFile(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error("cannot open " + path.string() + " for reading");

@@ -34,6 +34,11 @@ void WriteFileAtomically(const std::filesystem::path& path,
                          const std::function<void(const std::filesystem::path&)>& writer,
                          std::string_view tag = "0");
 
+/// Removes every file under `folder` whose name holds ".tmp-" (what WriteFileAtomically writes
+/// before its rename): left only by a process that was killed. Call it only while holding the
+/// folder's lock (results_lock.h). Returns how many were removed.
+std::size_t RemoveLeftoverTemporaries(const std::filesystem::path& folder);
+
 /// The whole content of a text file; throws std::runtime_error naming the file.
 std::string ReadTextFile(const std::filesystem::path& path);
 
