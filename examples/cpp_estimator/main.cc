@@ -61,9 +61,8 @@ int main(int argc, char** argv) {
     x.seeds = v::ParseSeedList(Option(argc, argv, "--seeds", "1-5"));
     x.steps = std::stoi(Option(argc, argv, "--steps", "500"));
     x.particles = v::ParseParticleList(Option(argc, argv, "--particles", "1"));
-    for (const std::string& name :
-         v::ParseNameList(Option(argc, argv, "--estimators", "nearest-landmark,odometry"),
-                          "estimator")) {
+    for (const std::string& name : v::ParseNameList(
+             Option(argc, argv, "--estimators", "nearest-landmark,odometry"), "estimator")) {
       x.estimators.push_back({name});
     }
     v::ExperimentSettings settings;
