@@ -255,7 +255,8 @@ void AddExportCommand(CLI::App& app, ExportArguments& a) {
       "seed-<s>/controls.csv (step,t_start,t_end,u1,u2), seed-<s>/measurements.csv "
       "(step,index,range,bearing), seed-<s>/models.json (initial pose, motion and sensor models, "
       "noise, field of view, detection and clutter); the truth in truth/seed-<s>/ "
-      "(trajectory.tum, map.csv id,x,y, origins.csv step,index,origin); export.json (format "
+      "(trajectory.tum, map.csv id,x,y, gps.csv t,x,y, origins.csv step,index,origin; those the "
+      "scenario has); export.json (format "
       "version, scenario and options, seeds) and SHA256SUMS (`sha256sum -c SHA256SUMS`). "
       "Format: validation/EXPORT_FORMAT.md.");
   AddScenarioOptions(command, a.scenario);

@@ -10,7 +10,7 @@ the files `phdslam ingest` reads. Needs numpy only.
         seed.controls[k]        # (c, 4) array: t_start, t_end, u1, u2 (c = 0 at step 0)
         seed.measurements[k]    # (m, 2) array: range (m), bearing (rad)
     seed.models["sensor"]["noise_cov"]           # models.json as a dict
-    truth = pr.read_truth("EXPORT", 1)           # true poses, map and measurement origins
+    truth = pr.read_truth("EXPORT", 1)           # true poses, map, GPS, measurement origins
 
 Command line: `phdslam_reader.py EXPORT [--seed S] [--json]` checks SHA256SUMS and prints a
 summary of seed S, or with --json every input value of seed S (for tests).
@@ -75,17 +75,24 @@ class Seed:
 
 
 class Truth:
-    """truth/seed-<s>/: true poses (x, y, theta; heading unwrapped), map, measurement origins."""
+    """truth/seed-<s>/: true poses (x, y, theta; heading unwrapped), map, GPS fixes (t, x, y) and
+    measurement origins; None for what the scenario does not have (real data: GPS only)."""
 
     def __init__(self, folder, seed, steps):
         base = os.path.join(folder, "truth", f"seed-{seed}")
-        tum = np.loadtxt(os.path.join(base, "trajectory.tum"), comments="#", ndmin=2)
-        yaw = 2.0 * np.arctan2(tum[:, 6], tum[:, 7])
-        self.times = tum[:, 0]
-        self.poses = np.column_stack([tum[:, 1], tum[:, 2], np.unwrap(yaw)])
-        self.landmarks = _table(os.path.join(base, "map.csv"), ["x", "y"])
-        origins = _table(os.path.join(base, "origins.csv"), ["step", "index", "origin"])
-        self.origins = [o[:, 1].astype(int) for o in _split_by_step(origins, steps)]
+        self.times = self.poses = self.landmarks = self.gps = self.origins = None
+        if os.path.exists(os.path.join(base, "trajectory.tum")):
+            tum = np.loadtxt(os.path.join(base, "trajectory.tum"), comments="#", ndmin=2)
+            yaw = 2.0 * np.arctan2(tum[:, 6], tum[:, 7])
+            self.times = tum[:, 0]
+            self.poses = np.column_stack([tum[:, 1], tum[:, 2], np.unwrap(yaw)])
+        if os.path.exists(os.path.join(base, "map.csv")):
+            self.landmarks = _table(os.path.join(base, "map.csv"), ["x", "y"])
+        if os.path.exists(os.path.join(base, "gps.csv")):
+            self.gps = _table(os.path.join(base, "gps.csv"), ["t", "x", "y"])
+        if os.path.exists(os.path.join(base, "origins.csv")):
+            origins = _table(os.path.join(base, "origins.csv"), ["step", "index", "origin"])
+            self.origins = [o[:, 1].astype(int) for o in _split_by_step(origins, steps)]
 
 
 def read_export(folder):

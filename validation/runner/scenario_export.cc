@@ -127,6 +127,15 @@ std::string OriginsCsv(const datasets::Scenario& s) {
   return text;
 }
 
+std::string GpsCsv(const datasets::Scenario& s) {
+  std::string text = "t,x,y\n";
+  for (const datasets::GpsFix& fix : s.truth.gps) {
+    text +=
+        Row({FormatDouble(fix.t), FormatDouble(fix.position.x()), FormatDouble(fix.position.y())});
+  }
+  return text;
+}
+
 bool HasOrigins(const datasets::Scenario& s) {
   for (const datasets::ScenarioStep& step : s.steps) {
     if (!step.origin.empty()) return true;
@@ -159,6 +168,7 @@ std::map<std::string, std::string> ExportFiles(const datasets::Scenario& scenari
     files[truth + "trajectory.tum"] = TruthTum(scenario);
   }
   if (!scenario.truth.landmarks.empty()) files[truth + "map.csv"] = TruthMapCsv(scenario);
+  if (!scenario.truth.gps.empty()) files[truth + "gps.csv"] = GpsCsv(scenario);
   if (HasOrigins(scenario)) files[truth + "origins.csv"] = OriginsCsv(scenario);
   return files;
 }

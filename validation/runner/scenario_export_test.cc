@@ -75,6 +75,26 @@ TEST(ScenarioExport, WritesEveryFileWithItsChecksum) {
   EXPECT_EQ(steps.rows.size(), 50U);
 }
 
+TEST(ScenarioExport, RealDataHasGpsAndUnknownOriginsAndSeveralControlsPerStep) {
+  ScenarioOptions options;
+  options.steps = 30;
+  const datasets::Scenario s = MakeScenarioSource("victoria-park", options).make(1);
+  const std::map<std::string, std::string> files = ExportFiles(s);
+  EXPECT_FALSE(files.count("truth/seed-1/trajectory.tum"));
+  EXPECT_FALSE(files.count("truth/seed-1/map.csv"));
+  ASSERT_TRUE(files.count("truth/seed-1/gps.csv"));
+  EXPECT_EQ(files.at("truth/seed-1/gps.csv").rfind("t,x,y\n", 0), 0U);
+  ASSERT_TRUE(files.count("truth/seed-1/origins.csv"));
+  EXPECT_NE(files.at("truth/seed-1/origins.csv").find(",-2\n"), std::string::npos);
+  std::size_t controls = 0;
+  for (const datasets::ScenarioStep& step : s.steps) controls += step.data.controls.size();
+  EXPECT_GT(controls, s.steps.size());  // 40 Hz odometry: several controls per filter step
+  const CsvTable table = ParseCsv(files.at("seed-1/controls.csv"), "controls.csv");
+  EXPECT_EQ(table.rows.size(), controls);
+  EXPECT_EQ(ModelsJson(s).at("motion").at("kind"), "car");
+  EXPECT_EQ(ModelsJson(s).at("sensor").at("detection_profile"), "linear_range");
+}
+
 TEST(ScenarioExport, ModelsHoldTheScenariosNoiseAndFieldOfView) {
   const datasets::Scenario s = PaperSynthetic(5).make(1);
   const nlohmann::json m = ModelsJson(s);
