@@ -21,8 +21,8 @@ inline constexpr const char* kExportChecksumFile = "SHA256SUMS";
 
 /// The files of one seed's export: path relative to the export folder -> content. Inputs go to
 /// seed-<s>/ (steps.csv, controls.csv, measurements.csv, models.json), the truth to
-/// truth/seed-<s>/ (trajectory.tum, map.csv, gps.csv, origins.csv; those the scenario has). Numbers are
-/// written in the shortest text that reads back as exactly the same double.
+/// truth/seed-<s>/ (trajectory.tum, map.csv, gps.csv, origins.csv; those the scenario has). Numbers
+/// are written in the shortest text that reads back as exactly the same double.
 std::map<std::string, std::string> ExportFiles(const datasets::Scenario& scenario);
 
 /// models.json of a scenario: initial pose, motion model with its control noise, sensor model
