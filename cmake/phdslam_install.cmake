@@ -22,6 +22,7 @@ function(phdslam_install)
               ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
               LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
               RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+      set_property(GLOBAL APPEND PROPERTY PHDSLAM_INSTALLED_TARGETS ${target})
     endif()
   endforeach()
 endfunction()
@@ -29,6 +30,19 @@ endfunction()
 # The headers of every library folder, the export set and the package configuration; called
 # once, after every phdslam_install().
 function(phdslam_install_package)
+  # A library that an installed one links but that is not installed itself would break the
+  # export with a terse message; name it and the fix instead.
+  get_property(installed GLOBAL PROPERTY PHDSLAM_INSTALLED_TARGETS)
+  foreach(target IN LISTS installed)
+    get_target_property(links ${target} LINK_LIBRARIES)
+    get_target_property(interface_links ${target} INTERFACE_LINK_LIBRARIES)
+    foreach(link IN LISTS links interface_links)
+      if(link MATCHES "^phdslam_" AND TARGET ${link} AND NOT link IN_LIST installed)
+        message(FATAL_ERROR "phdslam: ${target} links ${link}, which is not installed: add "
+                            "${link} to the phdslam_install(...) list of CMakeLists.txt")
+      endif()
+    endforeach()
+  endforeach()
   install(DIRECTORY src datasets validation oracle reference
           DESTINATION ${PHDSLAM_INSTALL_INCLUDEDIR}
           FILES_MATCHING PATTERN "*.h")
