@@ -34,7 +34,7 @@ mkdir -p "$scratch"
 out="$scratch/results"
 
 expect_exit 0 "$phdslam" --help
-for command in run merge compare evaluate list; do
+for command in run merge compare evaluate list export ingest; do
   expect_in "$scratch/out" "$command"
 done
 expect_exit 0 "$phdslam" run --help
@@ -305,6 +305,51 @@ printf 'scenario: generated\nestimators: [phd3]\nseeds: 1\nsweep: {parameter: la
 expect_exit 2 "$phdslam" run --experiment "$scratch/bad.yaml" --out "$scratch/bad" --quiet
 expect_in "$scratch/err" "bad.yaml:4: 'sweep.values' of 'landmarks': expected a non-empty list"
 [ -e "$scratch/bad" ] && fail "a sweep error left a results folder behind"
+
+# export and ingest: an external filter's round trip (here the export's own truth as the
+# "estimate", so its position RMSE is 0), exit codes and errors naming the file.
+expect_exit 0 "$phdslam" export --help
+for option in --scenario --seeds --steps --pd --clutter-rate --scenario-set --data-dir --out; do
+  expect_in "$scratch/out" "$option"
+done
+expect_exit 0 "$phdslam" ingest --help
+for option in --from --estimator --out --export --experiment-name --particles --description; do
+  expect_in "$scratch/out" "$option"
+done
+ex="$scratch/export"
+expect_exit 2 "$phdslam" export --scenario paper-synthetic --out "$ex"
+expect_in "$scratch/err" "--seeds is required"
+expect_exit 0 "$phdslam" export --scenario paper-synthetic --seeds 1-2 --steps 20 \
+  --data-dir "$data_dir" --out "$ex"
+(cd "$ex" && sha256sum --quiet -c SHA256SUMS) || fail "export checksums do not verify"
+expect_in "$ex/seed-2/measurements.csv" "step,index,range,bearing"
+ext="$scratch/external"
+for s in 1 2; do
+  mkdir -p "$ext/seed-$s"
+  cp "$ex/truth/seed-$s/trajectory.tum" "$ext/seed-$s/trajectory.tum"
+  cp "$ex/truth/seed-$s/map.csv" "$ext/seed-$s/map.csv"
+done
+ing="$scratch/ingested"
+expect_exit 0 "$phdslam" run --scenario paper-synthetic --seeds 1-2 --steps 20 \
+  --data-dir "$data_dir" --estimator odometry --out "$ing" --quiet
+expect_exit 0 "$phdslam" ingest --from "$ext" --export "$ex" --estimator truth-copy \
+  --data-dir "$data_dir" --out "$ing"
+expect_in "$ing/summary.csv" "truth-copy,1,2,20,0,"
+awk -F, '$1 == "truth-copy" && $7 == 0 {found = 1} END {exit !found}' "$ing/summary.csv" ||
+  fail "the ingested truth does not have GOSPA 0"
+expect_in "$ing/summary.csv" "odometry,1,2,20,"
+expect_exit 0 "$phdslam" compare --out "$ing"
+expect_in "$ing/comparison.csv" "gospa_m,odometry,1,truth-copy,1,2,"
+expect_exit 2 "$phdslam" ingest --from "$ext" --export "$ex" --estimator phd3 --out "$ing"
+expect_in "$scratch/err" "registered estimator"
+expect_exit 2 "$phdslam" ingest --from "$ext" --export "$ex" --estimator x --steps 5 --out "$ing"
+expect_exit 1 "$phdslam" ingest --from "$ext" --export "$ex" --seeds 1-3 --estimator x \
+  --data-dir "$data_dir" --out "$scratch/ingest-missing"
+expect_in "$scratch/err" "seed 3 is not in this export"
+sed -i '5s/^[0-9.e-]* /nan /' "$ext/seed-2/trajectory.tum"
+expect_exit 1 "$phdslam" ingest --from "$ext" --export "$ex" --estimator x \
+  --data-dir "$data_dir" --out "$scratch/ingest-nan"
+expect_in "$scratch/err" "seed-2/trajectory.tum:5"
 
 if [ "$failures" -ne 0 ]; then
   echo "$failures check(s) failed" >&2

@@ -7,6 +7,8 @@
 //   phdslam evaluate  GOSPA/OSPA of a map file, RMSE of a trajectory file
 //   phdslam list      the known scenarios and estimators
 //   phdslam parent-weights  single-cluster vs RB-PHD-SLAM parent weights after one scan
+//   phdslam export    a scenario's filter inputs and truth per seed, for external filters
+//   phdslam ingest    an external filter's outputs into a results folder
 //
 // Exit codes: 0 success, 1 a run or evaluation failed (or a file could not be read), 2 a usage
 // error (bad option, experiment file or list; unknown name; conflicting results folders),
@@ -31,6 +33,7 @@
 #include "validation/runner/estimator_registry.h"
 #include "validation/runner/experiment_file.h"
 #include "validation/runner/experiment_runner.h"
+#include "validation/runner/ingest.h"
 #include "validation/runner/interrupt_flag.h"
 #include "validation/runner/list_arguments.h"
 #include "validation/runner/merge_results.h"
@@ -42,6 +45,7 @@
 #include "validation/runner/results_config.h"
 #include "validation/runner/results_io.h"
 #include "validation/runner/results_layout.h"
+#include "validation/runner/scenario_export.h"
 #include "validation/runner/scenario_registry.h"
 #include "validation/runner/shard.h"
 #include "validation/runner/summary.h"
@@ -87,6 +91,39 @@ struct RunArguments {
   CLI::Option* data_dir_option = nullptr;
   CLI::Option* pd_option = nullptr;
   CLI::Option* clutter_option = nullptr;
+};
+
+// The scenario options of `export` and `ingest`, as `run` takes them.
+struct ScenarioArguments {
+  std::string scenario;
+  std::string seeds;
+  std::string data_dir;
+  int steps = 0;
+  double detection_probability = 0.0;
+  double clutter_rate = 0.0;
+  std::vector<std::string> scenario_assignments;
+  CLI::Option* scenario_option = nullptr;
+  CLI::Option* seeds_option = nullptr;
+  CLI::Option* data_dir_option = nullptr;
+  CLI::Option* steps_option = nullptr;
+  CLI::Option* pd_option = nullptr;
+  CLI::Option* clutter_option = nullptr;
+};
+
+struct ExportArguments {
+  ScenarioArguments scenario;
+  std::string out;
+};
+
+struct IngestArguments {
+  ScenarioArguments scenario;
+  std::string from;
+  std::string estimator;
+  std::string out;
+  std::string export_dir;
+  std::string description = "external estimator (phdslam ingest)";
+  std::string experiment = "default";
+  int particles = 1;
 };
 
 struct MergeArguments {
@@ -188,6 +225,77 @@ void AddRunCommand(CLI::App& app, RunArguments& a) {
                 "landmarks detected so far, as the last steps.csv column map_ospa_m (online "
                 "estimators on scenarios with a true map)");
   run->add_flag("--quiet", a.quiet, "No progress line and no summary table");
+}
+
+void AddScenarioOptions(CLI::App* command, ScenarioArguments& a) {
+  a.scenario_option =
+      command->add_option("--scenario", a.scenario, "Scenario name (see `phdslam list`)");
+  a.seeds_option = command->add_option(
+      "--seeds", a.seeds, "Monte Carlo seeds: a range a-b, a single seed, or a comma list");
+  a.data_dir_option =
+      command->add_option("--data-dir", a.data_dir,
+                          "Data sets folder (default: $PHDSLAM_DATA, else the folder compiled in)");
+  a.steps_option = command
+                       ->add_option("--steps", a.steps,
+                                    "Use only the first N filter steps of each seed (0 = all)")
+                       ->check(CLI::NonNegativeNumber);
+  a.pd_option = command->add_option("--pd", a.detection_probability,
+                                    "Override the scenario's detection probability (0, 1]");
+  a.clutter_option = command->add_option("--clutter-rate", a.clutter_rate,
+                                         "Override the scenario's mean clutter count per scan");
+  command->add_option("--scenario-set", a.scenario_assignments,
+                      "Scenario option key=value (repeatable), as for `run`");
+}
+
+void AddExportCommand(CLI::App& app, ExportArguments& a) {
+  CLI::App* command = app.add_subcommand(
+      "export",
+      "Write the inputs of a filter for every seed of a scenario, as `run` would give them to "
+      "an estimator, into --out: seed-<s>/steps.csv (step,t,controls,measurements), "
+      "seed-<s>/controls.csv (step,t_start,t_end,u1,u2), seed-<s>/measurements.csv "
+      "(step,index,range,bearing), seed-<s>/models.json (initial pose, motion and sensor models, "
+      "noise, field of view, detection and clutter); the truth in truth/seed-<s>/ "
+      "(trajectory.tum, map.csv id,x,y, gps.csv t,x,y, origins.csv step,index,origin; those the "
+      "scenario has); export.json (format "
+      "version, scenario and options, seeds) and SHA256SUMS (`sha256sum -c SHA256SUMS`). "
+      "Format: validation/EXPORT_FORMAT.md.");
+  AddScenarioOptions(command, a.scenario);
+  command->add_option("--out", a.out, "Export folder (created if needed)")->required();
+}
+
+void AddIngestCommand(CLI::App& app, IngestArguments& a) {
+  CLI::App* command = app.add_subcommand(
+      "ingest",
+      "Read an external filter's outputs, --from DIR with DIR/seed-<s>/trajectory.tum (one "
+      "pose per step, at the step's time stamp) and DIR/seed-<s>/map.csv (x,y[,weight,pxx,pxy,"
+      "pyy]), optionally pose_cov.csv (step,pxx,pxy,pxt,pyy,pyt,ptt), maps.csv (step,x,y: the "
+      "map after each step), association.csv (step,index,x,y) and timing.csv (step,ms) per "
+      "seed and DIR/parameters.json, score them against the scenario and write them as the runs "
+      "of estimator --estimator into the results folder --out, as `run` writes runs (the folder "
+      "may already hold `run` results of the same scenario and experiment name). The scenario "
+      "comes from --export (the export folder the filter read; its checksums are verified) or "
+      "from the scenario options, as for `run`. Format: validation/EXPORT_FORMAT.md.");
+  AddScenarioOptions(command, a.scenario);
+  command->add_option("--from", a.from, "Folder of the external filter's outputs")
+      ->required()
+      ->check(CLI::ExistingDirectory);
+  command->add_option("--estimator", a.estimator, "Name the external filter's runs are filed under")
+      ->required();
+  command->add_option("--out", a.out, "Results folder (created if needed)")->required();
+  command
+      ->add_option("--export", a.export_dir,
+                   "Export folder the filter read: scenario, options and seeds (default: all of "
+                   "its seeds) come from its export.json")
+      ->check(CLI::ExistingDirectory);
+  command->add_option("--description", a.description, "Description stored in config.json")
+      ->capture_default_str();
+  command
+      ->add_option("--experiment-name", a.experiment,
+                   "Experiment name; must be that of the results folder's runs")
+      ->capture_default_str();
+  command->add_option("--particles", a.particles, "Particle count the runs are filed under")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
 }
 
 void AddMergeCommand(CLI::App& app, MergeArguments& a) {
@@ -410,6 +518,110 @@ int Run(const RunArguments& a) {
   return failures == 0 ? 0 : kExitRunFailed;
 }
 
+// The experiment holding a scenario and its options, as `run` would resolve them.
+v::Experiment ScenarioExperiment(const ScenarioArguments& a) {
+  v::Experiment x;
+  x.scenario = a.scenario;
+  if (a.seeds_option->count() > 0) x.seeds = v::ParseSeedList(a.seeds);
+  x.steps = a.steps;
+  if (a.pd_option->count() > 0) x.pd = a.detection_probability;
+  if (a.clutter_option->count() > 0) x.clutter_rate = a.clutter_rate;
+  if (a.data_dir_option->count() > 0) x.data_dir = a.data_dir;
+  ApplyScenarioAssignments(a.scenario_assignments, x);
+  return x;
+}
+
+v::ScenarioSource SourceOf(const v::Experiment& x) {
+  return v::PlanExperiment(x, {}, v::EstimatorTable()).front().plan.scenario;
+}
+
+int Export(const ExportArguments& a) {
+  for (const CLI::Option* o : {a.scenario.scenario_option, a.scenario.seeds_option}) {
+    if (o->count() == 0) throw std::invalid_argument("export: " + o->get_name() + " is required");
+  }
+  const v::Experiment x = ScenarioExperiment(a.scenario);
+  const v::ScenarioSource source = SourceOf(x);
+  std::vector<datasets::Scenario> scenarios;
+  for (std::uint64_t seed : x.seeds) scenarios.push_back(source.make(seed));
+  v::ExportDescription description;
+  description.scenario = source.name;
+  description.options = source.options;
+  description.request = {
+      {"steps", x.steps},
+      {"pd", x.pd ? nlohmann::json(*x.pd) : nlohmann::json()},
+      {"clutter_rate", x.clutter_rate ? nlohmann::json(*x.clutter_rate) : nlohmann::json()},
+      {"settings", x.scenario_settings}};
+  description.seeds = x.seeds;
+  v::WriteExport(a.out, description, scenarios);
+  std::cout << "export: " << a.out << " (" << scenarios.size() << " seeds of " << source.name
+            << ", format version " << v::kExportFormatVersion << "; checksums in "
+            << (std::filesystem::path(a.out) / v::kExportChecksumFile).string() << ")\n";
+  return 0;
+}
+
+// The scenario of an export folder, from its export.json.
+v::Experiment ExportedExperiment(const IngestArguments& a) {
+  const ScenarioArguments& s = a.scenario;
+  for (const CLI::Option* o : {s.scenario_option, s.steps_option, s.pd_option, s.clutter_option}) {
+    if (o->count() > 0) {
+      throw std::invalid_argument("ingest: " + o->get_name() +
+                                  " and --export both give the scenario; give one");
+    }
+  }
+  if (!s.scenario_assignments.empty()) {
+    throw std::invalid_argument("ingest: --scenario-set and --export both give the scenario");
+  }
+  const std::filesystem::path path = std::filesystem::path(a.export_dir) / v::kExportManifestFile;
+  const nlohmann::json manifest = v::ReadJsonObject(path);
+  try {
+    if (manifest.at("format_version").get<int>() != v::kExportFormatVersion) {
+      throw std::runtime_error(path.string() + ": format_version " +
+                               manifest.at("format_version").dump() + ", this program reads " +
+                               std::to_string(v::kExportFormatVersion));
+    }
+    v::Experiment x;
+    x.scenario = manifest.at("scenario").get<std::string>();
+    const nlohmann::json& request = manifest.at("request");
+    x.steps = request.at("steps").get<int>();
+    if (!request.at("pd").is_null()) x.pd = request.at("pd").get<double>();
+    if (!request.at("clutter_rate").is_null()) {
+      x.clutter_rate = request.at("clutter_rate").get<double>();
+    }
+    x.scenario_settings = request.at("settings");
+    x.seeds = s.seeds_option->count() > 0 ? v::ParseSeedList(s.seeds)
+                                          : manifest.at("seeds").get<std::vector<std::uint64_t>>();
+    if (s.data_dir_option->count() > 0) x.data_dir = s.data_dir;
+    return x;
+  } catch (const nlohmann::json::exception& e) {
+    throw std::runtime_error(path.string() + ": unexpected content (" + e.what() + ")");
+  }
+}
+
+int Ingest(const IngestArguments& a) {
+  const bool from_export = !a.export_dir.empty();
+  if (!from_export) {
+    for (const CLI::Option* o : {a.scenario.scenario_option, a.scenario.seeds_option}) {
+      if (o->count() == 0) {
+        throw std::invalid_argument("ingest: " + o->get_name() + " is required (or give --export)");
+      }
+    }
+  }
+  const v::Experiment x = from_export ? ExportedExperiment(a) : ScenarioExperiment(a.scenario);
+  v::IngestRequest request;
+  request.from = a.from;
+  request.estimator = a.estimator;
+  request.description = a.description;
+  request.particles = a.particles;
+  request.experiment = a.experiment;
+  request.scenario = SourceOf(x);
+  request.seeds = x.seeds;
+  if (from_export) request.export_dir = a.export_dir;
+  const v::IngestReport report = v::IngestResults(request, a.out);
+  std::cout << "ingested " << report.runs << " runs of " << a.estimator << " into " << a.out
+            << "\nsummary: " << (std::filesystem::path(a.out) / v::kSummaryFile).string() << "\n";
+  return 0;
+}
+
 int Merge(const MergeArguments& a) {
   std::vector<std::filesystem::path> inputs(a.inputs.begin(), a.inputs.end());
   const v::MergeReport report = v::MergeResults(a.out, inputs);
@@ -552,11 +764,15 @@ int Main(int argc, char** argv) {
   CompareArguments compare_arguments;
   EvaluateArguments evaluate_arguments;
   ParentWeightsArguments parent_weights_arguments;
+  ExportArguments export_arguments;
+  IngestArguments ingest_arguments;
   AddRunCommand(app, run_arguments);
   AddMergeCommand(app, merge_arguments);
   AddCompareCommand(app, compare_arguments);
   AddEvaluateCommand(app, evaluate_arguments);
   AddParentWeightsCommand(app, parent_weights_arguments);
+  AddExportCommand(app, export_arguments);
+  AddIngestCommand(app, ingest_arguments);
   app.add_subcommand("list", "List the known scenarios (with their options) and estimators");
   if (const std::string option = OptionWithoutValue(app, argc, argv); !option.empty()) {
     std::cerr << "phdslam: error: " << option << " needs a value (see phdslam --help)\n";
@@ -575,6 +791,8 @@ int Main(int argc, char** argv) {
     if (app.got_subcommand("compare")) return Compare(compare_arguments);
     if (app.got_subcommand("evaluate")) return Evaluate(evaluate_arguments);
     if (app.got_subcommand("parent-weights")) return ParentWeights(parent_weights_arguments);
+    if (app.got_subcommand("export")) return Export(export_arguments);
+    if (app.got_subcommand("ingest")) return Ingest(ingest_arguments);
     return List();
   } catch (const std::bad_alloc& e) {
     std::cerr << "phdslam: error: out of memory (" << e.what() << ") in 'phdslam "

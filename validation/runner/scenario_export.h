@@ -1,0 +1,54 @@
+// `phdslam export`: the inputs of a filter for each Monte Carlo seed of a scenario, written as
+// language-neutral files (CSV, JSON, TUM) that an external filter reads, with the truth in a
+// separate folder and a SHA-256 checksum file. The format is documented in
+// validation/EXPORT_FORMAT.md; kExportFormatVersion changes with every incompatible change.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "datasets/scenario.h"
+
+namespace phdslam::validation {
+
+inline constexpr int kExportFormatVersion = 1;
+inline constexpr const char* kExportManifestFile = "export.json";
+inline constexpr const char* kExportChecksumFile = "SHA256SUMS";
+
+/// The files of one seed's export: path relative to the export folder -> content. Inputs go to
+/// seed-<s>/ (steps.csv, controls.csv, measurements.csv, models.json), the truth to
+/// truth/seed-<s>/ (trajectory.tum, map.csv, gps.csv, origins.csv; those the scenario has). Numbers
+/// are written in the shortest text that reads back as exactly the same double.
+std::map<std::string, std::string> ExportFiles(const datasets::Scenario& scenario);
+
+/// models.json of a scenario: initial pose, motion model with its control noise, sensor model
+/// with its noise, field of view, detection and clutter model.
+nlohmann::json ModelsJson(const datasets::Scenario& scenario);
+
+/// What export.json records besides the seeds: the scenario's name, its resolved options (as
+/// config.json stores them) and the options as given (`request`: steps, pd, clutter_rate,
+/// settings), from which `phdslam ingest --export` rebuilds the same scenario.
+struct ExportDescription {
+  std::string scenario;
+  nlohmann::json options = nlohmann::json::object();
+  nlohmann::json request = nlohmann::json::object();
+  std::vector<std::uint64_t> seeds;
+};
+
+/// Writes the export of every scenario in `scenarios` (one per seed, in the order of
+/// description.seeds) into `out` (created if needed): the files of ExportFiles, export.json and
+/// SHA256SUMS ("<hex>  <relative path>" per file, as `sha256sum -c` reads it; export.json
+/// included). Files are written atomically. Throws std::runtime_error naming a file that cannot
+/// be written.
+void WriteExport(const std::filesystem::path& out, const ExportDescription& description,
+                 const std::vector<datasets::Scenario>& scenarios);
+
+/// The SHA-256 checksums of SHA256SUMS in `folder`: relative path -> hex digest. Throws
+/// std::runtime_error naming the file and line for a malformed line or a missing file.
+std::map<std::string, std::string> ReadExportChecksums(const std::filesystem::path& folder);
+
+}  // namespace phdslam::validation
