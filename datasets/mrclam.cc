@@ -150,6 +150,7 @@ void ReadLandmarks(const std::filesystem::path& path, MrclamRobotData& data) {
 void ReadOdometry(const std::filesystem::path& path, MrclamRobotData& data) {
   const auto rows = ReadRows<3>(path, "t [s], v [m/s], w [rad/s]");
   std::vector<double> times;
+  times.reserve(rows.size());
   for (const auto& row : rows) times.push_back(row.values[0]);
   const std::vector<std::size_t> order = StableTimeOrder(times, data.odometry_out_of_order);
   for (std::size_t i : order) {
@@ -167,6 +168,7 @@ void ReadOdometry(const std::filesystem::path& path, MrclamRobotData& data) {
 void ReadTruth(const std::filesystem::path& path, MrclamRobotData& data) {
   const auto rows = ReadRows<4>(path, "t [s], x [m], y [m], heading [rad]");
   std::vector<double> times;
+  times.reserve(rows.size());
   for (const auto& row : rows) times.push_back(row.values[0]);
   const std::vector<std::size_t> order = StableTimeOrder(times, data.truth_out_of_order);
   for (std::size_t i : order) {
@@ -188,6 +190,7 @@ void ReadTruth(const std::filesystem::path& path, MrclamRobotData& data) {
 void ReadDetections(const std::filesystem::path& path, MrclamRobotData& data) {
   const auto rows = ReadRows<4>(path, "t [s], barcode, range [m], bearing [rad]");
   std::vector<double> times;
+  times.reserve(rows.size());
   for (const auto& row : rows) times.push_back(row.values[0]);
   const std::vector<std::size_t> order = StableTimeOrder(times, data.detections_out_of_order);
   for (std::size_t i : order) {
