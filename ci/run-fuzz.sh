@@ -14,7 +14,7 @@ seconds=${1:-20}
 root=$(pwd)
 data=${PHDSLAM_DATA:-$root/../shared/datasets}
 build=build/fuzz
-targets=(mat_file victoria_park tum_trajectory map_csv experiment_file)
+targets=(mat_file victoria_park tum_trajectory map_csv experiment_file mrclam)
 
 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++-14 \
   -DPHDSLAM_FUZZ=ON -DPHDSLAM_BUILD_TESTS=OFF -DPHDSLAM_BUILD_BENCHMARKS=OFF \
@@ -23,7 +23,7 @@ cmake --build "$build" -j "$(nproc 2>/dev/null || echo 2)" --target "${targets[@
 
 # Seed corpus, rebuilt on every call from the real files.
 corpus=$build/corpus
-rm -rf "$corpus" && mkdir -p "$corpus"/{mat_file,victoria_park,tum_trajectory,map_csv,experiment_file}
+rm -rf "$corpus" && mkdir -p "$corpus"/{mat_file,victoria_park,tum_trajectory,map_csv,experiment_file,mrclam}
 cp "$data/phdslam3-synthetic/Environment_SLAM.mat" "$data/victoria-park/aa3_gpsx.mat" \
   "$corpus/mat_file/"
 { printf '\x00'; head -n 60 "$data/victoria-park/measurements.dat"; } >"$corpus/victoria_park/m"
@@ -33,6 +33,11 @@ awk 'NR <= 60 { printf "%s %s %s 0 0 0 %.6f %.6f\n", $1, $2, $3, sin($3 / 2), co
 awk 'BEGIN { print "x,y,weight,pxx,pxy,pyy" } !/^#/ && NF >= 3 { print $2 "," $3 ",1,0.01,0,0.01" }' \
   "$data/utias-mrclam/MRCLAM_Dataset6/Landmark_Groundtruth.dat" >"$corpus/map_csv/m.csv"
 cp validation/experiments/*.yaml "$corpus/experiment_file/"
+mrclam=$data/utias-mrclam/MRCLAM_Dataset6
+{ printf '\x02'; head -n 64 "$mrclam/Robot1_Groundtruth.dat"; } >"$corpus/mrclam/g"
+{ printf '\x03'; head -n 64 "$mrclam/Robot1_Odometry.dat"; } >"$corpus/mrclam/o"
+{ printf '\x04'; head -n 64 "$mrclam/Robot1_Measurement.dat"; } >"$corpus/mrclam/m"
+{ printf '\x00'; cat "$mrclam/Barcodes.dat"; } >"$corpus/mrclam/b"
 
 mkdir -p "$build/artifacts"
 # The targets write their input to files under $TMPDIR (fuzz/fuzz_input_file.h): keep them here.

@@ -43,6 +43,14 @@ struct GroundTruth {
   std::vector<Pose> poses;          ///< one per step (empty for real data)
   std::vector<Landmark> landmarks;  ///< true map (empty for real data)
   std::vector<GpsFix> gps;          ///< GPS fixes (real data)
+  /// Per step: false where poses[k] is only a stand-in (real data without truth at that step:
+  /// a gap in the reference system) and the step is left out of every pose metric. Empty when
+  /// every pose is known.
+  std::vector<bool> pose_scored;
+
+  [[nodiscard]] bool PoseScored(std::size_t k) const {
+    return pose_scored.empty() || pose_scored[k];
+  }
 };
 
 enum class MotionKind { kVelocity, kCar };

@@ -625,6 +625,9 @@ class ReportBuilder:
         shown = ", ".join(f"{k} = {options[k]}" for k in
                           ("steps", "detection_probability", "detection_probability_nominal",
                            "clutter_rate") if k in options)
+        counts = options.get("counts")
+        if isinstance(counts, dict):  # real data (mrclam): what the steps are made of
+            shown = ", ".join(x for x in (shown, counts_text(counts)) if x)
         seeds = config.get("seeds") or []
         program = config.get("program") or {}
         point = ", ".join(f"{name} = {value}" for name, value in sweep_point_of(folder.path))
@@ -668,6 +671,22 @@ class ReportBuilder:
         sections.append(self.sensitivity_section())
         html = render_page(self.options.title, "\n".join(intro), sections)
         return Report(html=html, sections=sections, figure_files=self.figure_files)
+
+
+def counts_text(counts: dict) -> str:
+    """The scenario's counts (config.json scenario.options.counts of real data) as a sentence."""
+    def n(key: str) -> str:
+        value = counts.get(key)
+        return "?" if value is None else str(value)
+    dropped = counts.get("non_landmarks_dropped")
+    text = (f"{n('steps')} steps ({n('unscored_steps')} without truth: left out of the pose "
+            f"metrics), {n('landmark_detections')} landmark detections, "
+            f"{n('other_robot_detections')} of other robots and "
+            f"{n('unknown_barcode_detections')} of unknown barcodes "
+            f"({'dropped' if dropped else 'kept as clutter'})")
+    if counts.get("images_skipped"):
+        text += f", {n('images_skipped')} images outside the commands or the truth left out"
+    return text
 
 
 def build_report(results_dirs: Sequence[Path | str], out_dir: Path | str,

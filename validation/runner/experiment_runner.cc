@@ -155,6 +155,7 @@ ExperimentReport RunExperiment(const Experiment& experiment, const ExperimentSet
     s.report_failures = settings.report_failures;
     s.stop = settings.stop;
     s.metrics = settings.metrics;
+    if (const auto c = FindScenario(part.plan.scenario.name).gospa_c) s.metrics.gospa_c = *c;
     s.shard = settings.shard;
     s.job_index_offset = offset;
     s.particles_trace = settings.particles_trace;

@@ -67,8 +67,9 @@ std::string StepsCsv(const RunRecord& record, const datasets::Scenario& scenario
     cells[3] = FormatNumber(p(1));
     cells[4] = FormatNumber(p(2));
     for (int i = 0; i < 3; ++i) {
-      cells[5 + static_cast<std::size_t>(i)] =
-          has_truth ? FormatNumber(scenario.truth.poses[k](i)) : std::string();
+      cells[5 + static_cast<std::size_t>(i)] = has_truth && scenario.truth.PoseScored(k)
+                                                   ? FormatNumber(scenario.truth.poses[k](i))
+                                                   : std::string();
     }
     cells[8] = k < evaluation.position_error_m.size() ? FormatNumber(evaluation.position_error_m[k])
                                                       : std::string();
@@ -188,12 +189,18 @@ void WriteTruthFiles(const std::filesystem::path& out, const datasets::Scenario&
     if (std::filesystem::exists(folder / kTruthTrajectoryFile)) return;
     std::filesystem::create_directories(folder);
     std::vector<double> times;
+    std::vector<Pose> poses;  // the scored steps only: no stand-ins for truth gaps
     times.reserve(scenario.steps.size());
-    for (std::size_t k = 0; k < scenario.steps.size(); ++k) times.push_back(scenario.StepTime(k));
+    poses.reserve(scenario.steps.size());
+    for (std::size_t k = 0; k < scenario.steps.size(); ++k) {
+      if (!scenario.truth.PoseScored(k)) continue;
+      times.push_back(scenario.StepTime(k));
+      poses.push_back(scenario.truth.poses[k]);
+    }
     WriteFileAtomically(
         folder / kTruthTrajectoryFile,
         [&](const std::filesystem::path& temp) {
-          datasets::WriteTumTrajectory(temp, Stamped(times, scenario.truth.poses));
+          datasets::WriteTumTrajectory(temp, Stamped(times, poses));
         },
         tag);
   }

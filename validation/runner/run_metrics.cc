@@ -46,7 +46,7 @@ void EvaluateRbNees(const RunRecord& record, const datasets::Scenario& scenario,
   const std::size_t n = record.poses.size();
   const double threshold = EllipsoidThreshold(3);
   for (std::size_t k = 0; k < n && k < record.pose_covs_rb.size(); ++k) {
-    if (!record.pose_means_rb[k]) continue;
+    if (!record.pose_means_rb[k] || !scenario.truth.PoseScored(k)) continue;
     const double nees =
         StepNees<3>(scenario.truth.poses[k], *record.pose_means_rb[k], record.pose_covs_rb[k]);
     if (std::isnan(nees)) continue;
@@ -79,12 +79,14 @@ void EvaluateTrajectory(const RunRecord& record, const datasets::Scenario& scena
   if (truth.poses.size() == n && n > 0) {
     const PoseErrors errors = ComputePoseErrors(truth.poses, record.poses);
     for (std::size_t k = 0; k < n; ++k) {
+      if (!truth.PoseScored(k)) continue;  // no truth at this step (a gap): NaN, not scored
       ev.position_error_m[k] = errors.position_m[k];
       ev.heading_error_deg[k] = errors.heading_rad[k] * kRadToDeg;
       ev.metrics.position_m.Add(ev.position_error_m[k]);
       ev.metrics.heading_deg.Add(ev.heading_error_deg[k]);
     }
     for (std::size_t k = 0; k < n && k < record.pose_covs.size(); ++k) {
+      if (!truth.PoseScored(k)) continue;
       if (!record.pose_covs[k] || !CholeskyLower<3>(*record.pose_covs[k])) continue;
       try {
         const double nees = PoseNees(truth.poses[k], record.poses[k], *record.pose_covs[k]);

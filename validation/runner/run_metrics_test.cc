@@ -109,6 +109,28 @@ TEST(EvaluateRun, ComputesEveryMetricAsByHand) {
   EXPECT_FALSE(m.gps_matched_steps);
 }
 
+TEST(EvaluateRun, LeavesStepsWithoutTruthOutOfThePoseMetrics) {
+  datasets::Scenario scenario = TruthScenario();
+  scenario.truth.pose_scored = {true, false, true};  // step 1 lies in a truth gap
+  RunRecord record = HandRecord();
+  record.pose_covs = {std::nullopt, Mat3::Identity(), Mat3::Identity()};
+  const RunEvaluation ev = EvaluateRun(record, scenario);
+  const RunMetrics& m = ev.metrics;
+  EXPECT_TRUE(std::isnan(ev.position_error_m[1]));
+  EXPECT_TRUE(std::isnan(ev.heading_error_deg[1]));
+  EXPECT_TRUE(std::isnan(ev.pose_nees[1]));
+  EXPECT_EQ(m.position_m.count, 2u);
+  EXPECT_DOUBLE_EQ(*m.position_m.Rms(), std::sqrt((0.0 + 1.0) / 2.0));
+  EXPECT_EQ(m.pose_nees.count, 1u);  // step 2 only: (0, 1, 0) with identity covariance
+  EXPECT_NEAR(*m.pose_nees.Mean(), 1.0, 1e-12);
+  // The map is scored as without the mask.
+  ASSERT_TRUE(m.gospa);
+  EXPECT_DOUBLE_EQ(m.gospa->gospa, std::sqrt(209.0));
+  // steps.csv leaves the true pose of the unscored step empty.
+  const std::string csv = StepsCsv(record, scenario, ev);
+  EXPECT_NE(csv.find("\n1,1,4,4,0.1,,,,,,"), std::string::npos) << csv;
+}
+
 TEST(EvaluateRun, GpsOnlyScenarioScoresAgainstGps) {
   datasets::Scenario s = TruthScenario();
   s.truth.poses.clear();

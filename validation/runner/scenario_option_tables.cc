@@ -166,4 +166,22 @@ const params::ParameterTable<datasets::ScPhdSimOptions>& ScPhdSimOptionsTable() 
   return table;
 }
 
+const params::ParameterTable<datasets::MrclamOptions>& MrclamOptionsTable() {
+  using O = datasets::MrclamOptions;
+  static const params::ParameterTable<O> table(params::Rows<O>({
+      {
+          IntField<O>(
+              "dataset", [](auto& o) -> auto& { return o.dataset; }, AtLeast(1)),
+          IntField<O>(
+              "robot", [](auto& o) -> auto& { return o.robot; },
+              Between(1, datasets::kMrclamRobots)),
+          params::BoolField<O>(
+              "drop_non_landmarks", [](auto& o) -> auto& { return o.drop_non_landmarks; }),
+      },
+      DetectionRows<O>(),
+      SensorRows<O>(),
+  }));
+  return table;
+}
+
 }  // namespace phdslam::validation

@@ -4,6 +4,7 @@
 // data folder are experiment settings and are not in the tables.
 #pragma once
 
+#include "datasets/mrclam.h"
 #include "datasets/paper_synthetic.h"
 #include "datasets/scenario_generator.h"
 #include "datasets/scphd_simulation.h"
@@ -24,5 +25,9 @@ const params::ParameterTable<datasets::GeneratorOptions>& GeneratedOptionsTable(
 
 /// scphd-sim: the simulated path and map, the sensor and the noise covariances.
 const params::ParameterTable<datasets::ScPhdSimOptions>& ScPhdSimOptionsTable();
+
+/// mrclam: the sub-dataset and robot, whether non-landmark detections are dropped, and the
+/// sensor and noise model the filters assume (defaults estimated from dataset 6).
+const params::ParameterTable<datasets::MrclamOptions>& MrclamOptionsTable();
 
 }  // namespace phdslam::validation

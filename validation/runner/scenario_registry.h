@@ -11,8 +11,10 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <tuple>
 #include <vector>
 
+#include "datasets/mrclam.h"
 #include "datasets/paper_synthetic.h"
 #include "datasets/scenario.h"
 #include "datasets/victoria_park.h"
@@ -45,12 +47,17 @@ class ScenarioCache {
  public:
   const datasets::PaperSyntheticEnvironment& PaperSynthetic(const std::filesystem::path& data_dir);
   const datasets::VictoriaParkData& VictoriaPark(const std::filesystem::path& data_dir);
+  const datasets::MrclamRobotData& Mrclam(const std::filesystem::path& data_dir, int dataset,
+                                          int robot);
 
  private:
   std::mutex mutex_;
   std::map<std::filesystem::path, std::unique_ptr<const datasets::PaperSyntheticEnvironment>>
       paper_synthetic_;
   std::map<std::filesystem::path, std::unique_ptr<const datasets::VictoriaParkData>> victoria_park_;
+  std::map<std::tuple<std::filesystem::path, int, int>,
+           std::unique_ptr<const datasets::MrclamRobotData>>
+      mrclam_;
 };
 
 struct ScenarioEntry {
@@ -66,6 +73,9 @@ struct ScenarioEntry {
   /// std::invalid_argument naming the key for an unknown key or an out-of-range option and
   /// std::runtime_error for a missing data folder, so a bad request fails before any run starts.
   std::function<nlohmann::json(const ScenarioOptions&)> resolved_options;
+  /// The cut-off c (m) of the final-map GOSPA for this scenario's scale of map, when it differs
+  /// from MetricSettings' default (the runner applies it; config.json records it).
+  std::optional<double> gospa_c;
 };
 
 /// Every scenario, in the order `phdslam list` shows them.
