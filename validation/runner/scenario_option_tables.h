@@ -4,6 +4,7 @@
 // data folder are experiment settings and are not in the tables.
 #pragma once
 
+#include "datasets/glmb_simulation.h"
 #include "datasets/paper_synthetic.h"
 #include "datasets/scenario_generator.h"
 #include "datasets/scphd_simulation.h"
@@ -24,5 +25,8 @@ const params::ParameterTable<datasets::GeneratorOptions>& GeneratedOptionsTable(
 
 /// scphd-sim: the simulated path and map, the sensor and the noise covariances.
 const params::ParameterTable<datasets::ScPhdSimOptions>& ScPhdSimOptionsTable();
+
+/// glmb-sim: the simulated path and map, the sensor, the noise covariances and the data protocol.
+const params::ParameterTable<datasets::GlmbSimOptions>& GlmbSimOptionsTable();
 
 }  // namespace phdslam::validation
