@@ -1,5 +1,6 @@
 #include "src/glmb/entry_terms.h"
 
+#include <Eigen/LU>
 #include <cmath>
 
 #include "src/core/angles.h"

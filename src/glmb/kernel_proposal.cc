@@ -1,5 +1,6 @@
 #include "src/glmb/kernel_proposal.h"
 
+#include <Eigen/LU>
 #include <algorithm>
 #include <vector>
 

@@ -1,5 +1,6 @@
 #include "src/glmb/lmb.h"
 
+#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <map>
