@@ -3,6 +3,8 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <unordered_set>
 
 #include "src/assignment/linear_assignment.h"
 #include "src/core/log_sum_exp.h"
@@ -61,45 +63,85 @@ std::optional<Association> OptimalAssociation(std::span<const EtaRow> rows, int 
 
 namespace {
 
-/// Resamples gamma[n] from its conditional; owner[j] is the row holding measurement j or -1.
-void ResampleRow(std::span<const EtaRow> rows, int n, Association& gamma, std::vector<int>& owner,
-                 std::vector<double>& values, std::vector<int>& choices, RandomStream& rng) {
-  const EtaRow& row = rows[n];
-  values.clear();
-  choices.clear();
+/// A row's allowed values with their linear weights exp(log eta - row max), computed once per
+/// chain so that a sweep needs no exponentials.
+struct LinearRow {
+  std::vector<int> choices;     ///< gamma values, -1 and 0 first, then the gated measurements
+  std::vector<double> weights;  ///< aligned with choices
+};
+
+LinearRow Linearise(const EtaRow& row) {
+  LinearRow out;
   auto offer = [&](int g, double v) {
     if (v == kNegInf) return;
-    values.push_back(v);
-    choices.push_back(g);
+    out.choices.push_back(g);
+    out.weights.push_back(v);
   };
   offer(-1, row.log_death);
   offer(0, row.log_miss);
-  for (const auto& [j, v] : row.detections) {
-    if (owner[j] == -1 || owner[j] == n) offer(j + 1, v);
-  }
+  for (const auto& [j, v] : row.detections) offer(j + 1, v);
+  if (out.weights.empty()) return out;
+  const double m = *std::max_element(out.weights.begin(), out.weights.end());
+  for (double& w : out.weights) w = std::exp(w - m);
+  return out;
+}
+
+/// Resamples gamma[n] from its conditional; owner[j] is the row holding measurement j or -1.
+/// One uniform is drawn whatever the row.
+void ResampleRow(const LinearRow& row, int n, Association& gamma, std::vector<int>& owner,
+                 RandomStream& rng) {
   const double u = rng.Uniform();
-  if (values.empty()) return;  // unreachable from a valid state: the current value is allowed
-  const double m = *std::max_element(values.begin(), values.end());
+  auto allowed = [&](std::size_t c) {
+    const int g = row.choices[c];
+    return g <= 0 || owner[g - 1] == -1 || owner[g - 1] == n;
+  };
   double total = 0.0;
-  for (double& v : values) {
-    v = std::exp(v - m);
-    total += v;
+  for (std::size_t c = 0; c < row.choices.size(); ++c) {
+    if (allowed(c)) total += row.weights[c];
   }
+  if (!(total > 0.0)) return;  // unreachable from a valid state: the current value is allowed
   const double target = u * total;
   double acc = 0.0;
-  std::size_t pick = values.size() - 1;
-  for (std::size_t c = 0; c < values.size(); ++c) {
-    acc += values[c];
-    if (target < acc) {
-      pick = c;
-      break;
-    }
+  int pick = gamma[n];
+  for (std::size_t c = 0; c < row.choices.size(); ++c) {
+    if (!allowed(c)) continue;
+    pick = row.choices[c];
+    acc += row.weights[c];
+    if (target < acc) break;
   }
   const int old = gamma[n];
   if (old > 0) owner[old - 1] = -1;
-  gamma[n] = choices[pick];
-  if (gamma[n] > 0) owner[gamma[n] - 1] = n;
+  gamma[n] = pick;
+  if (pick > 0) owner[pick - 1] = n;
 }
+
+/// Runs the chain from `start` for samples - 1 sweeps, calling visit(gamma) on every sample.
+template <class Visit>
+void RunChain(std::span<const EtaRow> rows, int measurements, const Association& start, int samples,
+              RandomStream& rng, Visit&& visit) {
+  visit(start);
+  Association gamma = start;
+  std::vector<int> owner(measurements, -1);
+  for (std::size_t i = 0; i < gamma.size(); ++i) {
+    if (gamma[i] > 0) owner[gamma[i] - 1] = static_cast<int>(i);
+  }
+  std::vector<LinearRow> linear;
+  linear.reserve(rows.size());
+  for (const EtaRow& row : rows) linear.push_back(Linearise(row));
+  const int n_rows = static_cast<int>(rows.size());
+  for (int s = 1; s < samples; ++s) {
+    for (int n = 0; n < n_rows; ++n) ResampleRow(linear[n], n, gamma, owner, rng);
+    visit(gamma);
+  }
+}
+
+struct AssociationHash {
+  std::size_t operator()(const Association& a) const {
+    std::uint64_t h = 0x9e3779b97f4a7c15ULL;
+    for (int v : a) h = MixSeed(h ^ static_cast<std::uint64_t>(static_cast<std::int64_t>(v)));
+    return static_cast<std::size_t>(h);
+  }
+};
 
 }  // namespace
 
@@ -107,19 +149,24 @@ std::vector<Association> GibbsSample(std::span<const EtaRow> rows, int measureme
                                      const Association& start, int samples, RandomStream& rng) {
   std::vector<Association> out;
   out.reserve(std::max(1, samples));
-  out.push_back(start);
-  Association gamma = start;
-  std::vector<int> owner(measurements, -1);
-  for (std::size_t i = 0; i < gamma.size(); ++i) {
-    if (gamma[i] > 0) owner[gamma[i] - 1] = static_cast<int>(i);
-  }
-  std::vector<double> values;
-  std::vector<int> choices;
-  const int n_rows = static_cast<int>(rows.size());
-  for (int s = 1; s < samples; ++s) {
-    for (int n = 0; n < n_rows; ++n) ResampleRow(rows, n, gamma, owner, values, choices, rng);
-    out.push_back(gamma);
-  }
+  RunChain(rows, measurements, start, samples, rng,
+           [&](const Association& g) { out.push_back(g); });
+  return out;
+}
+
+std::vector<Association> DistinctGibbsSamples(std::span<const EtaRow> rows, int measurements,
+                                              const Association& start, int samples,
+                                              RandomStream& rng) {
+  std::unordered_set<Association, AssociationHash> seen;
+  std::vector<Association> out;
+  const Association* last = nullptr;
+  RunChain(rows, measurements, start, samples, rng, [&](const Association& g) {
+    if (last != nullptr && *last == g) return;  // the common case: the chain stayed
+    const auto [it, inserted] = seen.insert(g);
+    last = &*it;
+    if (inserted) out.push_back(g);
+  });
+  std::sort(out.begin(), out.end());
   return out;
 }
 

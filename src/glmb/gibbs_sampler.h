@@ -44,4 +44,9 @@ std::vector<Association> GibbsSample(std::span<const EtaRow> rows, int measureme
 /// The distinct associations, in lexicographic order.
 std::vector<Association> DistinctAssociations(std::vector<Association> samples);
 
+/// DistinctAssociations(GibbsSample(...)) with the same draws, without storing repeated samples.
+std::vector<Association> DistinctGibbsSamples(std::span<const EtaRow> rows, int measurements,
+                                              const Association& start, int samples,
+                                              RandomStream& rng);
+
 }  // namespace phdslam::glmb

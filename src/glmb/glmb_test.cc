@@ -198,6 +198,16 @@ TEST(GibbsSampler, StationaryDistributionMatchesEnumeration) {
   EXPECT_LT(0.5 * tv, 0.01);
 }
 
+TEST(GibbsSampler, DistinctSamplingMatchesDeduplicatedSamples) {
+  const std::vector<EtaRow> rows = SmallEta();
+  const auto start = OptimalAssociation(rows, 3);
+  ASSERT_TRUE(start.has_value());
+  RandomStream a(99);
+  RandomStream b(99);
+  EXPECT_EQ(DistinctGibbsSamples(rows, 3, *start, 500, a),
+            DistinctAssociations(GibbsSample(rows, 3, *start, 500, b)));
+}
+
 TEST(GibbsSampler, OptimalStartIsTheBestAssociation) {
   const std::vector<EtaRow> rows = SmallEta();
   const std::vector<Association> valid = EnumerateValid(rows, 3);

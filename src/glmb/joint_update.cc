@@ -106,7 +106,7 @@ std::vector<SampledAssociation> SampleAssociations(const JointProblem& problem,
     if (!start) start = OptimalAssociation(parent.eta, problem.measurements);
     if (!start) continue;
     std::vector<Association> distinct =
-        DistinctAssociations(GibbsSample(parent.eta, problem.measurements, *start, t_h, rng));
+        DistinctGibbsSamples(parent.eta, problem.measurements, *start, t_h, rng);
     for (Association& gamma : distinct) {
       const double lw =
           parent.log_weight + LogAssociationWeight(parent.eta, gamma) + problem.log_ck;
