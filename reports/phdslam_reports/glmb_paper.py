@@ -12,6 +12,9 @@ Definitions (validation/REPRODUCTION.md uses the same):
     standard deviation, ddof = 1).
   * Time per step: the steps.csv column ms of every step of every run pooled; mean +- std
     (ddof = 1).
+  * False landmarks of a run: the estimates of its final map (map.csv) left without a true
+    landmark closer than the OSPA cut-off c by the optimal assignment on min(d, c) (the false
+    part of the final-map OSPA at c; truth_map.csv, every landmark); mean over runs.
 """
 
 from __future__ import annotations
@@ -21,6 +24,7 @@ from dataclasses import dataclass
 from typing import Iterable, Sequence
 
 import numpy as np
+from scipy.optimize import linear_sum_assignment
 
 from .results import Group, ResultsFolder
 from .stats import stack_ragged
@@ -93,6 +97,32 @@ class ClutterPoint:
     ospa: MeanStd  # over runs of the per-run mean map OSPA (count 0 without map_ospa_m)
     step_ms: MeanStd  # over every step of every run
     folder: ResultsFolder
+    false_landmarks: MeanStd  # over runs (count 0 without map.csv or truth_map.csv)
+
+
+def false_landmarks(estimate: np.ndarray, truth: np.ndarray, cutoff: float) -> int:
+    """Rows of ``estimate`` (n x 2) not assigned to a row of ``truth`` (m x 2) closer than
+    ``cutoff`` by the optimal assignment on min(distance, cutoff)."""
+    estimate = np.asarray(estimate, dtype=float).reshape(-1, 2)
+    truth = np.asarray(truth, dtype=float).reshape(-1, 2)
+    if estimate.shape[0] == 0 or truth.shape[0] == 0:
+        return int(estimate.shape[0])
+    distance = np.hypot(estimate[:, None, 0] - truth[None, :, 0],
+                        estimate[:, None, 1] - truth[None, :, 1])
+    rows, cols = linear_sum_assignment(np.minimum(distance, cutoff))
+    matched = int(np.sum(distance[rows, cols] < cutoff))
+    return int(estimate.shape[0]) - matched
+
+
+def run_false_landmarks(folder: ResultsFolder, group: Group, seed: int) -> float:
+    """false_landmarks of one run's final map at the folder's OSPA cut-off (NaN without the
+    run's map.csv or the folder's truth_map.csv)."""
+    estimate, truth = folder.run_map(group, seed), folder.truth_map
+    if estimate is None or truth is None:
+        return math.nan
+    return float(false_landmarks(np.column_stack([estimate.num("x"), estimate.num("y")]),
+                                 np.column_stack([truth.num("x"), truth.num("y")]),
+                                 map_ospa_cutoff(folder)))
 
 
 def map_ospa_cutoff(folder: ResultsFolder) -> float:
@@ -114,6 +144,7 @@ def group_point(folder: ResultsFolder, group: Group) -> ClutterPoint | None:
     if not seeds:
         return None
     runs, ospa, times = [], [], []
+    false = [run_false_landmarks(folder, group, seed) for seed in seeds]
     for seed in seeds:
         steps = folder.steps(group, seed)
         runs.append({c: steps.num(c) for c in ("x", "y", "theta", "x_true", "y_true",
@@ -125,7 +156,7 @@ def group_point(folder: ResultsFolder, group: Group) -> ClutterPoint | None:
         times.extend(float(v) for v in steps.num("ms"))
     folder.forget_steps()
     return ClutterPoint(clutter_rate_of(folder), group, per_step_rmse(runs), mean_std(ospa),
-                        mean_std(times), folder)
+                        mean_std(times), folder, mean_std(false))
 
 
 def glmb_points(folders: Sequence[ResultsFolder]) -> list[ClutterPoint]:
@@ -140,3 +171,26 @@ def glmb_points(folders: Sequence[ResultsFolder]) -> list[ClutterPoint]:
                 points.append(point)
     points.sort(key=lambda p: (p.clutter_rate, p.group))
     return points
+
+
+RUN_COLUMNS = ("map_ospa_m_mean", "false_landmarks", "x_rmse_m", "y_rmse_m")
+"""The per-run columns run_rows writes, for `phdslam compare`."""
+
+
+def run_rows(folder: ResultsFolder) -> list[list[object]]:
+    """One row per run of ``folder``: estimator, particles, seed and RUN_COLUMNS (the run's mean
+    map OSPA, its false landmarks, its RMSE in x and in y over the steps)."""
+    rows: list[list[object]] = []
+    for group in folder.groups():
+        for seed in folder.seeds(group):
+            steps = folder.steps(group, seed)
+            ospa = steps.num("map_ospa_m") if steps.has("map_ospa_m") else np.zeros(0)
+            ospa = ospa[np.isfinite(ospa)]
+            ex = steps.num("x") - steps.num("x_true")
+            ey = steps.num("y") - steps.num("y_true")
+            rows.append([group.estimator, group.particles, seed,
+                         float(np.mean(ospa)) if ospa.size else math.nan,
+                         run_false_landmarks(folder, group, seed),
+                         float(np.sqrt(np.nanmean(ex * ex))), float(np.sqrt(np.nanmean(ey * ey)))])
+            folder.forget_steps()
+    return rows

@@ -579,14 +579,11 @@ class ReportBuilder:
 
         rows = []
         for p in points:
-            false = [float(r["n_false"]) for r in p.folder.runs_rows(p.group)
-                     if "n_false" in r and isinstance(r["n_false"], float)]
             rows.append([(format_value(p.clutter_rate), ""), (self._name(p.group.estimator), "name"),
                          (str(p.group.particles), ""), (str(p.rmse.runs), "")]
                         + [(format_value(float(np.nanmean(a))) if a.size else "\u2014", "")
                            for a in (p.rmse.x, p.rmse.y, p.rmse.heading_deg)]
-                        + [(cell(p.ospa), ""), (cell(p.step_ms), ""),
-                           (format_value(float(np.mean(false))) if false else "\u2014", "")])
+                        + [(cell(p.ospa), ""), (cell(p.step_ms), ""), (cell(p.false_landmarks), "")])
         return table_html(["clutter rate", "Estimator", "N", "runs", "RMSE x (m)", "RMSE y (m)",
                            "RMSE heading (deg)", "map OSPA (m)", "time per step (ms)",
                            "false landmarks (final map)"], rows)
@@ -632,7 +629,8 @@ class ReportBuilder:
             "of each run's per-step map OSPA (p = 1, landmarks detected so far; "
             + (f"c = {cutoff:g} m" if cutoff is not None else "cut-offs differ between folders")
             + "), then mean \u00b1 std over runs. Time per step: every step of every run. False "
-            "landmarks: the final map's unassigned estimates (runs.csv n_false), mean over runs."
+            "landmarks: the final map's estimates without a true landmark within c (optimal "
+            "assignment), mean \u00b1 std over runs."
             "</p>",
             self._glmb_table(points),
         ]

@@ -91,6 +91,19 @@ class MeanStdTest(unittest.TestCase):
         self.assertEqual(glmb_paper.mean_std([]).count, 0)
 
 
+class FalseLandmarksTest(unittest.TestCase):
+    def test_estimates_without_a_true_landmark_within_the_cutoff(self):
+        truth = np.array([[0.0, 0.0], [1.0, 0.0]])
+        # One close to each truth, one 0.6 m away (false at c = 0.5), one duplicate of the first
+        # (only one estimate can take a truth).
+        estimate = np.array([[0.1, 0.0], [1.0, 0.2], [3.0, 0.6], [0.0, 0.1]])
+        self.assertEqual(glmb_paper.false_landmarks(estimate, truth, 0.5), 2)
+        self.assertEqual(glmb_paper.false_landmarks(estimate, truth, 5.0), 2)  # 4 for 2 truths
+        self.assertEqual(glmb_paper.false_landmarks(estimate[:2], truth, 0.15), 1)
+        self.assertEqual(glmb_paper.false_landmarks(np.zeros((0, 2)), truth, 0.5), 0)
+        self.assertEqual(glmb_paper.false_landmarks(estimate, np.zeros((0, 2)), 0.5), 4)
+
+
 class ClutterPointsTest(unittest.TestCase):
     def setUp(self):
         self.tmp = tempfile.TemporaryDirectory()
@@ -134,6 +147,15 @@ class ClutterPointsTest(unittest.TestCase):
         self.assertLess(float(steps.splitlines()[1].split(",")[4]), -3.0)
         point = glmb_paper.glmb_points([ResultsFolder(folder)])[0]
         np.testing.assert_allclose(point.rmse.heading_deg, [math.degrees(0.1)], rtol=1e-9)
+
+    def test_run_rows_for_compare(self):
+        rows = glmb_paper.run_rows(ResultsFolder(self.low))
+        self.assertEqual([r[:3] for r in rows], [["glmb2", 10, 1], ["glmb2", 10, 2],
+                                                 ["phd3", 10, 1]])
+        self.assertAlmostEqual(rows[0][3], 0.3)  # mean of 0.2, 0.4
+        self.assertEqual(rows[0][4], 0.0)  # map (1, 1) on the true landmark (1, 1)
+        self.assertAlmostEqual(rows[0][5], math.sqrt((0.01 + 0.09) / 2))
+        self.assertAlmostEqual(rows[1][6], math.sqrt(0.04 / 2))
 
     def test_other_scenarios_are_ignored(self):
         config = json.loads((self.low / "config.json").read_text())
