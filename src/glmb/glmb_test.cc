@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/LU>
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <numbers>
@@ -216,6 +217,44 @@ TEST(GibbsSampler, OptimalStartIsTheBestAssociation) {
   const auto start = OptimalAssociation(rows, 3);
   ASSERT_TRUE(start.has_value());
   EXPECT_NEAR(LogAssociationWeight(rows, *start), best, 1e-12);
+}
+
+TEST(GibbsSampler, OptimalAssociationOnRandomConflictingProblems) {
+  RandomStream rng(31);
+  int conflicts = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    std::vector<EtaRow> rows(4);
+    for (EtaRow& row : rows) {
+      row.log_death = rng.Uniform() < 0.2 ? kNegInf : std::log(rng.Uniform(0.01, 0.1));
+      row.log_miss = std::log(rng.Uniform(0.01, 0.3));
+      for (int j = 0; j < 3; ++j) {
+        if (rng.Uniform() < 0.7) row.detections.emplace_back(j, std::log(rng.Uniform(0.1, 5.0)));
+      }
+    }
+    double best = kNegInf;
+    for (const Association& g : EnumerateValid(rows, 3)) {
+      best = std::max(best, LogAssociationWeight(rows, g));
+    }
+    // Count the problems where the row-wise best values collide (the assignment solver's case).
+    std::vector<int> wanted;
+    for (const EtaRow& row : rows) {
+      int g = 0;
+      double v = std::max(row.log_death, row.log_miss);
+      for (const auto& [j, w] : row.detections) {
+        if (w > v) {
+          v = w;
+          g = j + 1;
+        }
+      }
+      if (g > 0) wanted.push_back(g);
+    }
+    std::sort(wanted.begin(), wanted.end());
+    if (std::adjacent_find(wanted.begin(), wanted.end()) != wanted.end()) ++conflicts;
+    const auto opt = OptimalAssociation(rows, 3);
+    ASSERT_TRUE(opt.has_value());
+    EXPECT_NEAR(LogAssociationWeight(rows, *opt), best, 1e-12) << trial;
+  }
+  EXPECT_GT(conflicts, 20);
 }
 
 TEST(GibbsSampler, DistinctSamplesContainMurtysRankedAssociations) {
