@@ -380,6 +380,42 @@ TEST(GlmbJointUpdate, DuplicateChildrenAreMerged) {
   }
 }
 
+// Notes section 6, "birth survival sensitivity": a birth (r_B = 1e-4) re-detected once at its
+// mean, kappa = lambda / (3 m * 2 pi). Its LMB existence is
+// r_B (1 - pD + pD q / kappa) / (1 - r_B pD + r_B pD q / kappa): above LMB-SLAM's pruning
+// threshold 0.019 at lambda = 1, below it at lambda = 15.
+TEST(Lmb, BirthReDetectedOnceSurvivesPruningOnlyAtLowClutter) {
+  for (const double lambda : {1.0, 15.0}) {
+    const double kappa = lambda / (3.0 * 2.0 * kPi);
+    Fixture f(0.7, 0.95, kappa, lambda);
+    f.sensor.fov_range = 3.0;
+    const Measurement z0(2.0, 0.4);
+    const Pose x = Pose::Zero();
+    std::uint64_t next_id = 1;
+    const UpdateResult none;
+    const std::vector<BirthTrack> births =
+        MakeBirths(x, std::span(&z0, 1), f.sensor.noise_cov, none, BirthSettings{}, 1, next_id);
+    ASSERT_EQ(births.size(), 1u);
+    EXPECT_EQ(births[0].existence, 1e-4);
+    const EntryTerms terms = ComputeEntryTerms(*births[0].track, x, std::span(&z0, 1), f.setup);
+    ASSERT_EQ(terms.detections.size(), 1u);
+    const double ratio = 1e-4 * 0.7 * std::exp(terms.detections[0].log_q) / kappa;
+    RandomStream rng(12);
+    const UpdateResult r = JointUpdate(EmptyDensity(), {}, births, x, std::span(&z0, 1), f.setup,
+                                       f.settings, rng, next_id);
+    const std::vector<Bernoulli> lmb = GlmbToLmb(r.hypotheses, next_id);
+    ASSERT_EQ(lmb.size(), 1u);
+    const double expected = (1e-4 * 0.3 + ratio) / (1.0 - 1e-4 * 0.7 + ratio);
+    // Up to the born-and-missed hypothesis (relative weight 3e-5), which the sampler may miss.
+    EXPECT_NEAR(lmb[0].existence, expected, 5e-5);
+    if (lambda == 1.0) {
+      EXPECT_GT(lmb[0].existence, 0.019);
+    } else {
+      EXPECT_LT(lmb[0].existence, 0.019);
+    }
+  }
+}
+
 TEST(Lmb, RoundTripThroughDeltaGlmbIsTheIdentity) {
   std::vector<Bernoulli> lmb;
   const double r[] = {0.3, 0.6, 0.9, 0.999};
