@@ -35,9 +35,38 @@ double LogAssociationWeight(std::span<const EtaRow> rows, const Association& gam
   return total;
 }
 
+namespace {
+
+/// Every row at its own best value; nullopt when two rows want one measurement (or a row has no
+/// allowed value). When it exists it is the optimum: each factor is at its maximum.
+std::optional<Association> RowWiseBest(std::span<const EtaRow> rows, int measurements) {
+  Association gamma(rows.size());
+  std::vector<char> taken(measurements, 0);
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    int g = rows[i].log_miss >= rows[i].log_death ? 0 : -1;
+    double best = std::max(rows[i].log_miss, rows[i].log_death);
+    for (const auto& [j, v] : rows[i].detections) {
+      if (v > best) {
+        best = v;
+        g = j + 1;
+      }
+    }
+    if (best == kNegInf) return std::nullopt;
+    if (g > 0) {
+      if (taken[g - 1] != 0) return std::nullopt;
+      taken[g - 1] = 1;
+    }
+    gamma[i] = g;
+  }
+  return gamma;
+}
+
+}  // namespace
+
 std::optional<Association> OptimalAssociation(std::span<const EtaRow> rows, int measurements) {
   const int p = static_cast<int>(rows.size());
   if (p == 0) return Association{};
+  if (std::optional<Association> fast = RowWiseBest(rows, measurements)) return fast;
   Eigen::MatrixXd cost = Eigen::MatrixXd::Constant(p, p + measurements, assignment::kForbidden);
   for (int i = 0; i < p; ++i) {
     const double best_private = std::max(rows[i].log_death, rows[i].log_miss);

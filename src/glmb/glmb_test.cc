@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/LU>
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <numbers>
@@ -218,6 +219,44 @@ TEST(GibbsSampler, OptimalStartIsTheBestAssociation) {
   EXPECT_NEAR(LogAssociationWeight(rows, *start), best, 1e-12);
 }
 
+TEST(GibbsSampler, OptimalAssociationOnRandomConflictingProblems) {
+  RandomStream rng(31);
+  int conflicts = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    std::vector<EtaRow> rows(4);
+    for (EtaRow& row : rows) {
+      row.log_death = rng.Uniform() < 0.2 ? kNegInf : std::log(rng.Uniform(0.01, 0.1));
+      row.log_miss = std::log(rng.Uniform(0.01, 0.3));
+      for (int j = 0; j < 3; ++j) {
+        if (rng.Uniform() < 0.7) row.detections.emplace_back(j, std::log(rng.Uniform(0.1, 5.0)));
+      }
+    }
+    double best = kNegInf;
+    for (const Association& g : EnumerateValid(rows, 3)) {
+      best = std::max(best, LogAssociationWeight(rows, g));
+    }
+    // Count the problems where the row-wise best values collide (the assignment solver's case).
+    std::vector<int> wanted;
+    for (const EtaRow& row : rows) {
+      int g = 0;
+      double v = std::max(row.log_death, row.log_miss);
+      for (const auto& [j, w] : row.detections) {
+        if (w > v) {
+          v = w;
+          g = j + 1;
+        }
+      }
+      if (g > 0) wanted.push_back(g);
+    }
+    std::sort(wanted.begin(), wanted.end());
+    if (std::adjacent_find(wanted.begin(), wanted.end()) != wanted.end()) ++conflicts;
+    const auto opt = OptimalAssociation(rows, 3);
+    ASSERT_TRUE(opt.has_value());
+    EXPECT_NEAR(LogAssociationWeight(rows, *opt), best, 1e-12) << trial;
+  }
+  EXPECT_GT(conflicts, 20);
+}
+
 TEST(GibbsSampler, DistinctSamplesContainMurtysRankedAssociations) {
   const std::vector<EtaRow> rows = SmallEta();
   const int p = static_cast<int>(rows.size());
@@ -338,6 +377,42 @@ TEST(GlmbJointUpdate, DuplicateChildrenAreMerged) {
   for (const Hypothesis& h : r.hypotheses) {
     const double expected = (h.size() == 0 ? none : keep) / (keep + none);
     EXPECT_NEAR(std::exp(h.log_weight), expected, 1e-12);
+  }
+}
+
+// Notes section 6, "birth survival sensitivity": a birth (r_B = 1e-4) re-detected once at its
+// mean, kappa = lambda / (3 m * 2 pi). Its LMB existence is
+// r_B (1 - pD + pD q / kappa) / (1 - r_B pD + r_B pD q / kappa): above LMB-SLAM's pruning
+// threshold 0.019 at lambda = 1, below it at lambda = 15.
+TEST(Lmb, BirthReDetectedOnceSurvivesPruningOnlyAtLowClutter) {
+  for (const double lambda : {1.0, 15.0}) {
+    const double kappa = lambda / (3.0 * 2.0 * kPi);
+    Fixture f(0.7, 0.95, kappa, lambda);
+    f.sensor.fov_range = 3.0;
+    const Measurement z0(2.0, 0.4);
+    const Pose x = Pose::Zero();
+    std::uint64_t next_id = 1;
+    const UpdateResult none;
+    const std::vector<BirthTrack> births =
+        MakeBirths(x, std::span(&z0, 1), f.sensor.noise_cov, none, BirthSettings{}, 1, next_id);
+    ASSERT_EQ(births.size(), 1u);
+    EXPECT_EQ(births[0].existence, 1e-4);
+    const EntryTerms terms = ComputeEntryTerms(*births[0].track, x, std::span(&z0, 1), f.setup);
+    ASSERT_EQ(terms.detections.size(), 1u);
+    const double ratio = 1e-4 * 0.7 * std::exp(terms.detections[0].log_q) / kappa;
+    RandomStream rng(12);
+    const UpdateResult r = JointUpdate(EmptyDensity(), {}, births, x, std::span(&z0, 1), f.setup,
+                                       f.settings, rng, next_id);
+    const std::vector<Bernoulli> lmb = GlmbToLmb(r.hypotheses, next_id);
+    ASSERT_EQ(lmb.size(), 1u);
+    const double expected = (1e-4 * 0.3 + ratio) / (1.0 - 1e-4 * 0.7 + ratio);
+    // Up to the born-and-missed hypothesis (relative weight 3e-5), which the sampler may miss.
+    EXPECT_NEAR(lmb[0].existence, expected, 5e-5);
+    if (lambda == 1.0) {
+      EXPECT_GT(lmb[0].existence, 0.019);
+    } else {
+      EXPECT_LT(lmb[0].existence, 0.019);
+    }
   }
 }
 

@@ -67,6 +67,7 @@ JointProblem BuildJointProblem(std::span<const Hypothesis> prior, std::span<cons
   for (const Hypothesis& h : prior) {
     JointProblem::Parent parent;
     parent.log_weight = h.log_weight;
+    parent.tracks = h.tracks;
     for (const TrackPtr& t : *h.tracks) {
       const int e = index.at(t->id);
       if (p.terms[e].in_fov) {
@@ -76,6 +77,7 @@ JointProblem BuildJointProblem(std::span<const Hypothesis> prior, std::span<cons
         parent.passthrough.push_back(e);
       }
     }
+    parent.in_fov_rows = static_cast<int>(parent.rows.size());
     for (int b = p.prior_entries; b < static_cast<int>(p.entries.size()); ++b) {
       // A birth outside the FOV cannot be detected: its row still decides born / not born.
       parent.rows.push_back(b);
@@ -178,17 +180,33 @@ UpdateResult BuildPosterior(const JointProblem& problem,
     c.sample = s;
     c.log_weight = sample.log_weight;
     c.tracks.reserve(parent.passthrough.size() + parent.rows.size());
-    for (int e : parent.passthrough) c.tracks.push_back(problem.entries[e]);
-    for (std::size_t i = 0; i < parent.rows.size(); ++i) {
+    // The prior entries in id order (pass-through, or kept when missed), then the births kept
+    // (ids above every prior entry), then the new detection children (sorted: created here).
+    std::vector<TrackPtr> detected;
+    auto take = [&](std::size_t i) {
       const int g = sample.gamma[i];
       if (g == 0) c.tracks.push_back(problem.entries[parent.rows[i]]);
       if (g > 0) {
-        c.tracks.push_back(child_of(parent.rows[i], g - 1));
+        detected.push_back(child_of(parent.rows[i], g - 1));
         c.assigned.push_back(g - 1);
       }
+    };
+    std::size_t r = 0;
+    for (const TrackPtr& t : *parent.tracks) {
+      if (r < static_cast<std::size_t>(parent.in_fov_rows) &&
+          problem.entries[parent.rows[r]] == t) {
+        take(r++);
+      } else {
+        c.tracks.push_back(t);
+      }
     }
-    std::sort(c.tracks.begin(), c.tracks.end(),
-              [](const TrackPtr& a, const TrackPtr& b) { return a->id < b->id; });
+    for (std::size_t i = parent.in_fov_rows; i < parent.rows.size(); ++i) take(i);
+    const auto by_id = [](const TrackPtr& a, const TrackPtr& b) { return a->id < b->id; };
+    std::sort(detected.begin(), detected.end(), by_id);
+    c.tracks.insert(c.tracks.end(), detected.begin(), detected.end());
+    if (!std::is_sorted(c.tracks.begin(), c.tracks.end(), by_id)) {
+      std::sort(c.tracks.begin(), c.tracks.end(), by_id);
+    }
     std::vector<std::uint64_t> key(c.tracks.size());
     for (std::size_t i = 0; i < key.size(); ++i) key[i] = c.tracks[i]->id;
     const auto [it, inserted] = seen.emplace(std::move(key), static_cast<int>(children.size()));

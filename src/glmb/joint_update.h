@@ -39,6 +39,8 @@ struct JointProblem {
     std::vector<int> rows;         ///< entry indices of the in-FOV entries, then the births
     std::vector<EtaRow> eta;       ///< aligned with rows
     std::vector<int> passthrough;  ///< entry indices of the out-of-FOV entries
+    int in_fov_rows = 0;           ///< rows[0, in_fov_rows) are prior entries, in id order
+    std::shared_ptr<const TrackSet> tracks;  ///< the prior hypothesis' entries
   };
   std::vector<TrackPtr> entries;  ///< distinct prior entries (first-seen order), then births
   std::vector<EntryTerms> terms;  ///< aligned with entries

@@ -83,6 +83,7 @@ std::vector<TrackComponent> ReduceMixture(std::vector<TrackComponent> gm,
     return gm;
   }
   std::vector<double> lw;
+  lw.reserve(gm.size());
   for (const TrackComponent& c : gm) lw.push_back(c.log_weight);
   const double norm = LogSumExp(lw);
   const double log_prune = std::log(settings.prune_threshold);
@@ -115,6 +116,7 @@ std::vector<TrackComponent> ReduceMixture(std::vector<TrackComponent> gm,
       }
     }
     std::vector<double> glw;
+    glw.reserve(group.size());
     for (const TrackComponent& c : group) glw.push_back(c.log_weight);
     const double gnorm = LogSumExp(glw);
     Landmark mean = Landmark::Zero();
