@@ -111,7 +111,8 @@ std::vector<SampledAssociation> SampleAssociations(const JointProblem& problem,
     if (!start) start = OptimalAssociation(parent.eta, problem.measurements);
     if (!start) continue;
     std::vector<Association> distinct =
-        DistinctGibbsSamples(parent.eta, problem.measurements, *start, t_h, rng);
+        t_h == 1 ? std::vector<Association>{*start}
+                 : DistinctGibbsSamples(parent.eta, problem.measurements, *start, t_h, rng);
     for (Association& gamma : distinct) {
       const double lw =
           parent.log_weight + LogAssociationWeight(parent.eta, gamma) + problem.log_ck;
