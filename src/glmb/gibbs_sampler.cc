@@ -149,6 +149,7 @@ template <class Visit>
 void RunChain(std::span<const EtaRow> rows, int measurements, const Association& start, int samples,
               RandomStream& rng, Visit&& visit) {
   visit(start);
+  if (samples <= 1) return;  // the start only: no sweep, no draw
   Association gamma = start;
   std::vector<int> owner(measurements, -1);
   for (std::size_t i = 0; i < gamma.size(); ++i) {

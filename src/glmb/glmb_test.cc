@@ -14,6 +14,7 @@
 #include "src/glmb/birth.h"
 #include "src/glmb/gibbs_sampler.h"
 #include "src/glmb/joint_update.h"
+#include "src/glmb/kernel_proposal.h"
 #include "src/glmb/lmb.h"
 #include "src/models/range_bearing_model.h"
 
@@ -414,6 +415,48 @@ TEST(Lmb, BirthReDetectedOnceSurvivesPruningOnlyAtLowClutter) {
       EXPECT_LT(lmb[0].existence, 0.019);
     }
   }
+}
+
+TEST(KernelProposal, PoseUpdateOfOneDetectionIsTheEkfUpdate) {
+  Fixture f(0.7, 0.95, 0.05, 1.0);
+  const Landmark m(3.0, 2.5);
+  const Mat2 p = Vec2(0.02, 0.03).asDiagonal();
+  const TrackPtr t = MakeTrack(1, Label{1, 0}, m, p);
+  const Mat3 sigma0 = Vec3(0.04, 0.05, 0.002).asDiagonal();
+  f.setup.pose_cov = sigma0;
+  const Measurement z = models::PredictMeasurement(kPose, m) + Vec2(0.05, -0.02);
+  const JointProblem problem =
+      BuildJointProblem(Single({t}), {}, {}, kPose, std::span(&z, 1), f.setup, f.settings);
+  ASSERT_EQ(problem.parents.size(), 1u);
+  ASSERT_EQ(problem.parents[0].rows.size(), 1u);
+  Pose mean = kPose;
+  Mat3 cov = sigma0;
+  UpdatePoseWithAssociation(problem, problem.parents[0], Association{1}, std::span(&z, 1),
+                            f.sensor.noise_cov, mean, cov);
+  const auto jac = models::MeasurementJacobians(kPose, m);
+  Vec2 nu = z - models::PredictMeasurement(kPose, m);
+  nu(1) = WrapAngle(nu(1));
+  const Mat2 noise = jac.hm * p * jac.hm.transpose() + f.sensor.noise_cov;
+  const Mat2 s = jac.hx * sigma0 * jac.hx.transpose() + noise;
+  const Mat32 k = sigma0 * jac.hx.transpose() * s.inverse();
+  EXPECT_LT((mean - (kPose + k * nu)).norm(), 1e-12);
+  EXPECT_LT((cov - (Mat3::Identity() - k * jac.hx) * sigma0).norm(), 1e-12);
+  // The innovation covariance of the proposal pass carries the pose term.
+  ASSERT_EQ(problem.terms[0].detections.size(), 1u);
+  EXPECT_LT((problem.terms[0].detections[0].s - s).norm(), 1e-12);
+  // Collapse of {detected, missed}: the moments of the two-component mixture.
+  const std::vector<SampledAssociation> samples{{0, Association{0}, std::log(0.25)},
+                                                {0, Association{1}, std::log(0.75)}};
+  const KernelProposal kp =
+      BuildKernelProposal(problem, samples, kPose, sigma0, std::span(&z, 1), f.sensor.noise_cov,
+                          KernelAssociations::kAll, KernelForm::kCollapse);
+  ASSERT_EQ(kp.mixture.size(), 1u);
+  const Pose mu = 0.25 * kPose + 0.75 * mean;
+  const Mat3 expected = 0.25 * (sigma0 + (kPose - mu) * (kPose - mu).transpose()) +
+                        0.75 * (cov + (mean - mu) * (mean - mu).transpose());
+  EXPECT_LT((kp.mixture.means[0] - mu).norm(), 1e-12);
+  EXPECT_LT((kp.mixture.covs[0] - expected).norm(), 1e-12);
+  EXPECT_NEAR(kp.log_marginal, 0.0, 1e-12);
 }
 
 TEST(Lmb, RoundTripThroughDeltaGlmbIsTheIdentity) {

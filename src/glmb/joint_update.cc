@@ -38,17 +38,25 @@ JointProblem BuildJointProblem(std::span<const Hypothesis> prior, std::span<cons
   JointProblem p;
   p.measurements = static_cast<int>(measurements.size());
   p.log_ck = -settings.clutter_rate + p.measurements * settings.log_clutter_intensity;
+  // Out-of-FOV entries never enter the problem (they pass through, BuildPosterior); the FOV
+  // test comes before the entry lookup because most of a map is outside the FOV.
+  const models::FovView fov(*setup.sensor, x);
   std::unordered_map<std::uint64_t, int> index;
   std::vector<double> entry_existence;
-  for (const Hypothesis& h : prior) {
-    for (std::size_t i = 0; i < h.tracks->size(); ++i) {
-      const TrackPtr& t = (*h.tracks)[i];
-      if (index.emplace(t->id, static_cast<int>(p.entries.size())).second) {
+  std::vector<std::vector<int>> in_fov(prior.size());
+  for (std::size_t h = 0; h < prior.size(); ++h) {
+    const TrackSet& tracks = *prior[h].tracks;
+    for (std::size_t i = 0; i < tracks.size(); ++i) {
+      const TrackPtr& t = tracks[i];
+      if (!(fov.DetectionProbability(t->Heaviest().mean) > 0.0)) continue;
+      const auto [it, inserted] = index.emplace(t->id, static_cast<int>(p.entries.size()));
+      if (inserted) {
         p.entries.push_back(t);
         p.terms.push_back(ComputeEntryTerms(*t, x, measurements, setup));
         const double mult = existence.empty() ? 1.0 : existence[i];
         entry_existence.push_back(mult * settings.survival_probability);
       }
+      in_fov[h].push_back(it->second);
     }
   }
   p.prior_entries = static_cast<int>(p.entries.size());
@@ -64,18 +72,13 @@ JointProblem BuildJointProblem(std::span<const Hypothesis> prior, std::span<cons
     return *rows[e];
   };
   p.parents.reserve(prior.size());
-  for (const Hypothesis& h : prior) {
+  for (std::size_t h = 0; h < prior.size(); ++h) {
     JointProblem::Parent parent;
-    parent.log_weight = h.log_weight;
-    parent.tracks = h.tracks;
-    for (const TrackPtr& t : *h.tracks) {
-      const int e = index.at(t->id);
-      if (p.terms[e].in_fov) {
-        parent.rows.push_back(e);
-        parent.eta.push_back(row_of(e));
-      } else {
-        parent.passthrough.push_back(e);
-      }
+    parent.log_weight = prior[h].log_weight;
+    parent.tracks = prior[h].tracks;
+    for (const int e : in_fov[h]) {
+      parent.rows.push_back(e);
+      parent.eta.push_back(row_of(e));
     }
     parent.in_fov_rows = static_cast<int>(parent.rows.size());
     for (int b = p.prior_entries; b < static_cast<int>(p.entries.size()); ++b) {
@@ -108,7 +111,8 @@ std::vector<SampledAssociation> SampleAssociations(const JointProblem& problem,
     if (!start) start = OptimalAssociation(parent.eta, problem.measurements);
     if (!start) continue;
     std::vector<Association> distinct =
-        DistinctGibbsSamples(parent.eta, problem.measurements, *start, t_h, rng);
+        t_h == 1 ? std::vector<Association>{*start}
+                 : DistinctGibbsSamples(parent.eta, problem.measurements, *start, t_h, rng);
     for (Association& gamma : distinct) {
       const double lw =
           parent.log_weight + LogAssociationWeight(parent.eta, gamma) + problem.log_ck;
@@ -179,7 +183,7 @@ UpdateResult BuildPosterior(const JointProblem& problem,
     Child c;
     c.sample = s;
     c.log_weight = sample.log_weight;
-    c.tracks.reserve(parent.passthrough.size() + parent.rows.size());
+    c.tracks.reserve(parent.tracks->size() + parent.rows.size());
     // The prior entries in id order (pass-through, or kept when missed), then the births kept
     // (ids above every prior entry), then the new detection children (sorted: created here).
     std::vector<TrackPtr> detected;

@@ -36,13 +36,14 @@ struct UpdateSettings {
 struct JointProblem {
   struct Parent {
     double log_weight = 0.0;
-    std::vector<int> rows;         ///< entry indices of the in-FOV entries, then the births
-    std::vector<EtaRow> eta;       ///< aligned with rows
-    std::vector<int> passthrough;  ///< entry indices of the out-of-FOV entries
-    int in_fov_rows = 0;           ///< rows[0, in_fov_rows) are prior entries, in id order
+    std::vector<int> rows;    ///< entry indices of the in-FOV entries, then the births
+    std::vector<EtaRow> eta;  ///< aligned with rows
+    int in_fov_rows = 0;      ///< rows[0, in_fov_rows) are prior entries, in id order
     std::shared_ptr<const TrackSet> tracks;  ///< the prior hypothesis' entries
   };
-  std::vector<TrackPtr> entries;  ///< distinct prior entries (first-seen order), then births
+  /// Distinct in-FOV prior entries (first-seen order), then births; the prior's out-of-FOV
+  /// entries are not here (they pass through from Parent::tracks).
+  std::vector<TrackPtr> entries;
   std::vector<EntryTerms> terms;  ///< aligned with entries
   int prior_entries = 0;
   std::vector<Parent> parents;
