@@ -279,6 +279,20 @@ expect_in "$scratch/err" "parameter 'landmarks': expected an integer, got 1.5"
 expect_exit 0 "$phdslam" list
 expect_in "$scratch/out" "corridor_half_width"
 
+# The map OSPA cut-off: a setting recorded in config.json, never resumed with another value.
+glmb=(--scenario glmb-sim --estimator phd3 --particles 5 --seeds 1 --steps 20 --quiet)
+expect_exit 0 "$phdslam" run "${glmb[@]}" --out "$scratch/glmb" --map-ospa-cutoff 0.5 \
+  --scenario-set data_protocol=single-realisation
+expect_in "$scratch/glmb/config.json" '"map_ospa_c": 0.5'
+expect_in "$scratch/glmb/config.json" '"data_protocol": "single-realisation"'
+expect_in "$scratch/glmb/runs/phd3-N5/seed-1/steps.csv" "map_ospa_m"
+expect_exit 2 "$phdslam" run "${glmb[@]}" --out "$scratch/glmb" --map-ospa \
+  --scenario-set data_protocol=single-realisation
+expect_in "$scratch/err" "map_ospa_c"
+expect_exit 2 "$phdslam" run "${glmb[@]}" --out "$scratch/glmb3" --map-ospa-cutoff 0
+expect_exit 2 "$phdslam" run "${glmb[@]}" --out "$scratch/glmb3" --scenario-set data_protocol=x
+expect_in "$scratch/err" "data_protocol"
+
 # A grid over a scenario option and an estimator parameter: one folder per point, one column
 # per parameter; sweep errors name the parameter.
 grid="$scratch/grid.yaml"

@@ -78,6 +78,7 @@ struct RunArguments {
   std::string shard;
   bool particles_trace = false;
   bool map_ospa = false;
+  double map_ospa_cutoff = 0.0;
   bool quiet = false;
   // Options whose presence matters (command-line values override an experiment file's).
   CLI::Option* experiment_file_option = nullptr;
@@ -91,6 +92,7 @@ struct RunArguments {
   CLI::Option* data_dir_option = nullptr;
   CLI::Option* pd_option = nullptr;
   CLI::Option* clutter_option = nullptr;
+  CLI::Option* map_ospa_cutoff_option = nullptr;
 };
 
 // The scenario options of `export` and `ingest`, as `run` takes them.
@@ -221,9 +223,15 @@ void AddRunCommand(CLI::App& app, RunArguments& a) {
                 "Also write particles.csv (step,particle,x,y,log_weight) per run, for estimators "
                 "that expose their particles");
   run->add_flag("--map-ospa", a.map_ospa,
-                "Also write the map OSPA (p = 1, c = 5 m) after every step, against the true "
-                "landmarks detected so far, as the last steps.csv column map_ospa_m (online "
-                "estimators on scenarios with a true map)");
+                "Also write the map OSPA (p = 1, c = 5 m unless --map-ospa-cutoff) after every "
+                "step, against the true landmarks detected so far, as the last steps.csv column "
+                "map_ospa_m (online estimators on scenarios with a true map; also the experiment "
+                "key map_ospa: true)");
+  a.map_ospa_cutoff_option =
+      run->add_option("--map-ospa-cutoff", a.map_ospa_cutoff,
+                      "Cut-off c (m, > 0) of the per-step map OSPA; implies --map-ospa (also the "
+                      "experiment key map_ospa_cutoff; default 5)")
+          ->check(CLI::PositiveNumber);
   run->add_flag("--quiet", a.quiet, "No progress line and no summary table");
 }
 
@@ -491,7 +499,14 @@ int Run(const RunArguments& a) {
   settings.show_progress = !a.quiet;
   settings.stop = &interrupt.flag();
   settings.particles_trace = a.particles_trace;
-  settings.map_ospa_trace = a.map_ospa;
+  settings.map_ospa_trace = a.map_ospa || experiment.map_ospa.value_or(false) ||
+                            experiment.map_ospa_cutoff.has_value() ||
+                            a.map_ospa_cutoff_option->count() > 0;
+  if (a.map_ospa_cutoff_option->count() > 0) {
+    settings.metrics.map_ospa_c = a.map_ospa_cutoff;
+  } else if (experiment.map_ospa_cutoff) {
+    settings.metrics.map_ospa_c = *experiment.map_ospa_cutoff;
+  }
   if (!a.shard.empty()) settings.shard = v::ParseShard(a.shard);
   const v::ExperimentReport report = v::RunExperiment(experiment, settings);
 

@@ -19,6 +19,7 @@ from .comparison import (
     secondary_references,
 )
 from .csv_table import ResultsFormatError
+from .figures.glmb_paper import plot_mean_std_per_rate, plot_rmse_over_time
 from .figures.metrics_over_time import collect_series, plot_metrics_over_time
 from .figures.nees import nees_series, plot_nees
 from .figures.nis import nis_series, plot_nis
@@ -46,6 +47,7 @@ from .figures.trajectory_map import (
     has_true_trajectory,
     plot_trajectory_maps,
 )
+from .glmb_paper import ClutterPoint, MeanStd, glmb_points, map_ospa_cutoff
 from .html_page import Section, escape, figure_html, note_html, render_page, table_html
 from .paper import PaperValues
 from .results import (
@@ -275,7 +277,8 @@ class ReportBuilder:
         """Fig. 2 analogue: per-step metrics pooled over seeds."""
         title = "Fig. 2 analogue: metrics over time"
         series = [collect_series(folder, g) for g in folder.groups()]
-        fig = plot_metrics_over_time([s for s in series if s is not None], self._name)
+        fig = plot_metrics_over_time([s for s in series if s is not None], self._name,
+                                     map_ospa_cutoff(folder))
         if fig is None:
             return Section(sid, title, skipped_note="no run folder with steps.csv")
         return Section(sid, title, body=self._figure(
@@ -616,6 +619,85 @@ class ReportBuilder:
             body += "".join(note_html(n) for n in notes)
         return Section("sensitivity", title, body=body)
 
+    def _glmb_table(self, points: list[ClutterPoint]) -> str:
+        def cell(v: MeanStd) -> str:
+            if v.count == 0:
+                return "\u2014"
+            return f"{format_value(v.mean)} \u00b1 {format_value(v.std)}"
+
+        rows = []
+        for p in points:
+            rows.append([(format_value(p.clutter_rate), ""), (self._name(p.group.estimator), "name"),
+                         (str(p.group.particles), ""), (str(p.rmse.runs), "")]
+                        + [(format_value(float(np.nanmean(a))) if a.size else "\u2014", "")
+                           for a in (p.rmse.x, p.rmse.y, p.rmse.heading_deg)]
+                        + [(cell(p.ospa), ""), (cell(p.step_ms), ""), (cell(p.false_landmarks), "")])
+        return table_html(["clutter rate", "Estimator", "N", "runs", "RMSE x (m)", "RMSE y (m)",
+                           "RMSE heading (deg)", "map OSPA (m)", "time per step (ms)",
+                           "false landmarks (final map)"], rows)
+
+    def _glmb_trajectories(self, points: list[ClutterPoint]) -> str:
+        rates = sorted({p.clutter_rate for p in points})
+        shown = [rates[0]] + ([rates[-1]] if len(rates) > 1 else [])
+        panels = []
+        for rate in shown:
+            largest: dict[str, ClutterPoint] = {}
+            for p in points:
+                if p.clutter_rate == rate and (p.group.estimator not in largest or p.group.particles
+                                               > largest[p.group.estimator].group.particles):
+                    largest[p.group.estimator] = p
+            for p in largest.values():
+                seed = p.folder.seeds(p.group)[0]
+                panels.append(TrajectoryPanel(
+                    title=(f"{self._name(p.group.estimator)}, N = {p.group.particles}, clutter "
+                           f"{rate:g}, seed {seed}"),
+                    estimator=p.group.estimator, steps=p.folder.steps(p.group, seed),
+                    estimated_map=p.folder.run_map(p.group, seed),
+                    truth_map=p.folder.truth_map))
+        fig = plot_trajectory_maps(panels, sorted({p.estimator for p in panels}), self._name)
+        for p in points:
+            p.folder.forget_steps()
+        rates_text = " and ".join(f"{r:g}" for r in shown)
+        return self._figure(fig, "glmb-trajectory-map.png",
+                            f"Clutter rate {rates_text}: true trajectory (black), estimate "
+                            "(dashed), true landmarks (+) and the final estimated map of one run "
+                            "(the first seed) per estimator (the paper's Figs. 2-4, maps).")
+
+    def glmb_section(self) -> Section | None:
+        """The delta-GLMB-SLAM paper's figures, when the results hold scenario glmb-sim."""
+        points = glmb_points(self.folders)
+        if not points:
+            return None
+        cutoffs = sorted({map_ospa_cutoff(p.folder) for p in points if p.ospa.count > 0})
+        cutoff = cutoffs[0] if len(cutoffs) == 1 else None
+        parts = [
+            "<p>Scenario glmb-sim (the simulation of Moratuwage, Adams &amp; Inostroza 2019). "
+            "RMSE per step: \u221a(mean over runs of the squared error) in x, y and the wrapped "
+            "heading; the table gives its mean over the steps. Map OSPA: the mean over the steps "
+            "of each run's per-step map OSPA (p = 1, landmarks detected so far; "
+            + (f"c = {cutoff:g} m" if cutoff is not None else "cut-offs differ between folders")
+            + "), then mean \u00b1 std over runs. Time per step: every step of every run. False "
+            "landmarks: the final map's estimates without a true landmark within c (optimal "
+            "assignment), mean \u00b1 std over runs."
+            "</p>",
+            self._glmb_table(points),
+        ]
+        fig = plot_rmse_over_time(points, self._name)
+        parts.append(self._figure(fig, "glmb-rmse-over-time.png",
+                                  "RMSE in x, y and heading per step over the runs, one column "
+                                  "per clutter rate (the paper's Figs. 2-4)."))
+        if any(p.ospa.count > 0 for p in points):
+            parts.append(self._figure(
+                plot_mean_std_per_rate(points, self._name, cutoff), "glmb-ospa-time.png",
+                "Map OSPA and time per step, mean \u00b1 std, against the clutter rate (the "
+                "paper's Figs. 5 and 6)."))
+        else:
+            parts.append(note_html("steps.csv has no map_ospa_m (run with --map-ospa or the "
+                                   "experiment key map_ospa): the OSPA figure is not drawn."))
+        parts.append(self._glmb_trajectories(points))
+        return Section("glmb-paper", "\u03b4-GLMB-SLAM paper (Moratuwage et al. 2019): RMSE, "
+                       "OSPA, time per step, trajectories", body="\n".join(parts))
+
     # --- whole report -------------------------------------------------------------------------
 
     def folder_intro(self, folder: ResultsFolder) -> str:
@@ -668,6 +750,9 @@ class ReportBuilder:
             for s in built:
                 s.level = level
             sections += built
+        glmb = self.glmb_section()
+        if glmb is not None:
+            sections.append(glmb)
         sections.append(self.sensitivity_section())
         html = render_page(self.options.title, "\n".join(intro), sections)
         return Report(html=html, sections=sections, figure_files=self.figure_files)

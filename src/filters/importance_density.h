@@ -3,6 +3,7 @@
 // map only through the landmark view the skeleton hands it, so densities serve any map kind.
 #pragma once
 
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -35,6 +36,10 @@ struct ProposalOutput {
   /// highest-weight data-association hypothesis, or -1 (clutter / not assigned). Empty when not
   /// applicable.
   std::vector<int> best_association;
+  /// When set, the skeleton adds this to the particle's log-weight instead of
+  /// log N(x; mu0, Sigma0) - log q(x) (a map model's own proposal with its own weight rule, e.g.
+  /// delta-GLMB-SLAM 2.0's, glmb/glmb_slam.h). Unset for every importance density.
+  std::optional<double> log_weight_increment;
 };
 
 class ImportanceDensity {

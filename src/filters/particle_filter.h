@@ -11,9 +11,11 @@
 //      b. the importance density is built from the predicted Gaussian, the map's landmark view
 //         and the scan; consecutive copies of one resampled parent share it when
 //         reuse_parent_proposal is set (they have equal predictions, so results do not change);
+//         (a model with its own Propose, ProposesFromMap, builds it from the whole map instead);
 //      c. a component t is picked with the particle's uniform and x = mu_t + chol(Sigma_t) xi is
 //         drawn; unless the proposal is the prior itself, log N(x; mu0, Sigma0) - log q(x) is added
-//         to the log-weight; without a Cholesky factor the pose stays at the predicted mean;
+//         to the log-weight (or the proposal's own log_weight_increment when it sets one); without
+//         a Cholesky factor the pose stays at the predicted mean;
 //      d. Model::Update adds the measurement likelihood to the log-weight and updates the map at x;
 //   3. the estimate is the highest-weight particle (first on ties), before resampling; its map is
 //      kept as a snapshot (Model::Snapshot);
@@ -36,8 +38,10 @@
 #pragma once
 
 #include <cmath>
+#include <concepts>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -77,6 +81,14 @@ concept ReportsInnovations = requires(const Model& m, typename Model::Map& map, 
 struct MapView {
   LandmarkView landmarks;
   std::span<const int> known_association;  ///< empty unless the model knows the association
+};
+
+/// A map model that may build the pose proposal itself from the whole map (not only its landmark
+/// view), returning nullopt to leave it to the importance density.
+template <class Model>
+concept ProposesFromMap = requires(const Model& m, const typename Model::Map& map,
+                                   const ProposalInput& input) {
+  { m.Propose(map, input) } -> std::same_as<std::optional<ProposalOutput>>;
 };
 
 /// The skeleton over a map model. Model provides:
@@ -146,6 +158,7 @@ class ParticleFilter final : public OnlineEstimator {
 
   // Per-step state shared between particles (proposal reuse and association bookkeeping).
   PreparedProposal proposal_;
+  std::optional<double> proposal_increment_;  ///< ProposalOutput::log_weight_increment of proposal_
   int proposal_parent_ = -2;
   long hypotheses_total_ = 0;
   std::vector<int> association_owner_;
@@ -170,7 +183,14 @@ void ParticleFilter<Model>::Propagate(int idx, const StepData& step, double unif
     const MapView view = model_.View(p.map);
     const ProposalInput input{
         mu0, sigma0, view.landmarks, step.measurements, &context_.sensor, view.known_association};
-    ProposalOutput built = density_->Build(input);
+    ProposalOutput built;
+    if constexpr (ProposesFromMap<Model>) {
+      std::optional<ProposalOutput> own = model_.Propose(p.map, input);
+      built = own ? std::move(*own) : density_->Build(input);
+    } else {
+      built = density_->Build(input);
+    }
+    proposal_increment_ = built.log_weight_increment;
     proposal_ = PrepareProposal(std::move(built.mixture));
     std::vector<Landmark> means;
     if (!built.best_association.empty()) {
@@ -196,7 +216,7 @@ void ParticleFilter<Model>::Propagate(int idx, const StepData& step, double unif
     // log f - log q, exactly 0 when the proposal is the prior itself (the bootstrap case).
     const bool is_prior = proposal_.mixture.size() == 1 && proposal_.mixture.means[0] == mu0 &&
                           proposal_.mixture.covs[0] == sigma0;
-    if (!is_prior) {
+    if (!is_prior && !proposal_increment_) {
       const auto log_prior = LogNormalPdf<3>(x, mu0, sigma0);
       if (log_prior) p.log_weight += *log_prior - density_->LogDensity(proposal_, x);
     }
@@ -204,6 +224,7 @@ void ParticleFilter<Model>::Propagate(int idx, const StepData& step, double unif
   } else {
     p.pose = mu0;
   }
+  if (proposal_increment_) p.log_weight += *proposal_increment_;
   p.cov.setZero();
   p.parent = -1;
   // 2d. Measurement likelihood and map update at the sampled pose.

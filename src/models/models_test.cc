@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 
 #include "src/core/angles.h"
 #include "src/models/car_motion_model.h"
@@ -119,6 +120,21 @@ TEST(SensorModel, DetectionProbabilityAndFovAreInclusivePointTests) {
   EXPECT_GT(clutter_free.ClutterIntensity(), 0.0);
   EXPECT_NEAR(clutter_free.ClutterIntensity() / SensorModel{}.ClutterIntensity(),
               SensorModel::kMinFilterClutterRate / 5.0, 1e-15);
+}
+
+TEST(SensorModel, RangeBearingBoxClutterIntensityIsTheBoxDensity) {
+  // The delta-GLMB notes' kappa for the 3 m disc: lambda_c / (3 * 2 pi), 0.0531 at lambda_c = 1
+  // and 0.796 at 15, 1.5 times the sector-area reading lambda_c / (9 pi).
+  SensorModel s;
+  s.fov_range = 3.0;
+  s.fov_half_angle = std::numbers::pi;
+  s.clutter_rate = 1.0;
+  const double sector = s.ClutterIntensity();
+  s.clutter_space = ClutterSpace::kRangeBearingBox;
+  EXPECT_NEAR(s.ClutterIntensity(), 0.0531, 5e-5);
+  EXPECT_NEAR(s.ClutterIntensity() / sector, 1.5, 1e-12);
+  s.clutter_rate = 15.0;
+  EXPECT_NEAR(s.ClutterIntensity(), 0.796, 5e-4);
 }
 
 }  // namespace

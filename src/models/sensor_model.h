@@ -16,6 +16,17 @@ enum class DetectionProfile {
   kLinearRange,  ///< pD = pd_max (1 - r / fov_range) inside the FOV (Victoria Park).
 };
 
+/// The space the clutter density 1 / V of ClutterIntensity() = lambda / V is defined over.
+enum class ClutterSpace {
+  /// V = Theta_fov R_fov^2, the Cartesian area of the FOV sector, used as a density in (r, phi)
+  /// (the PHD-SLAM reference code's; reference notes 10.1). Every scenario but glmb-sim.
+  kSectorArea,
+  /// V = 2 Theta_fov R_fov, the (r, phi) box [0, R_fov] x [-Theta_fov, Theta_fov]: the exact
+  /// intensity of clutter drawn uniform in range and bearing and not thinned (glmb-sim; the
+  /// delta-GLMB reference notes section 1).
+  kRangeBearingBox,
+};
+
 struct SensorModel {
   double fov_range = 150.0;                ///< m
   double fov_half_angle = DegToRad(90.0);  ///< rad
@@ -26,6 +37,7 @@ struct SensorModel {
   double pd_nominal = 0.95;           ///< the nominal pD used by the estimate threshold
   Mat2 noise_cov = Mat2::Identity();  ///< R
   double clutter_rate = 5.0;          ///< expected clutter points per scan (lambda)
+  ClutterSpace clutter_space = ClutterSpace::kSectorArea;  ///< what ClutterIntensity() divides by
 
   /// The smallest clutter rate the filters' likelihoods use (points per scan). The RB-PHD-SLAM
   /// family explains every measurement no component accounts for (clutter, but also a landmark's
@@ -35,11 +47,16 @@ struct SensorModel {
   /// far below every rate that occurs otherwise and changes nothing for them.
   static constexpr double kMinFilterClutterRate = 1e-3;
 
-  /// lambda_c = lambda / (Theta_fov R_fov^2): lambda (at least kMinFilterClutterRate) over the
-  /// Cartesian area of the FOV sector, used by the filters as a density in (r, phi) (reference
-  /// notes 10.1, kept to reproduce the published numbers).
+  /// lambda_c = lambda / V, lambda at least kMinFilterClutterRate, used by the filters as a
+  /// density in (r, phi). V is the Cartesian area of the FOV sector Theta_fov R_fov^2 (reference
+  /// notes 10.1, kept to reproduce the published numbers) or, for ClutterSpace::kRangeBearingBox,
+  /// the (r, phi) box 2 Theta_fov R_fov.
   [[nodiscard]] double ClutterIntensity() const {
-    return std::max(clutter_rate, kMinFilterClutterRate) / (fov_half_angle * fov_range * fov_range);
+    const double rate = std::max(clutter_rate, kMinFilterClutterRate);
+    if (clutter_space == ClutterSpace::kRangeBearingBox) {
+      return rate / (2.0 * fov_half_angle * fov_range);
+    }
+    return rate / (fov_half_angle * fov_range * fov_range);
   }
 
   /// pD evaluated at the landmark point m from pose x (a point evaluation, notes section 9).

@@ -9,6 +9,7 @@
 #include "src/filters/phd_slam_family.h"
 #include "src/filters/phd_slam_params_json.h"
 #include "src/filters/sc_phd_slam.h"
+#include "src/glmb/glmb_slam.h"
 #include "validation/runner/parameter_overrides.h"
 
 namespace phdslam::validation {
@@ -134,6 +135,21 @@ EstimatorEntry ScPhdSlamEntry() {
   return e;
 }
 
+EstimatorEntry GlmbSlamEntry(const std::string& name, const std::string& description) {
+  EstimatorEntry e;
+  e.name = name;
+  e.description = description;
+  e.resolved_parameters = [](const EstimatorRequest& r) {
+    return glmb::ToJson(ResolveParameters(r, glmb::GlmbSlamParamsTable()));
+  };
+  e.make_online = [](const EstimatorRequest& r) -> std::unique_ptr<filters::OnlineEstimator> {
+    const glmb::GlmbSlamParams params = ResolveParameters(r, glmb::GlmbSlamParamsTable());
+    if (r.name == "lmb") return glmb::MakeLmbSlam(RequireContext(r), params, r.stream_seed);
+    return glmb::MakeGlmbSlam(RequireContext(r), params, r.name == "glmb2", r.stream_seed);
+  };
+  return e;
+}
+
 }  // namespace
 
 EstimatorEntry OracleFastSlam1Entry();  // oracle_fastslam1.cc: the worked example
@@ -147,6 +163,18 @@ std::vector<EstimatorEntry> BuildTable() {
   }
   table.push_back(RbPhdEntry());
   table.push_back(ScPhdSlamEntry());
+  table.push_back(GlmbSlamEntry(
+      "glmb2",
+      "delta-GLMB-SLAM 2.0 (Moratuwage, Adams & Inostroza 2019): per-particle delta-GLMB maps "
+      "updated by Gibbs sampling, the optimal-kernel pose proposal (--set kernel_weight=...)"));
+  table.push_back(GlmbSlamEntry(
+      "glmb1",
+      "delta-GLMB-SLAM 1.0: per-particle delta-GLMB maps updated by Gibbs sampling, the motion "
+      "model as pose proposal"));
+  table.push_back(GlmbSlamEntry(
+      "lmb",
+      "LMB-SLAM as the delta-GLMB-SLAM paper ran it: per-particle LMB maps, one Gibbs-sampled "
+      "delta-GLMB update per step, existence pruning 0.019, no clustering; motion-model proposal"));
   table.push_back(OracleEntry());
   table.push_back(OracleFastSlam1Entry());
   for (EstimatorEntry& e : MrptEstimators()) table.push_back(std::move(e));

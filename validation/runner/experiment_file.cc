@@ -252,7 +252,7 @@ Experiment ParseExperimentYaml(std::string_view text, const std::string& source,
   if (!root.IsMap()) errors.Fail("expected a mapping of keys (scenario, estimators, seeds, ...)");
   RequireKnownKeys(root,
                    {"name", "scenario", "estimators", "particles", "seeds", "steps",
-                    "scenario_options", "jobs", "sweep"},
+                    "scenario_options", "jobs", "sweep", "map_ospa", "map_ospa_cutoff"},
                    "the experiment", errors);
   for (const char* key : {"scenario", "estimators", "seeds"}) {
     if (!root[key]) errors.Fail("the key '" + std::string(key) + "' is required");
@@ -274,6 +274,19 @@ Experiment ParseExperimentYaml(std::string_view text, const std::string& source,
   if (const YAML::Node jobs = root["jobs"]) {
     x.jobs = Number<int>(jobs, "jobs", errors);
     if (*x.jobs < 0) errors.Fail(jobs, "'jobs': expected >= 0 (0 = one per hardware thread)");
+  }
+  if (const YAML::Node map_ospa = root["map_ospa"]) {
+    const std::string flag = ScalarText(map_ospa, "map_ospa", errors);
+    if (flag != "true" && flag != "false") {
+      errors.Fail(map_ospa, "'map_ospa': expected true or false, got '" + flag + "'");
+    }
+    x.map_ospa = flag == "true";
+  }
+  if (const YAML::Node cutoff = root["map_ospa_cutoff"]) {
+    x.map_ospa_cutoff = Number<double>(cutoff, "map_ospa_cutoff", errors);
+    if (!(*x.map_ospa_cutoff > 0.0) || !std::isfinite(*x.map_ospa_cutoff)) {
+      errors.Fail(cutoff, "'map_ospa_cutoff': expected a finite number > 0 (m)");
+    }
   }
   if (const YAML::Node sweep = root["sweep"]) {
     x.sweep = ReadSweep(sweep, errors);

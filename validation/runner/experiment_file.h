@@ -49,6 +49,10 @@ struct Experiment {
   nlohmann::json scenario_settings = nlohmann::json::object();
   std::optional<std::string> data_dir;  ///< a machine setting: never read from files
   std::optional<int> jobs;              ///< worker threads (0 or unset: one per hardware thread)
+  /// `map_ospa: true` records the per-step map OSPA (as `run --map-ospa`); `map_ospa_cutoff`
+  /// sets its cut-off c in m (and turns it on). Unset: off, c = 5 m.
+  std::optional<bool> map_ospa;
+  std::optional<double> map_ospa_cutoff;
   /// Swept parameters: empty without a sweep, one for a one-dimensional sweep, several for a
   /// grid (every combination, the first parameter varying slowest).
   std::vector<ExperimentSweep> sweep;

@@ -217,6 +217,21 @@ TEST(ExperimentFile, RejectsBadValues) {
   expect_error("scenario: s\n  bad indent: [\n", "YAML syntax error");
 }
 
+TEST(ExperimentFile, ReadsTheMapOspaSettings) {
+  const std::string base = "scenario: s\nestimators: [e]\nseeds: 1\n";
+  const Experiment none = ParseExperimentYaml(base, "exp.yaml", "exp");
+  EXPECT_FALSE(none.map_ospa.has_value());
+  EXPECT_FALSE(none.map_ospa_cutoff.has_value());
+  const Experiment x =
+      ParseExperimentYaml(base + "map_ospa: true\nmap_ospa_cutoff: 0.5\n", "exp.yaml", "exp");
+  EXPECT_EQ(x.map_ospa, true);
+  EXPECT_EQ(x.map_ospa_cutoff, 0.5);
+  EXPECT_NE(ParseError(base + "map_ospa: yes please\n").find("'map_ospa': expected true or false"),
+            std::string::npos);
+  EXPECT_NE(ParseError(base + "map_ospa_cutoff: 0\n").find("'map_ospa_cutoff'"), std::string::npos);
+  EXPECT_NE(ParseError(base + "map_ospa_cutoff: far\n").find("not a number"), std::string::npos);
+}
+
 TEST(ExperimentFile, ReadsAFileWithItsStemAsDefaultName) {
   const std::filesystem::path dir = datasets::testing::FreshTestDir();
   WriteFileAtomically(dir / "my_experiment.yaml",

@@ -14,7 +14,8 @@ bool HasOriginLabels(const datasets::Scenario& scenario) {
 
 }  // namespace
 
-std::vector<double> MapOspaTrace(const RunRecord& record, const datasets::Scenario& scenario) {
+std::vector<double> MapOspaTrace(const RunRecord& record, const datasets::Scenario& scenario,
+                                 double cutoff) {
   std::vector<double> trace;
   if (record.step_maps.size() != scenario.steps.size() || scenario.truth.landmarks.empty() ||
       !HasOriginLabels(scenario)) {
@@ -29,7 +30,7 @@ std::vector<double> MapOspaTrace(const RunRecord& record, const datasets::Scenar
       seen[origin] = true;
       detected.push_back(scenario.truth.landmarks[origin]);
     }
-    trace.push_back(Ospa(detected, record.step_maps[k], kMapOspaCutoff, kMapOspaOrder).ospa);
+    trace.push_back(Ospa(detected, record.step_maps[k], cutoff, kMapOspaOrder).ospa);
   }
   return trace;
 }

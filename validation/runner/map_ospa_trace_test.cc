@@ -33,6 +33,20 @@ TEST(MapOspaTrace, ComparesWithTheLandmarksDetectedSoFar) {
   EXPECT_NEAR(trace[2], 3.5, 1e-12);
 }
 
+TEST(MapOspaTrace, TakesTheCutoff) {
+  const datasets::Scenario s = TwoLandmarks();
+  RunRecord r;
+  r.step_maps = {{Landmark(0.3, 0.0)},                        // d = 0.3 < c
+                 {Landmark(1.0, 0.0), Landmark(50.0, 0.0)},   // cut at 0.5, one false: 0.5
+                 {Landmark(0.0, 0.2), Landmark(10.0, 8.0)}};  // 0.2, then cut: (0.2 + 0.5) / 2
+  const std::vector<double> trace = MapOspaTrace(r, s, 0.5);
+  ASSERT_EQ(trace.size(), 3u);
+  EXPECT_NEAR(trace[0], 0.3, 1e-12);
+  EXPECT_NEAR(trace[1], 0.5, 1e-12);
+  EXPECT_NEAR(trace[2], 0.35, 1e-12);
+  EXPECT_NEAR(MapOspaTrace(r, s)[2], (0.2 + 5.0) / 2.0, 1e-12);  // the default c = 5 m
+}
+
 TEST(MapOspaTrace, EmptyWithoutRecordedMapsOrTrueMap) {
   datasets::Scenario s = TwoLandmarks();
   RunRecord r;

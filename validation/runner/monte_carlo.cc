@@ -14,6 +14,7 @@
 #include <thread>
 #include <utility>
 
+#include "validation/runner/map_ospa_trace.h"
 #include "validation/runner/out_of_memory_valve.h"
 #include "validation/runner/parameter_overrides.h"
 #include "validation/runner/progress_line.h"
@@ -85,7 +86,12 @@ std::map<ParameterKey, nlohmann::json> ResolveParameters(const MonteCarloPlan& p
 }
 
 nlohmann::json MetricSettingsJson(const MetricSettings& m) {
-  return {{"gospa_c", m.gospa_c}, {"gospa_p", m.gospa_p}, {"gps_window_s", m.gps_window_s}};
+  nlohmann::json j = {
+      {"gospa_c", m.gospa_c}, {"gospa_p", m.gospa_p}, {"gps_window_s", m.gps_window_s}};
+  // Written only when it is not the default, so folders made before the setting existed keep
+  // their config.json and can be resumed; a folder is never resumed with another cut-off.
+  if (m.map_ospa_c != kMapOspaCutoff) j["map_ospa_c"] = m.map_ospa_c;
+  return j;
 }
 
 nlohmann::json BuildConfig(const MonteCarloPlan& plan,

@@ -214,7 +214,7 @@ RunEvaluation EvaluateRun(const RunRecord& record, const datasets::Scenario& sce
   EvaluateDiagnostics(record, ev.metrics);
   EvaluateAssociation(record, scenario, ev.metrics);
   for (double ms : record.step_ms) ev.metrics.step_ms.Add(ms);
-  ev.map_ospa_m = MapOspaTrace(record, scenario);
+  ev.map_ospa_m = MapOspaTrace(record, scenario, settings.map_ospa_c);
   ev.metrics.total_ms = record.total_ms;
   if (record.solver_iterations) {
     ev.metrics.solver_iterations = static_cast<std::size_t>(std::max(*record.solver_iterations, 0));

@@ -11,14 +11,16 @@
 #include "datasets/scenario.h"
 #include "validation/metrics/association_accuracy.h"
 #include "validation/runner/error_moments.h"
+#include "validation/runner/map_ospa_trace.h"
 #include "validation/runner/run_record.h"
 
 namespace phdslam::validation {
 
 struct MetricSettings {
-  double gospa_c = 20.0;        ///< m, GOSPA cut-off
-  double gospa_p = 2.0;         ///< GOSPA order (alpha = 2)
-  double gps_window_s = 0.025;  ///< GPS match window for real data
+  double gospa_c = 20.0;               ///< m, GOSPA cut-off
+  double gospa_p = 2.0;                ///< GOSPA order (alpha = 2)
+  double gps_window_s = 0.025;         ///< GPS match window for real data
+  double map_ospa_c = kMapOspaCutoff;  ///< m, cut-off of the per-step map OSPA
 };
 
 /// GOSPA of the final map against the true landmarks, with its decomposition. The three parts

@@ -9,6 +9,7 @@ namespace {
 using params::Above;
 using params::AtLeast;
 using params::Between;
+using params::EnumField;
 using params::Field;
 using params::IntField;
 using params::NumberField;
@@ -177,6 +178,33 @@ const params::ParameterTable<datasets::MrclamOptions>& MrclamOptionsTable() {
               Between(1, datasets::kMrclamRobots)),
           params::BoolField<O>(
               "drop_non_landmarks", [](auto& o) -> auto& { return o.drop_non_landmarks; }),
+      },
+      DetectionRows<O>(),
+      SensorRows<O>(),
+  }));
+  return table;
+}
+
+const params::ParameterTable<datasets::GlmbSimOptions>& GlmbSimOptionsTable() {
+  using O = datasets::GlmbSimOptions;
+  using P = datasets::GlmbDataProtocol;
+  static const params::ParameterTable<O> table(params::Rows<O>({
+      {
+          NumberField<O>(
+              "dt", [](auto& o) -> auto& { return o.dt; }, Above(0.0)),
+          NumberField<O>(
+              "speed", [](auto& o) -> auto& { return o.speed; }, Above(0.0)),
+          NumberField<O>(
+              "wheelbase", [](auto& o) -> auto& { return o.wheelbase; }, Above(0.0)),
+          IntField<O>(
+              "landmarks", [](auto& o) -> auto& { return o.landmarks; }, AtLeast(0)),
+          NumberField<O>(
+              "landmark_offset", [](auto& o) -> auto& { return o.landmark_offset; }, AtLeast(0.0)),
+          EnumField<O, P>(
+              "data_protocol", [](auto& o) -> auto& { return o.data_protocol; },
+              {{P::kPerSeed, "per-seed"}, {P::kSingleRealisation, "single-realisation"}}),
+          IntField<O>(
+              "data_seed", [](auto& o) -> auto& { return o.data_seed; }, AtLeast(0)),
       },
       DetectionRows<O>(),
       SensorRows<O>(),

@@ -4,6 +4,7 @@
 // data folder are experiment settings and are not in the tables.
 #pragma once
 
+#include "datasets/glmb_simulation.h"
 #include "datasets/mrclam.h"
 #include "datasets/paper_synthetic.h"
 #include "datasets/scenario_generator.h"
@@ -29,5 +30,8 @@ const params::ParameterTable<datasets::ScPhdSimOptions>& ScPhdSimOptionsTable();
 /// mrclam: the sub-dataset and robot, whether non-landmark detections are dropped, and the
 /// sensor and noise model the filters assume (defaults estimated from dataset 6).
 const params::ParameterTable<datasets::MrclamOptions>& MrclamOptionsTable();
+
+/// glmb-sim: the simulated path and map, the sensor, the noise covariances and the data protocol.
+const params::ParameterTable<datasets::GlmbSimOptions>& GlmbSimOptionsTable();
 
 }  // namespace phdslam::validation

@@ -74,5 +74,32 @@ TEST(ScenarioOptionTables, BadKeysAndValuesNameTheKey) {
   EXPECT_EQ(ErrorOf({{"landmarks", 0}, {"clutter_rate", 0}}), "");
 }
 
+TEST(ScenarioOptionTables, GlmbSimTakesTheDataProtocolByName) {
+  ScenarioOptions options;
+  options.steps = 30;
+  options.clutter_rate = 5.0;
+  options.settings = {{"data_protocol", "single-realisation"}, {"data_seed", 4}};
+  const nlohmann::json resolved = FindScenario("glmb-sim").resolved_options(options);
+  EXPECT_EQ(resolved.at("data_protocol"), "single-realisation");
+  EXPECT_EQ(resolved.at("data_seed"), 4);
+  EXPECT_EQ(resolved.at("steps"), 30);
+  EXPECT_EQ(FindScenario("glmb-sim").resolved_options(ScenarioOptions{}).at("data_protocol"),
+            "per-seed");
+  const datasets::Scenario a = MakeScenario("glmb-sim", 1, options);
+  const datasets::Scenario b = MakeScenario("glmb-sim", 2, options);
+  ASSERT_EQ(a.steps.size(), 30u);
+  EXPECT_DOUBLE_EQ(a.sensor.clutter_rate, 5.0);
+  for (std::size_t k = 0; k < a.steps.size(); ++k) {
+    EXPECT_EQ(a.steps[k].data.measurements, b.steps[k].data.measurements) << "step " << k;
+  }
+  options.settings = {{"data_protocol", "per-run"}};
+  try {
+    FindScenario("glmb-sim").resolved_options(options);
+    ADD_FAILURE() << "an unknown protocol was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("data_protocol"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace phdslam::validation

@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "datasets/data_dir.h"
+#include "datasets/glmb_simulation.h"
 #include "datasets/scenario_check.h"
 #include "datasets/scenario_generator.h"
 #include "datasets/scphd_simulation.h"
@@ -197,6 +198,17 @@ datasets::MrclamOptions ToMrclamOptions(const ScenarioOptions& options) {
   return o;
 }
 
+datasets::GlmbSimOptions ToGlmbSimOptions(const ScenarioOptions& options) {
+  RequireNonNegativeSteps(options);
+  datasets::GlmbSimOptions o;
+  if (options.steps > 0) o.steps = options.steps;
+  if (options.detection_probability) o.detection_probability = *options.detection_probability;
+  if (options.clutter_rate) o.clutter_rate = *options.clutter_rate;
+  ApplySettings(GlmbSimOptionsTable(), options, "glmb-sim", o);
+  o.Validate();
+  return o;
+}
+
 nlohmann::json MrclamCountsJson(const datasets::MrclamCounts& c) {
   return {{"steps", c.steps},
           {"unscored_steps", c.unscored_steps},
@@ -242,6 +254,29 @@ ScenarioEntry MrclamEntry() {
   return e;
 }
 
+ScenarioEntry GlmbSimEntry() {
+  ScenarioEntry e;
+  e.name = "glmb-sim";
+  e.option_keys = OptionKeys(GlmbSimOptionsTable());
+  e.description =
+      "the simulation of the delta-GLMB-SLAM paper (Moratuwage, Adams & Inostroza 2019): 23 "
+      "landmarks around a 24.8 m closed loop driven at 1 m/s and revisited (175 steps of 0.2 s), "
+      "3 m disc field of view, pD 0.7, Poisson clutter uniform in range-bearing "
+      "(datasets/glmb_simulation.h); data per seed or one realisation (data_protocol); no data "
+      "files";
+  e.uses_data_dir = false;
+  e.make = [](std::uint64_t seed, const ScenarioOptions& options, ScenarioCache&) {
+    return datasets::MakeGlmbSimScenario(ToGlmbSimOptions(options), seed);
+  };
+  e.resolved_options = [](const ScenarioOptions& options) {
+    const datasets::GlmbSimOptions o = ToGlmbSimOptions(options);
+    nlohmann::json j = GlmbSimOptionsTable().ToJson(o);
+    j["steps"] = o.steps;
+    return j;
+  };
+  return e;
+}
+
 }  // namespace
 
 const datasets::PaperSyntheticEnvironment& ScenarioCache::PaperSynthetic(
@@ -280,6 +315,7 @@ const datasets::MrclamRobotData& ScenarioCache::Mrclam(const std::filesystem::pa
 const std::vector<ScenarioEntry>& ScenarioTable() {
   static const std::vector<ScenarioEntry> table = {
       PaperSyntheticEntry(), VictoriaParkEntry(), GeneratedEntry(), ScPhdSimEntry(), MrclamEntry(),
+      GlmbSimEntry(),
   };
   return table;
 }

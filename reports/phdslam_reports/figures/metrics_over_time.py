@@ -19,8 +19,9 @@ PANELS = (
     ("map_components", "Map size (GM-PHD components)"),
 )
 
-MAP_OSPA_PANEL = ("map_ospa_m", "Map OSPA (m; p = 1, c = 5 m, landmarks detected so far)")
-"""Drawn as a fifth panel when steps.csv has the opt-in column (phdslam run --map-ospa)."""
+MAP_OSPA_PANEL = ("map_ospa_m", "Map OSPA (m; p = 1, c = {c:g} m, landmarks detected so far)")
+"""Drawn as a fifth panel when steps.csv has the opt-in column (phdslam run --map-ospa); {c} is
+the cut-off of the runs (config.json metrics.map_ospa_c, default 5 m)."""
 
 
 @dataclass
@@ -67,6 +68,7 @@ def needs_log_scale(means: list[np.ndarray], ratio: float = 20.0) -> bool:
 
 def plot_metrics_over_time(
     series: list[GroupSeries], display_name: Callable[[str], str] = str,
+    map_ospa_cutoff: float = 5.0,
 ) -> Figure | None:
     """Four panels (position error, heading error, ESS/N, map size) over the step index, and the
     map OSPA as a fifth when the runs have it."""
@@ -76,7 +78,8 @@ def plot_metrics_over_time(
     estimators = [s.group.estimator for s in series]
     particles = [s.group.particles for s in series]
     with_ospa = any(MAP_OSPA_PANEL[0] in s.bands for s in series)
-    panels = PANELS + (MAP_OSPA_PANEL,) if with_ospa else PANELS
+    ospa_panel = (MAP_OSPA_PANEL[0], MAP_OSPA_PANEL[1].format(c=map_ospa_cutoff))
+    panels = PANELS + (ospa_panel,) if with_ospa else PANELS
     fig, axes = new_figure(13.0, 12.0, 3, 2) if with_ospa else new_figure(13.0, 8.0, 2, 2)
     if with_ospa:
         axes.flat[-1].set_visible(False)

@@ -1,0 +1,52 @@
+// The eta matrix of one prior hypothesis (reference notes 3.2) and the Gibbs sampler of its
+// joint prediction/update associations (notes 3.3, Vo, Vo & Hoang 2017, Algorithm 1), started
+// from the optimal association computed with the suite's assignment solver.
+#pragma once
+
+#include <optional>
+#include <span>
+#include <utility>
+#include <vector>
+
+#include "src/core/random.h"
+
+namespace phdslam::glmb {
+
+/// One row of eta in logs: -inf is a forbidden value (log 0), never a large finite cost.
+struct EtaRow {
+  double log_death = 0.0;  ///< gamma = -1: dies (survivor) or is not born (birth)
+  double log_miss = 0.0;   ///< gamma = 0: survives (or is born) and is missed
+  /// Gated measurements only, ascending: (j, log eta(j + 1)) for measurement index j (0-based).
+  std::vector<std::pair<int, double>> detections;
+};
+
+/// gamma_i in {-1, 0, 1..M}: -1 dead / not born, 0 missed, j >= 1 detected by measurement j - 1.
+using Association = std::vector<int>;
+
+/// log eta_i(gamma_i); -inf when gamma_i is forbidden for the row.
+double LogEta(const EtaRow& row, int gamma);
+
+/// sum_i log eta_i(gamma_i); -inf when any value is forbidden or two rows share a measurement.
+double LogAssociationWeight(std::span<const EtaRow> rows, const Association& gamma);
+
+/// The highest-weight valid association (minimum total cost -log eta), from the linear
+/// assignment of the rows to [one private column each: the better of death and miss | the M
+/// measurements]; nullopt when none is valid (some row has no allowed value left).
+std::optional<Association> OptimalAssociation(std::span<const EtaRow> rows, int measurements);
+
+/// `samples` associations (at least 1): `start` (which must be valid) followed by samples - 1
+/// Gibbs sweeps, rows resampled in order from their conditionals given the other rows (a
+/// measurement taken by another row is excluded), conditionals shifted by their maximum before
+/// exponentiation. One uniform draw per row and sweep from `rng`.
+std::vector<Association> GibbsSample(std::span<const EtaRow> rows, int measurements,
+                                     const Association& start, int samples, RandomStream& rng);
+
+/// The distinct associations, in lexicographic order.
+std::vector<Association> DistinctAssociations(std::vector<Association> samples);
+
+/// DistinctAssociations(GibbsSample(...)) with the same draws, without storing repeated samples.
+std::vector<Association> DistinctGibbsSamples(std::span<const EtaRow> rows, int measurements,
+                                              const Association& start, int samples,
+                                              RandomStream& rng);
+
+}  // namespace phdslam::glmb

@@ -1,0 +1,283 @@
+#include "src/glmb/joint_update.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numeric>
+#include <unordered_map>
+
+#include "src/core/log_sum_exp.h"
+
+namespace phdslam::glmb {
+
+namespace {
+
+double LogOrNegInf(double v) { return v > 0.0 ? std::log(v) : kNegInf; }
+
+/// The eta row of an entry with existence e (p_S for a survivor, r_B for a birth, p_S r for an
+/// LMB track) and its terms (notes 3.2).
+EtaRow MakeEtaRow(double e, const EntryTerms& terms, double log_kappa) {
+  EtaRow row;
+  row.log_death = e >= 1.0 ? kNegInf : std::log1p(-e);
+  const double log_e = LogOrNegInf(e);
+  row.log_miss = log_e + (terms.pd >= 1.0 ? kNegInf : std::log1p(-terms.pd));
+  const double log_pd = LogOrNegInf(terms.pd);
+  row.detections.reserve(terms.detections.size());
+  for (const DetectionTerm& d : terms.detections) {
+    row.detections.emplace_back(d.measurement, log_e + log_pd + d.log_q - log_kappa);
+  }
+  return row;
+}
+
+}  // namespace
+
+JointProblem BuildJointProblem(std::span<const Hypothesis> prior, std::span<const double> existence,
+                               std::span<const BirthTrack> births, const Pose& x,
+                               std::span<const Measurement> measurements,
+                               const MeasurementSetup& setup, const UpdateSettings& settings) {
+  JointProblem p;
+  p.measurements = static_cast<int>(measurements.size());
+  p.log_ck = -settings.clutter_rate + p.measurements * settings.log_clutter_intensity;
+  // Out-of-FOV entries never enter the problem (they pass through, BuildPosterior); the FOV
+  // test comes before the entry lookup because most of a map is outside the FOV.
+  const models::FovView fov(*setup.sensor, x);
+  std::unordered_map<std::uint64_t, int> index;
+  std::vector<double> entry_existence;
+  std::vector<std::vector<int>> in_fov(prior.size());
+  for (std::size_t h = 0; h < prior.size(); ++h) {
+    const TrackSet& tracks = *prior[h].tracks;
+    for (std::size_t i = 0; i < tracks.size(); ++i) {
+      const TrackPtr& t = tracks[i];
+      if (!(fov.DetectionProbability(t->Heaviest().mean) > 0.0)) continue;
+      const auto [it, inserted] = index.emplace(t->id, static_cast<int>(p.entries.size()));
+      if (inserted) {
+        p.entries.push_back(t);
+        p.terms.push_back(ComputeEntryTerms(*t, x, measurements, setup));
+        const double mult = existence.empty() ? 1.0 : existence[i];
+        entry_existence.push_back(mult * settings.survival_probability);
+      }
+      in_fov[h].push_back(it->second);
+    }
+  }
+  p.prior_entries = static_cast<int>(p.entries.size());
+  for (const BirthTrack& b : births) {
+    p.entries.push_back(b.track);
+    p.terms.push_back(ComputeEntryTerms(*b.track, x, measurements, setup));
+    entry_existence.push_back(b.existence);
+  }
+  std::vector<std::optional<EtaRow>> rows(p.entries.size());
+  auto row_of = [&](int e) -> const EtaRow& {
+    if (!rows[e])
+      rows[e] = MakeEtaRow(entry_existence[e], p.terms[e], settings.log_clutter_intensity);
+    return *rows[e];
+  };
+  p.parents.reserve(prior.size());
+  for (std::size_t h = 0; h < prior.size(); ++h) {
+    JointProblem::Parent parent;
+    parent.log_weight = prior[h].log_weight;
+    parent.tracks = prior[h].tracks;
+    for (const int e : in_fov[h]) {
+      parent.rows.push_back(e);
+      parent.eta.push_back(row_of(e));
+    }
+    parent.in_fov_rows = static_cast<int>(parent.rows.size());
+    for (int b = p.prior_entries; b < static_cast<int>(p.entries.size()); ++b) {
+      // A birth outside the FOV cannot be detected: its row still decides born / not born.
+      parent.rows.push_back(b);
+      parent.eta.push_back(row_of(b));
+    }
+    p.parents.push_back(std::move(parent));
+  }
+  return p;
+}
+
+std::vector<SampledAssociation> SampleAssociations(const JointProblem& problem,
+                                                   const UpdateSettings& settings,
+                                                   RandomStream& rng) {
+  std::vector<double> half_log_w;
+  half_log_w.reserve(problem.parents.size());
+  for (const JointProblem::Parent& h : problem.parents) half_log_w.push_back(0.5 * h.log_weight);
+  const double norm = LogSumExp(half_log_w);
+  std::vector<SampledAssociation> out;
+  for (int h = 0; h < static_cast<int>(problem.parents.size()); ++h) {
+    const JointProblem::Parent& parent = problem.parents[h];
+    const double share = std::exp(half_log_w[h] - norm) * settings.samples;
+    const int t_h = std::max(1, static_cast<int>(std::lround(share)));
+    std::optional<Association> start;
+    if (!settings.optimal_start) {
+      start = Association(parent.rows.size(), 0);
+      if (LogAssociationWeight(parent.eta, *start) == kNegInf) start.reset();
+    }
+    if (!start) start = OptimalAssociation(parent.eta, problem.measurements);
+    if (!start) continue;
+    std::vector<Association> distinct =
+        t_h == 1 ? std::vector<Association>{*start}
+                 : DistinctGibbsSamples(parent.eta, problem.measurements, *start, t_h, rng);
+    for (Association& gamma : distinct) {
+      const double lw =
+          parent.log_weight + LogAssociationWeight(parent.eta, gamma) + problem.log_ck;
+      out.push_back(SampledAssociation{h, std::move(gamma), lw});
+    }
+  }
+  return out;
+}
+
+namespace {
+
+struct Child {
+  TrackSet tracks;
+  double log_weight = kNegInf;
+  int sample = 0;             ///< first sample giving this child
+  std::vector<int> assigned;  ///< measurements detected in it
+};
+
+void NormaliseLogWeights(std::vector<Child>& children) {
+  std::vector<double> lw;
+  lw.reserve(children.size());
+  for (const Child& c : children) lw.push_back(c.log_weight);
+  const double norm = LogSumExp(lw);
+  for (Child& c : children) c.log_weight -= norm;
+}
+
+/// Normalise, prune w <= threshold (the best hypothesis is always kept), renormalise, sort
+/// descending (stable), cap, renormalise: notes 3.4 in [V]'s order.
+void Truncate(std::vector<Child>& children, const UpdateSettings& settings) {
+  NormaliseLogWeights(children);
+  std::stable_sort(children.begin(), children.end(),
+                   [](const Child& a, const Child& b) { return a.log_weight > b.log_weight; });
+  const double log_tau = std::log(settings.prune_threshold);
+  std::size_t keep = 1;
+  while (keep < children.size() && children[keep].log_weight > log_tau) ++keep;
+  keep = std::min<std::size_t>(keep, std::max(1, settings.max_hypotheses));
+  children.resize(keep);
+  NormaliseLogWeights(children);
+}
+
+}  // namespace
+
+UpdateResult BuildPosterior(const JointProblem& problem,
+                            std::span<const SampledAssociation> samples, const Pose& x,
+                            std::span<const Measurement> measurements,
+                            const MeasurementSetup& setup, const UpdateSettings& settings,
+                            std::uint64_t& next_id) {
+  const int m = problem.measurements;
+  std::vector<TrackPtr> child_cache(problem.entries.size() * static_cast<std::size_t>(m));
+  auto child_of = [&](int e, int j) -> const TrackPtr& {
+    TrackPtr& slot = child_cache[static_cast<std::size_t>(e) * m + j];
+    if (!slot) {
+      std::optional<Track> c = DetectionChild(*problem.entries[e], x, measurements[j], setup);
+      // A gated pair always has a gated component, so c exists.
+      c->id = next_id++;
+      slot = std::make_shared<const Track>(std::move(*c));
+    }
+    return slot;
+  };
+  std::vector<Child> children;
+  std::map<std::vector<std::uint64_t>, int> seen;
+  std::vector<double> all_log_w;
+  all_log_w.reserve(samples.size());
+  for (int s = 0; s < static_cast<int>(samples.size()); ++s) {
+    const SampledAssociation& sample = samples[s];
+    const JointProblem::Parent& parent = problem.parents[sample.parent];
+    all_log_w.push_back(sample.log_weight);
+    Child c;
+    c.sample = s;
+    c.log_weight = sample.log_weight;
+    c.tracks.reserve(parent.tracks->size() + parent.rows.size());
+    // The prior entries in id order (pass-through, or kept when missed), then the births kept
+    // (ids above every prior entry), then the new detection children (sorted: created here).
+    std::vector<TrackPtr> detected;
+    auto take = [&](std::size_t i) {
+      const int g = sample.gamma[i];
+      if (g == 0) c.tracks.push_back(problem.entries[parent.rows[i]]);
+      if (g > 0) {
+        detected.push_back(child_of(parent.rows[i], g - 1));
+        c.assigned.push_back(g - 1);
+      }
+    };
+    std::size_t r = 0;
+    for (const TrackPtr& t : *parent.tracks) {
+      if (r < static_cast<std::size_t>(parent.in_fov_rows) &&
+          problem.entries[parent.rows[r]] == t) {
+        take(r++);
+      } else {
+        c.tracks.push_back(t);
+      }
+    }
+    for (std::size_t i = parent.in_fov_rows; i < parent.rows.size(); ++i) take(i);
+    const auto by_id = [](const TrackPtr& a, const TrackPtr& b) { return a->id < b->id; };
+    std::sort(detected.begin(), detected.end(), by_id);
+    c.tracks.insert(c.tracks.end(), detected.begin(), detected.end());
+    if (!std::is_sorted(c.tracks.begin(), c.tracks.end(), by_id)) {
+      std::sort(c.tracks.begin(), c.tracks.end(), by_id);
+    }
+    std::vector<std::uint64_t> key(c.tracks.size());
+    for (std::size_t i = 0; i < key.size(); ++i) key[i] = c.tracks[i]->id;
+    const auto [it, inserted] = seen.emplace(std::move(key), static_cast<int>(children.size()));
+    if (inserted) {
+      children.push_back(std::move(c));
+    } else {
+      Child& d = children[it->second];
+      d.log_weight = LogAddExp(d.log_weight, sample.log_weight);
+    }
+  }
+  UpdateResult result;
+  result.log_normaliser = LogSumExp(all_log_w);
+  result.measurement_assigned.assign(m, 0.0);
+  result.measurement_gates_best_prior.assign(m, 0);
+  int best_parent = -1;
+  for (int h = 0; h < static_cast<int>(problem.parents.size()); ++h) {
+    if (best_parent < 0 ||
+        problem.parents[h].log_weight > problem.parents[best_parent].log_weight) {
+      best_parent = h;
+    }
+  }
+  if (best_parent >= 0) {
+    for (int e : problem.parents[best_parent].rows) {
+      if (e >= problem.prior_entries) continue;
+      for (const DetectionTerm& d : problem.terms[e].detections) {
+        result.measurement_gates_best_prior[d.measurement] = 1;
+      }
+    }
+  }
+  if (children.empty()) return result;
+  Truncate(children, settings);
+  result.hypotheses.reserve(children.size());
+  for (Child& c : children) {
+    const double w = std::exp(c.log_weight);
+    for (int j : c.assigned) result.measurement_assigned[j] += w;
+    result.hypotheses.push_back(
+        Hypothesis{std::make_shared<const TrackSet>(std::move(c.tracks)), c.log_weight});
+  }
+  const SampledAssociation& top = samples[children.front().sample];
+  const JointProblem::Parent& parent = problem.parents[top.parent];
+  for (std::size_t i = 0; i < parent.rows.size(); ++i) {
+    const int g = top.gamma[i];
+    if (g <= 0) continue;
+    for (const DetectionTerm& d : problem.terms[parent.rows[i]].detections) {
+      if (d.measurement == g - 1) result.best_innovations.emplace_back(d.nu, d.s);
+    }
+  }
+  return result;
+}
+
+UpdateResult JointUpdate(std::span<const Hypothesis> prior, std::span<const double> existence,
+                         std::span<const BirthTrack> births, const Pose& x,
+                         std::span<const Measurement> measurements, const MeasurementSetup& setup,
+                         const UpdateSettings& settings, RandomStream& rng,
+                         std::uint64_t& next_id) {
+  MeasurementSetup at_pose = setup;
+  at_pose.pose_cov.setZero();
+  const JointProblem problem =
+      BuildJointProblem(prior, existence, births, x, measurements, at_pose, settings);
+  const std::vector<SampledAssociation> samples = SampleAssociations(problem, settings, rng);
+  UpdateResult result =
+      BuildPosterior(problem, samples, x, measurements, at_pose, settings, next_id);
+  if (result.hypotheses.empty()) {
+    result.hypotheses.assign(prior.begin(), prior.end());
+    result.log_normaliser = kNegInf;
+  }
+  return result;
+}
+
+}  // namespace phdslam::glmb
