@@ -15,6 +15,7 @@
 #include <memory>
 #include <vector>
 
+#include "src/core/byte_tally.h"
 #include "src/filters/estimator.h"
 #include "src/filters/importance_density.h"
 #include "src/filters/particle_filter.h"
@@ -28,6 +29,12 @@ namespace phdslam::filters {
 struct PhdParticleMap {
   phd::GmPhdMap gm;
   std::vector<Measurement> births;
+
+  /// Adds the heap bytes of the map to `tally` (storage shared with other maps counted once).
+  void CountBytes(ByteTally& tally) const {
+    gm.CountBytes(tally);
+    tally.AddVector(births);
+  }
 };
 
 /// The GM-PHD map model of the skeleton:

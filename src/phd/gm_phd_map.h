@@ -9,6 +9,7 @@
 #include <span>
 #include <vector>
 
+#include "src/core/byte_tally.h"
 #include "src/core/types.h"
 #include "src/models/sensor_model.h"
 #include "src/phd/gaussian_component.h"
@@ -55,6 +56,12 @@ class GmPhdMap {
   /// Replaces the active list (tests and filters that manage components themselves).
   void SetActive(std::vector<GaussianComponent> components) { active_ = std::move(components); }
   void SetPassive(std::vector<GaussianComponent> components) { passive_ = std::move(components); }
+
+  /// Adds the heap bytes of the component storage to `tally` (shared storage counted once).
+  void CountBytes(ByteTally& tally) const {
+    tally.AddVector(active_);
+    tally.AddVector(passive_);
+  }
 
  private:
   std::vector<GaussianComponent> active_;
