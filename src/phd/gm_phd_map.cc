@@ -196,6 +196,60 @@ std::vector<GaussianComponent> PruneAndMerge(std::vector<GaussianComponent> comp
   return merged;
 }
 
+GmPhdMap::ChunkPtr GmPhdMap::MakeChunk(std::vector<GaussianComponent> components) {
+  auto chunk = std::make_shared<PassiveChunk>();
+  chunk->lo = components.front().mean;
+  chunk->hi = chunk->lo;
+  for (const GaussianComponent& c : components) {
+    chunk->lo = chunk->lo.cwiseMin(c.mean);
+    chunk->hi = chunk->hi.cwiseMax(c.mean);
+  }
+  chunk->components = std::move(components);
+  return chunk;
+}
+
+void GmPhdMap::AppendPassive(std::vector<GaussianComponent>& components) {
+  if (components.empty()) return;
+  passive_size_ += components.size();
+  std::size_t next = 0;
+  std::vector<GaussianComponent> run;
+  if (!passive_.empty() && passive_.back()->components.size() < kPassiveChunkSize) {
+    run = passive_.back()->components;
+    passive_.pop_back();
+  }
+  while (next < components.size()) {
+    while (next < components.size() && run.size() < kPassiveChunkSize) {
+      run.push_back(std::move(components[next++]));
+    }
+    passive_.push_back(MakeChunk(std::move(run)));
+    run = {};
+  }
+}
+
+void GmPhdMap::SetPassive(std::vector<GaussianComponent> components) {
+  passive_.clear();
+  passive_size_ = 0;
+  AppendPassive(components);
+}
+
+std::vector<GaussianComponent> GmPhdMap::passive() const {
+  std::vector<GaussianComponent> out;
+  out.reserve(passive_size_);
+  for (const ChunkPtr& chunk : passive_) {
+    out.insert(out.end(), chunk->components.begin(), chunk->components.end());
+  }
+  return out;
+}
+
+void GmPhdMap::CountBytes(ByteTally& tally) const {
+  tally.AddVector(active_);
+  tally.AddVector(passive_);
+  for (const ChunkPtr& chunk : passive_) {
+    tally.Add(chunk.get(), sizeof(PassiveChunk));
+    tally.AddVector(chunk->components);
+  }
+}
+
 void GmPhdMap::Reduce(const Pose& pose, const models::SensorModel& sensor,
                       const MapParams& params) {
   std::vector<GaussianComponent> merged = PruneAndMerge(std::move(active_), params);
@@ -212,25 +266,47 @@ void GmPhdMap::Reduce(const Pose& pose, const models::SensorModel& sensor,
     }
   }
   merged.resize(kept_active);
-  // Passive components re-entering the enlarged FOV move back; the rest keep their order.
-  std::size_t kept_passive = 0;
+  // Passive components re-entering the enlarged FOV move back; the rest keep their order. Chunks
+  // beyond the enlarged range, and chunks none of whose components re-enter, stay shared.
+  std::size_t kept_chunks = 0;
   for (std::size_t i = 0; i < passive_.size(); ++i) {
-    if (fov.InEnlargedFov(passive_[i].mean)) {
-      merged.push_back(std::move(passive_[i]));
-    } else {
-      if (kept_passive != i) passive_[kept_passive] = std::move(passive_[i]);
-      ++kept_passive;
+    ChunkPtr chunk = std::move(passive_[i]);
+    const auto& components = chunk->components;
+    std::size_t first_in = components.size();
+    if (!fov.BoxSurelyOutsideEnlargedFov(chunk->lo, chunk->hi)) {
+      for (std::size_t c = 0; c < components.size(); ++c) {
+        if (fov.InEnlargedFov(components[c].mean)) {
+          first_in = c;
+          break;
+        }
+      }
     }
+    if (first_in < components.size()) {
+      std::vector<GaussianComponent> rest(components.begin(), components.begin() + first_in);
+      for (std::size_t c = first_in; c < components.size(); ++c) {
+        if (fov.InEnlargedFov(components[c].mean)) {
+          merged.push_back(components[c]);
+          --passive_size_;
+        } else {
+          rest.push_back(components[c]);
+        }
+      }
+      chunk = rest.empty() ? nullptr : MakeChunk(std::move(rest));
+    }
+    if (chunk) passive_[kept_chunks++] = std::move(chunk);
   }
-  passive_.resize(kept_passive);
-  for (GaussianComponent& c : leaving) passive_.push_back(std::move(c));
+  passive_.resize(kept_chunks);
+  AppendPassive(leaving);
   active_ = std::move(merged);
 }
 
 std::vector<GaussianComponent> GmPhdMap::Estimate(double log_weight_threshold) const {
   std::vector<GaussianComponent> out;
-  for (const auto* list : {&active_, &passive_}) {
-    for (const GaussianComponent& c : *list) {
+  for (const GaussianComponent& c : active_) {
+    if (c.log_weight > log_weight_threshold) out.push_back(c);
+  }
+  for (const ChunkPtr& chunk : passive_) {
+    for (const GaussianComponent& c : chunk->components) {
       if (c.log_weight > log_weight_threshold) out.push_back(c);
     }
   }

@@ -4,8 +4,19 @@
 // Active components are those inside the FOV enlarged by the buffers at the particle's last
 // sampled pose; only they are predicted into the measurement space, updated, pruned and merged.
 // Passive components are kept unchanged until they re-enter the enlarged FOV.
+//
+// Storage: the active list is a plain vector (it is small and changes every step). The passive
+// list, which holds almost the whole map, is a sequence of immutable chunks of at most
+// kPassiveChunkSize components, held by std::shared_ptr<const PassiveChunk>; the passive order is
+// the chunks' order, then the order within each chunk. Copying a map (resampling) copies only
+// the chunk pointers, so copies share their passive storage; a map that changes a chunk (a
+// component re-entering the FOV, components leaving it) builds a new chunk and leaves the shared
+// one untouched (copy-on-write of map parts). Each chunk keeps the bounding box of its means, so
+// the active/passive split skips the chunks that lie beyond the enlarged FOV range without
+// reading their components.
 #pragma once
 
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -34,8 +45,10 @@ struct PhdUpdateResult {
 class GmPhdMap {
  public:
   [[nodiscard]] const std::vector<GaussianComponent>& active() const { return active_; }
-  [[nodiscard]] const std::vector<GaussianComponent>& passive() const { return passive_; }
-  [[nodiscard]] std::size_t size() const { return active_.size() + passive_.size(); }
+  /// The passive components, in order (a copy assembled from the chunks).
+  [[nodiscard]] std::vector<GaussianComponent> passive() const;
+  [[nodiscard]] std::size_t passive_size() const { return passive_size_; }
+  [[nodiscard]] std::size_t size() const { return active_.size() + passive_size_; }
 
   /// Appends one birth per measurement, by the inverse model at `pose` (the pose the measurements
   /// were taken from), with covariance G R G^T and log-weight params.birth_log_weight.
@@ -55,17 +68,31 @@ class GmPhdMap {
 
   /// Replaces the active list (tests and filters that manage components themselves).
   void SetActive(std::vector<GaussianComponent> components) { active_ = std::move(components); }
-  void SetPassive(std::vector<GaussianComponent> components) { passive_ = std::move(components); }
+  /// Replaces the passive list, cut into chunks in the given order (give spatially coherent
+  /// orders, e.g. the order in which a path passes them, for the chunk boxes to be tight).
+  void SetPassive(std::vector<GaussianComponent> components);
 
   /// Adds the heap bytes of the component storage to `tally` (shared storage counted once).
-  void CountBytes(ByteTally& tally) const {
-    tally.AddVector(active_);
-    tally.AddVector(passive_);
-  }
+  void CountBytes(ByteTally& tally) const;
+
+  static constexpr std::size_t kPassiveChunkSize = 64;
 
  private:
+  /// An immutable run of passive components with the bounding box of their means.
+  struct PassiveChunk {
+    std::vector<GaussianComponent> components;
+    Landmark lo;
+    Landmark hi;
+  };
+  using ChunkPtr = std::shared_ptr<const PassiveChunk>;
+
+  static ChunkPtr MakeChunk(std::vector<GaussianComponent> components);
+  /// Appends components after the last chunk (filling it up first, by a copy when not full).
+  void AppendPassive(std::vector<GaussianComponent>& components);
+
   std::vector<GaussianComponent> active_;
-  std::vector<GaussianComponent> passive_;
+  std::vector<ChunkPtr> passive_;
+  std::size_t passive_size_ = 0;
 };
 
 /// Sort, prune and greedily merge a component list as the reference code does (notes 12.1-12.4).
