@@ -6,14 +6,16 @@
 // Passive components are kept unchanged until they re-enter the enlarged FOV.
 //
 // Storage: the active list is a plain vector (it is small and changes every step). The passive
-// list, which holds almost the whole map, is a sequence of immutable chunks of at most
-// kPassiveChunkSize components, held by std::shared_ptr<const PassiveChunk>; the passive order is
-// the chunks' order, then the order within each chunk. Copying a map (resampling) copies only
-// the chunk pointers, so copies share their passive storage; a map that changes a chunk (a
-// component re-entering the FOV, components leaving it) builds a new chunk and leaves the shared
-// one untouched (copy-on-write of map parts). Each chunk keeps the bounding box of its means, so
-// the active/passive split skips the chunks that lie beyond the enlarged FOV range without
-// reading their components.
+// list, which holds almost the whole map, is a two-level tree of immutable parts: blocks of at
+// most kChunksPerBlock chunks, chunks of at most kPassiveChunkSize components, each held by
+// std::shared_ptr<const ...>. The passive order is the blocks' order, then the chunks', then the
+// order within each chunk. Copying a map (resampling) copies only the block pointers, so copies
+// share their passive storage; a map that changes a chunk (a component re-entering the FOV,
+// components leaving it) builds a new chunk and a new block holding it, and leaves the shared ones
+// untouched (copy-on-write of map parts). Blocks and chunks keep the bounding box of their
+// means, which is the spatial index: the active/passive split skips the blocks, and within a
+// block the chunks, that lie beyond the enlarged FOV range without reading their components, so
+// its cost depends on the components near the pose, not on the size of the map.
 #pragma once
 
 #include <memory>
@@ -76,6 +78,7 @@ class GmPhdMap {
   void CountBytes(ByteTally& tally) const;
 
   static constexpr std::size_t kPassiveChunkSize = 64;
+  static constexpr std::size_t kChunksPerBlock = 64;
 
  private:
   /// An immutable run of passive components with the bounding box of their means.
@@ -85,13 +88,25 @@ class GmPhdMap {
     Landmark hi;
   };
   using ChunkPtr = std::shared_ptr<const PassiveChunk>;
+  /// An immutable run of chunks with the bounding box of all their means.
+  struct PassiveBlock {
+    std::vector<ChunkPtr> chunks;
+    Landmark lo;
+    Landmark hi;
+  };
+  using BlockPtr = std::shared_ptr<const PassiveBlock>;
 
   static ChunkPtr MakeChunk(std::vector<GaussianComponent> components);
-  /// Appends components after the last chunk (filling it up first, by a copy when not full).
+  static BlockPtr MakeBlock(std::vector<ChunkPtr> chunks);
+  /// Appends components after the last chunk (filling it and its block up first, by copies).
   void AppendPassive(std::vector<GaussianComponent>& components);
+  /// Moves the components of `chunk` inside the enlarged FOV to `entering` (in order); returns
+  /// the chunk itself when none is, else a new chunk of the rest (null when empty).
+  ChunkPtr SplitChunk(const ChunkPtr& chunk, const models::FovView& fov,
+                      std::vector<GaussianComponent>& entering);
 
   std::vector<GaussianComponent> active_;
-  std::vector<ChunkPtr> passive_;
+  std::vector<BlockPtr> passive_;
   std::size_t passive_size_ = 0;
 };
 
