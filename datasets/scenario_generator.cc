@@ -150,7 +150,17 @@ void GeneratorOptions::Validate() const {
 }
 
 Scenario GenerateScenario(const GeneratorOptions& options, std::uint64_t seed) {
+  return GenerateScenarioPrefix(options, seed, options.steps);
+}
+
+Scenario GenerateScenarioPrefix(const GeneratorOptions& options, std::uint64_t seed,
+                                int simulated_steps) {
   options.Validate();
+  if (simulated_steps < 1 || simulated_steps > options.steps) {
+    throw std::invalid_argument("GenerateScenarioPrefix: simulated_steps must be in [1, " +
+                                std::to_string(options.steps) + "], got " +
+                                std::to_string(simulated_steps));
+  }
   TruePath path = MakeTruePath(options);
 
   Scenario s;
@@ -177,6 +187,10 @@ Scenario GenerateScenario(const GeneratorOptions& options, std::uint64_t seed) {
                                    corridor.y0 + iy * corridor.cell);
   }
 
+  // The scans depend only on the steps before them, so simulating a prefix gives the same ones.
+  const auto prefix = static_cast<std::size_t>(simulated_steps);
+  path.poses.resize(prefix);
+  path.controls.resize(prefix);
   RandomStream rng(DeriveSeed(HashName(kScenarioName), seed));
   s.steps = SimulateRangeBearingSteps(path.poses, path.controls, s.truth.landmarks, settings,
                                       options.dt, rng);

@@ -57,6 +57,14 @@ struct GeneratorOptions {
 /// Throws std::invalid_argument when the options are invalid.
 Scenario GenerateScenario(const GeneratorOptions& options, std::uint64_t seed);
 
+/// The first `simulated_steps` steps of GenerateScenario(options, seed): the same landmarks
+/// (over the corridor of the whole options.steps path) and the same first scans, odometry and
+/// true poses, without simulating the rest (for very long paths, e.g. the map scaling
+/// benchmark). Throws std::invalid_argument when the options are invalid or simulated_steps is
+/// not in [1, options.steps].
+Scenario GenerateScenarioPrefix(const GeneratorOptions& options, std::uint64_t seed,
+                                int simulated_steps);
+
 /// Options (paper sensor, default speed and turn profile, `steps` steps) whose landmarks are
 /// spread with a uniform density chosen so that on average about `landmarks_in_fov` of them lie
 /// inside the field of view at every step. The corridor half-width is set to the FOV range, so

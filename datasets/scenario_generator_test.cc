@@ -171,5 +171,23 @@ TEST(OptionsForLandmarksInView, MeanCountInFovIsCloseToTheTarget) {
   }
 }
 
+TEST(GenerateScenarioPrefix, SameLandmarksAndFirstStepsAsTheWholeScenario) {
+  GeneratorOptions o;
+  o.steps = 300;
+  const Scenario whole = GenerateScenario(o, 7);
+  const Scenario prefix = GenerateScenarioPrefix(o, 7, 40);
+  EXPECT_EQ(prefix.truth.landmarks, whole.truth.landmarks);
+  ASSERT_EQ(prefix.steps.size(), 40u);
+  ASSERT_EQ(prefix.truth.poses.size(), 40u);
+  for (std::size_t k = 0; k < prefix.steps.size(); ++k) {
+    EXPECT_EQ(prefix.truth.poses[k], whole.truth.poses[k]);
+    ASSERT_EQ(prefix.steps[k].data.measurements, whole.steps[k].data.measurements);
+    ASSERT_EQ(prefix.steps[k].data.controls, whole.steps[k].data.controls);
+    ASSERT_EQ(prefix.steps[k].origin, whole.steps[k].origin);
+  }
+  EXPECT_THROW(GenerateScenarioPrefix(o, 7, 0), std::invalid_argument);
+  EXPECT_THROW(GenerateScenarioPrefix(o, 7, 301), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace phdslam::datasets

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "src/core/angles.h"
+#include "src/core/byte_tally.h"
 #include "src/core/gaussian.h"
 #include "src/core/log_sum_exp.h"
 #include "src/core/random.h"
@@ -77,6 +78,19 @@ TEST(RandomStream, MomentsAreRight) {
   EXPECT_NEAR(s2 / n, 1.0, 0.01);
   EXPECT_NEAR(u / n, 0.5, 0.005);
   EXPECT_NEAR(p / n, 4.75, 0.02);
+}
+
+TEST(ByteTally, CountsEachBlockOnce) {
+  const std::vector<double> a(10);
+  const std::vector<double> b(4);
+  ByteTally tally;
+  tally.AddVector(a);
+  tally.AddVector(b);
+  tally.AddVector(a);  // shared: not counted again
+  tally.Add(nullptr, 100);
+  EXPECT_EQ(tally.bytes(), a.capacity() * sizeof(double) + b.capacity() * sizeof(double));
+  tally.AddVector(std::vector<int>{});  // no buffer
+  EXPECT_EQ(tally.bytes(), (a.capacity() + b.capacity()) * sizeof(double));
 }
 
 }  // namespace

@@ -134,6 +134,10 @@ class ParticleFilter final : public OnlineEstimator {
   }
 
   [[nodiscard]] const std::vector<ParticleType>& particles() const { return particles_; }
+  /// Gives every particle a copy of `map` (benchmarks and tests that start from a known map).
+  void ResetMaps(const MapType& map) {
+    for (ParticleType& p : particles_) p.map = map;
+  }
   /// Index (before resampling) of the particle the last estimate came from.
   [[nodiscard]] int best_particle() const { return best_; }
   /// The top-ranked association of the last step's best particle (measurement -> landmark-view

@@ -37,7 +37,8 @@ void PhdMapModel::Update(Map& map, const Pose& pose, const StepData& step, doubl
   const phd::PhdUpdateResult update = map.gm.Update(pose, step.measurements, sensor_, map_params_);
   nis.nis_sum += update.nis_sum;
   nis.count += update.nis_count;
-  const PhdIntensityPair v{predicted, map.gm.active(), map.gm.passive()};
+  const std::vector<phd::GaussianComponent> passive = map.gm.passive();
+  const PhdIntensityPair v{predicted, map.gm.active(), passive};
   log_weight +=
       RbPhdLogWeight(weighting_, update.log_likelihood, v, pose, step.measurements, sensor_);
   KeepBirthsAndReduce(map, pose, step, update.ungated);
@@ -53,7 +54,7 @@ void PhdMapModel::KeepBirthsAndReduce(Map& map, const Pose& pose, const StepData
 
 MapEstimate PhdMapModel::ToMapEstimate(const Snapshot& snapshot) const {
   MapEstimate m;
-  for (const auto& c : snapshot) {
+  for (const auto& c : snapshot.Estimate(estimate_threshold_)) {
     m.means.push_back(c.mean);
     m.covs.push_back(c.cov);
     m.log_weights.push_back(c.log_weight);

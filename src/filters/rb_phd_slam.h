@@ -15,6 +15,7 @@
 #include <memory>
 #include <vector>
 
+#include "src/core/byte_tally.h"
 #include "src/filters/estimator.h"
 #include "src/filters/importance_density.h"
 #include "src/filters/particle_filter.h"
@@ -28,6 +29,12 @@ namespace phdslam::filters {
 struct PhdParticleMap {
   phd::GmPhdMap gm;
   std::vector<Measurement> births;
+
+  /// Adds the heap bytes of the map to `tally` (storage shared with other maps counted once).
+  void CountBytes(ByteTally& tally) const {
+    gm.CountBytes(tally);
+    tally.AddVector(births);
+  }
 };
 
 /// The GM-PHD map model of the skeleton:
@@ -40,7 +47,9 @@ struct PhdParticleMap {
 class PhdMapModel {
  public:
   using Map = PhdParticleMap;
-  using Snapshot = std::vector<phd::GaussianComponent>;
+  /// A copy of the best particle's mixture (cheap: it shares the passive chunks); the
+  /// thresholded estimate is extracted only when the map is asked for (ToMapEstimate).
+  using Snapshot = phd::GmPhdMap;
 
   PhdMapModel(const EstimatorContext& context, const PhdSlamParams& params);
 
@@ -56,9 +65,7 @@ class PhdMapModel {
     InnovationStats unused;
     Update(map, pose, step, log_weight, unused);
   }
-  [[nodiscard]] Snapshot Estimate(const Map& map) const {
-    return map.gm.Estimate(estimate_threshold_);
-  }
+  [[nodiscard]] Snapshot Estimate(const Map& map) const { return map.gm; }
   [[nodiscard]] MapEstimate ToMapEstimate(const Snapshot& snapshot) const;
   [[nodiscard]] int ComponentCount(const Map& map) const { return static_cast<int>(map.gm.size()); }
 

@@ -63,7 +63,8 @@ double UpdateDaughterMap(phd::GmPhdMap& map, const Pose& pose,
 
 std::vector<phd::GaussianComponent> CardinalityMapEstimate(const phd::GmPhdMap& map) {
   std::vector<phd::GaussianComponent> all = map.active();
-  all.insert(all.end(), map.passive().begin(), map.passive().end());
+  const std::vector<phd::GaussianComponent> passive = map.passive();
+  all.insert(all.end(), passive.begin(), passive.end());
   double cardinality = 0.0;
   for (const phd::GaussianComponent& c : all) cardinality += std::exp(c.log_weight);
   const auto count = std::min<std::size_t>(

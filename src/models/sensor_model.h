@@ -103,6 +103,15 @@ class FovView {
     return dx * cos_ + dy * sin_ >= std::sqrt(r2) * cos_enlarged_half_;
   }
 
+  /// True only when every point of the axis-aligned box [lo, hi] is surely outside the enlarged
+  /// FOV (beyond its range, with a relative margin far above rounding), so InEnlargedFov is false
+  /// for all of them; false when unsure.
+  [[nodiscard]] bool BoxSurelyOutsideEnlargedFov(const Landmark& lo, const Landmark& hi) const {
+    const double dx = std::max({lo(0) - x_, 0.0, x_ - hi(0)});
+    const double dy = std::max({lo(1) - y_, 0.0, y_ - hi(1)});
+    return dx * dx + dy * dy > enlarged_range2_ * (1.0 + 1e-6) + 1e-6;
+  }
+
  private:
   const SensorModel* sensor_;
   double x_;

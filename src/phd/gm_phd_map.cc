@@ -196,6 +196,112 @@ std::vector<GaussianComponent> PruneAndMerge(std::vector<GaussianComponent> comp
   return merged;
 }
 
+GmPhdMap::ChunkPtr GmPhdMap::MakeChunk(std::vector<GaussianComponent> components) {
+  auto chunk = std::make_shared<PassiveChunk>();
+  chunk->lo = components.front().mean;
+  chunk->hi = chunk->lo;
+  for (const GaussianComponent& c : components) {
+    chunk->lo = chunk->lo.cwiseMin(c.mean);
+    chunk->hi = chunk->hi.cwiseMax(c.mean);
+  }
+  chunk->components = std::move(components);
+  return chunk;
+}
+
+GmPhdMap::BlockPtr GmPhdMap::MakeBlock(std::vector<ChunkPtr> chunks) {
+  auto block = std::make_shared<PassiveBlock>();
+  block->lo = chunks.front()->lo;
+  block->hi = chunks.front()->hi;
+  for (const ChunkPtr& chunk : chunks) {
+    block->lo = block->lo.cwiseMin(chunk->lo);
+    block->hi = block->hi.cwiseMax(chunk->hi);
+  }
+  block->chunks = std::move(chunks);
+  return block;
+}
+
+void GmPhdMap::AppendPassive(std::vector<GaussianComponent>& components) {
+  if (components.empty()) return;
+  passive_size_ += components.size();
+  std::vector<ChunkPtr> chunks;
+  if (!passive_.empty() &&
+      (passive_.back()->chunks.size() < kChunksPerBlock ||
+       passive_.back()->chunks.back()->components.size() < kPassiveChunkSize)) {
+    chunks = passive_.back()->chunks;
+    passive_.pop_back();
+  }
+  std::vector<GaussianComponent> run;
+  if (!chunks.empty() && chunks.back()->components.size() < kPassiveChunkSize) {
+    run = chunks.back()->components;
+    chunks.pop_back();
+  }
+  std::size_t next = 0;
+  while (next < components.size()) {
+    while (next < components.size() && run.size() < kPassiveChunkSize) {
+      run.push_back(std::move(components[next++]));
+    }
+    chunks.push_back(MakeChunk(std::move(run)));
+    run = {};
+  }
+  for (std::size_t first = 0; first < chunks.size(); first += kChunksPerBlock) {
+    const std::size_t last = std::min(first + kChunksPerBlock, chunks.size());
+    passive_.push_back(MakeBlock(std::vector<ChunkPtr>(chunks.begin() + static_cast<long>(first),
+                                                       chunks.begin() + static_cast<long>(last))));
+  }
+}
+
+void GmPhdMap::SetPassive(std::vector<GaussianComponent> components) {
+  passive_.clear();
+  passive_size_ = 0;
+  AppendPassive(components);
+}
+
+std::vector<GaussianComponent> GmPhdMap::passive() const {
+  std::vector<GaussianComponent> out;
+  out.reserve(passive_size_);
+  for (const BlockPtr& block : passive_) {
+    for (const ChunkPtr& chunk : block->chunks) {
+      out.insert(out.end(), chunk->components.begin(), chunk->components.end());
+    }
+  }
+  return out;
+}
+
+void GmPhdMap::CountBytes(ByteTally& tally) const {
+  tally.AddVector(active_);
+  tally.AddVector(passive_);
+  for (const BlockPtr& block : passive_) {
+    tally.Add(block.get(), sizeof(PassiveBlock));
+    tally.AddVector(block->chunks);
+    for (const ChunkPtr& chunk : block->chunks) {
+      tally.Add(chunk.get(), sizeof(PassiveChunk));
+      tally.AddVector(chunk->components);
+    }
+  }
+}
+
+GmPhdMap::ChunkPtr GmPhdMap::SplitChunk(const ChunkPtr& chunk, const models::FovView& fov,
+                                        std::vector<GaussianComponent>& entering) {
+  if (fov.BoxSurelyOutsideEnlargedFov(chunk->lo, chunk->hi)) return chunk;
+  const auto& components = chunk->components;
+  std::size_t first_in = 0;
+  while (first_in < components.size() && !fov.InEnlargedFov(components[first_in].mean)) {
+    ++first_in;
+  }
+  if (first_in == components.size()) return chunk;
+  std::vector<GaussianComponent> rest(components.begin(),
+                                      components.begin() + static_cast<long>(first_in));
+  for (std::size_t c = first_in; c < components.size(); ++c) {
+    if (fov.InEnlargedFov(components[c].mean)) {
+      entering.push_back(components[c]);
+      --passive_size_;
+    } else {
+      rest.push_back(components[c]);
+    }
+  }
+  return rest.empty() ? nullptr : MakeChunk(std::move(rest));
+}
+
 void GmPhdMap::Reduce(const Pose& pose, const models::SensorModel& sensor,
                       const MapParams& params) {
   std::vector<GaussianComponent> merged = PruneAndMerge(std::move(active_), params);
@@ -212,26 +318,40 @@ void GmPhdMap::Reduce(const Pose& pose, const models::SensorModel& sensor,
     }
   }
   merged.resize(kept_active);
-  // Passive components re-entering the enlarged FOV move back; the rest keep their order.
-  std::size_t kept_passive = 0;
+  // Passive components re-entering the enlarged FOV move back; the rest keep their order. Blocks
+  // and chunks beyond the enlarged range, and those none of whose components re-enter, stay
+  // shared.
+  std::size_t kept_blocks = 0;
+  std::vector<ChunkPtr> chunks;
   for (std::size_t i = 0; i < passive_.size(); ++i) {
-    if (fov.InEnlargedFov(passive_[i].mean)) {
-      merged.push_back(std::move(passive_[i]));
-    } else {
-      if (kept_passive != i) passive_[kept_passive] = std::move(passive_[i]);
-      ++kept_passive;
+    BlockPtr block = std::move(passive_[i]);
+    if (!fov.BoxSurelyOutsideEnlargedFov(block->lo, block->hi)) {
+      chunks.clear();
+      bool changed = false;
+      for (const ChunkPtr& chunk : block->chunks) {
+        ChunkPtr next = SplitChunk(chunk, fov, merged);
+        changed = changed || next != chunk;
+        if (next) chunks.push_back(std::move(next));
+      }
+      if (changed) block = chunks.empty() ? nullptr : MakeBlock(chunks);
     }
+    if (block) passive_[kept_blocks++] = std::move(block);
   }
-  passive_.resize(kept_passive);
-  for (GaussianComponent& c : leaving) passive_.push_back(std::move(c));
+  passive_.resize(kept_blocks);
+  AppendPassive(leaving);
   active_ = std::move(merged);
 }
 
 std::vector<GaussianComponent> GmPhdMap::Estimate(double log_weight_threshold) const {
   std::vector<GaussianComponent> out;
-  for (const auto* list : {&active_, &passive_}) {
-    for (const GaussianComponent& c : *list) {
-      if (c.log_weight > log_weight_threshold) out.push_back(c);
+  for (const GaussianComponent& c : active_) {
+    if (c.log_weight > log_weight_threshold) out.push_back(c);
+  }
+  for (const BlockPtr& block : passive_) {
+    for (const ChunkPtr& chunk : block->chunks) {
+      for (const GaussianComponent& c : chunk->components) {
+        if (c.log_weight > log_weight_threshold) out.push_back(c);
+      }
     }
   }
   return out;

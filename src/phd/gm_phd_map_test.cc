@@ -200,5 +200,56 @@ TEST(GmPhdMapBirths, UseTheInverseModelAtTheGivenPose) {
   EXPECT_NEAR(map.active()[0].log_weight, std::log(1e-6), 1e-12);
 }
 
+// Passive storage is shared between copies and copied only where a copy changes it; the passive
+// order and the re-entering order are those of one flat list.
+TEST(GmPhdMapReduce, PassiveChunksAreSharedAndCopiedOnWrite) {
+  const models::SensorModel sensor = TestSensor();
+  const MapParams params;
+  std::vector<GaussianComponent> passive;
+  // 300 far components (5 chunks, all beyond the enlarged range), then 100 near the pose.
+  for (int i = 0; i < 300; ++i) {
+    passive.push_back({Landmark(1000.0 + i, 500.0), Mat2::Identity(), -0.01 * i});
+  }
+  for (int i = 0; i < 100; ++i) {
+    passive.push_back({Landmark(-150.0 + 3.0 * i, 20.0), Mat2::Identity(), -0.02 * i});
+  }
+  GmPhdMap original;
+  original.SetPassive(passive);
+  GmPhdMap copy = original;
+  ByteTally shared;
+  original.CountBytes(shared);
+  const std::size_t one = shared.bytes();
+  copy.CountBytes(shared);
+  EXPECT_LT(shared.bytes(), one + one / 10);  // a copy adds only its chunk pointers
+
+  copy.Reduce(Pose::Zero(), sensor, params);
+  // The original is untouched.
+  const std::vector<GaussianComponent> before = original.passive();
+  ASSERT_EQ(before.size(), passive.size());
+  for (std::size_t i = 0; i < before.size(); ++i) EXPECT_EQ(before[i].mean, passive[i].mean);
+  // The copy: re-entering components moved to the active list in passive order, the rest kept
+  // in order, as the flat-list split gives.
+  const models::FovView fov(sensor, Pose::Zero());
+  std::vector<GaussianComponent> expect_active;
+  std::vector<GaussianComponent> expect_passive;
+  for (const GaussianComponent& c : passive) {
+    (fov.InEnlargedFov(c.mean) ? expect_active : expect_passive).push_back(c);
+  }
+  ASSERT_GT(expect_active.size(), 10u);
+  ASSERT_EQ(copy.active().size(), expect_active.size());
+  for (std::size_t i = 0; i < expect_active.size(); ++i) {
+    EXPECT_EQ(copy.active()[i].mean, expect_active[i].mean);
+  }
+  const std::vector<GaussianComponent> after = copy.passive();
+  ASSERT_EQ(after.size(), expect_passive.size());
+  EXPECT_EQ(copy.passive_size(), expect_passive.size());
+  for (std::size_t i = 0; i < after.size(); ++i) EXPECT_EQ(after[i].mean, expect_passive[i].mean);
+  // The far chunks are still shared: both maps together hold far less than two maps.
+  ByteTally both;
+  original.CountBytes(both);
+  copy.CountBytes(both);
+  EXPECT_LT(both.bytes(), one + one / 2);
+}
+
 }  // namespace
 }  // namespace phdslam::phd

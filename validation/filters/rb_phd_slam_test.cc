@@ -149,7 +149,8 @@ TEST(PhdMapModel, TheWeightingSelectsTheLikelihoodIncrementAndLeavesTheMapAlone)
   phd::GmPhdMap updated = predicted.gm;
   const double paper46 =
       updated.Update(x, step.measurements, context.sensor, PhdSlamParams{}.map).log_likelihood;
-  const PhdIntensityPair v{predicted.gm.active(), updated.active(), updated.passive()};
+  const std::vector<phd::GaussianComponent> passive = updated.passive();
+  const PhdIntensityPair v{predicted.gm.active(), updated.active(), passive};
   const std::vector<std::pair<RbPhdWeighting, double>> expected = {
       {RbPhdWeighting::kPaper46, paper46},
       {RbPhdWeighting::kEmptyMap, EmptyMapLogWeight(v, step.measurements, context.sensor)},

@@ -46,7 +46,8 @@ std::vector<ParentWeighting> CompareParentWeights(std::span<const Pose> parent_p
         filters::UpdateDaughterMap(a, x, measurements, sensor, single_cluster, true, nullptr));
     phd::GmPhdMap b = predicted_map;
     log_rb.push_back(filters::UpdateDaughterMap(b, x, measurements, sensor, rb_phd, true, nullptr));
-    const filters::PhdIntensityPair v{predicted_map.active(), b.active(), b.passive()};
+    const std::vector<phd::GaussianComponent> passive = b.passive();
+    const filters::PhdIntensityPair v{predicted_map.active(), b.active(), passive};
     log_sf.push_back(filters::SingleFeatureLogWeight(v, x, measurements, sensor));
   }
   const std::vector<double> w_sc = filters::NormalisedWeights(log_sc);
