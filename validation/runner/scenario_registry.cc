@@ -314,8 +314,8 @@ const datasets::MrclamRobotData& ScenarioCache::Mrclam(const std::filesystem::pa
 
 const std::vector<ScenarioEntry>& ScenarioTable() {
   static const std::vector<ScenarioEntry> table = {
-      PaperSyntheticEntry(), VictoriaParkEntry(), GeneratedEntry(), ScPhdSimEntry(), MrclamEntry(),
-      GlmbSimEntry(),
+      PaperSyntheticEntry(), VictoriaParkEntry(), GeneratedEntry(),
+      ScPhdSimEntry(),       MrclamEntry(),       GlmbSimEntry(),
   };
   return table;
 }
