@@ -2,7 +2,8 @@
 # The test command: installs what is missing (Chromium included, for the report-rendering test),
 # builds the release preset (warnings are errors), checks formatting and runs clang-tidy on the
 # project's sources (ci/run-lint.sh), runs every unit test with CTest, the Slurm test, the
-# accuracy regression gates (the regression run and bands of ci/thresholds.yaml), then the
+# accuracy regression gates (the regression runs and bands of ci/thresholds.yaml and
+# ci/thresholds_glmb.yaml), then the
 # libFuzzer targets for 20 s each (ci/run-fuzz.sh, under ASan + UBSan). Exits non-zero on any
 # failure.
 #
@@ -35,4 +36,5 @@ if [[ "${1:-}" == "--sanitize" ]]; then
 fi
 
 ci/check-gates.sh build/release
+PHDSLAM_GATES_THRESHOLDS=ci/thresholds_glmb.yaml ci/check-gates.sh build/release
 ci/run-fuzz.sh 20
