@@ -33,15 +33,6 @@ void RequirePositive(const std::string& field, double v) {
     Fail(field, "must be finite and > 0, got " + std::to_string(v));
 }
 
-models::CarGeometry Bicycle(const GlmbSimOptions& o) {
-  models::CarGeometry g;
-  g.wheelbase_l = o.wheelbase;
-  g.encoder_offset_h = 0.0;
-  g.laser_a = 0.0;
-  g.laser_b = 0.0;
-  return g;
-}
-
 // The steering angle whose kCornerSteps Euler steps turn the heading by exactly 90 deg.
 double CornerSteering(const GlmbSimOptions& o) {
   const double turn_per_step = (std::numbers::pi / 2.0) / kCornerSteps;
@@ -116,7 +107,7 @@ void GlmbSimOptions::Validate() const {
 }
 
 GlmbSimPath GlmbSimTruePath(const GlmbSimOptions& o, int steps) {
-  const models::CarMotionModel motion(Bicycle(o));
+  const models::CarMotionModel motion(models::CarGeometry::Bicycle(o.wheelbase));
   const Control straight(o.speed, 0.0);
   const Control corner(o.speed, CornerSteering(o));
   GlmbSimPath path;
@@ -155,7 +146,7 @@ Scenario MakeGlmbSimScenario(const GlmbSimOptions& options, std::uint64_t seed) 
   s.seed = seed;
   s.initial_pose = Pose::Zero();
   s.motion = MotionKind::kCar;
-  s.car = Bicycle(options);
+  s.car = models::CarGeometry::Bicycle(options.wheelbase);
   s.control_noise_cov = options.control_noise_cov;
   s.sensor = SimulationSettings::Of(options).Sensor();
   s.sensor.clutter_space = models::ClutterSpace::kRangeBearingBox;

@@ -25,15 +25,6 @@ void RequirePositive(const std::string& field, double v) {
     Fail(field, "must be finite and > 0, got " + std::to_string(v));
 }
 
-models::CarGeometry Bicycle(const ScPhdSimOptions& o) {
-  models::CarGeometry g;
-  g.wheelbase_l = o.wheelbase;
-  g.encoder_offset_h = 0.0;
-  g.laser_a = 0.0;
-  g.laser_b = 0.0;
-  return g;
-}
-
 // The heading change per step that makes each Euler step of length v dt a chord of the circle.
 double TurnPerStep(const ScPhdSimOptions& o) {
   return 2.0 * std::asin(o.speed * o.dt / (2.0 * o.circle_radius));
@@ -85,7 +76,7 @@ Scenario MakeScPhdSimScenario(const ScPhdSimOptions& options, std::uint64_t seed
   // Heading the first chord: the poses are the vertices of a regular polygon on the circle.
   s.initial_pose = Pose(options.circle_radius, 0.0, std::numbers::pi / 2.0 + turn / 2.0);
   s.motion = MotionKind::kCar;
-  s.car = Bicycle(options);
+  s.car = models::CarGeometry::Bicycle(options.wheelbase);
   s.control_noise_cov = options.control_noise_cov;
   const SimulationSettings settings = SimulationSettings::Of(options);
   s.sensor = settings.Sensor();

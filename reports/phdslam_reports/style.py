@@ -66,6 +66,18 @@ def new_figure(width: float, height: float, rows: int = 1, cols: int = 1, **kwar
     return fig, axes
 
 
+def panel_grid(count: int, width: float = 6.5, height: float = 3.8, max_cols: int = 2):
+    """A figure with one panel per item, ``max_cols`` per row, and the panels in reading order;
+    the grid's unused panels are hidden. Returns (figure, list of ``count`` axes)."""
+    cols = min(max_cols, count)
+    rows = (count + cols - 1) // cols
+    fig, axes = new_figure(width * cols, height * rows, rows, cols)
+    flat = [axes[i // cols][i % cols] for i in range(rows * cols)]
+    for ax in flat[count:]:
+        ax.set_visible(False)
+    return fig, flat[:count]
+
+
 def save_figure(fig: Figure, path: Path) -> bytes:
     """Writes ``fig`` as PNG to ``path``, closes it and returns the PNG bytes."""
     buffer = io.BytesIO()

@@ -14,6 +14,17 @@ struct CarGeometry {
   double encoder_offset_h = 0.75;
   double laser_a = 3.78;
   double laser_b = 0.50;
+
+  /// A kinematic bicycle: the given wheelbase, the encoder on the rear axle and the sensor at it
+  /// (h = a = b = 0).
+  static CarGeometry Bicycle(double wheelbase) {
+    CarGeometry g;
+    g.wheelbase_l = wheelbase;
+    g.encoder_offset_h = 0.0;
+    g.laser_a = 0.0;
+    g.laser_b = 0.0;
+    return g;
+  }
 };
 
 class CarMotionModel final : public MotionModel {

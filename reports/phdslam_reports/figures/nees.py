@@ -9,7 +9,7 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from ..stats import fraction_inside, nees_bounds
-from ..style import estimator_colour, new_figure
+from ..style import estimator_colour, panel_grid
 
 POSE_DOF = 3
 #: chi2.ppf(0.95, 3): a pose NEES at or below it puts the truth inside the 95 % ellipsoid.
@@ -59,12 +59,9 @@ def plot_nees(series: list[NeesSeries], display_name: Callable[[str], str] = str
     """One panel per group: averaged NEES over steps on a log axis, bounds as dashed lines."""
     if not series:
         return None
-    cols = min(2, len(series))
-    rows = (len(series) + cols - 1) // cols
-    fig, axes = new_figure(6.5 * cols, 3.8 * rows, rows, cols)
+    fig, axes = panel_grid(len(series))
     estimators = [s.estimator for s in series]
-    for index, s in enumerate(series):
-        ax = axes[index // cols][index % cols]
+    for ax, s in zip(axes, series):
         k = np.arange(s.mean.size)
         ax.plot(k, s.mean, color=estimator_colour(s.estimator, estimators), lw=1.0,
                 label=f"mean NEES over {s.runs} runs")
@@ -79,7 +76,5 @@ def plot_nees(series: list[NeesSeries], display_name: Callable[[str], str] = str
         ax.set_xlabel("step k")
         ax.set_ylabel("pose NEES (3 dof)")
         ax.legend(loc="best", framealpha=0.85)
-    for index in range(len(series), rows * cols):
-        axes[index // cols][index % cols].set_visible(False)
     fig.tight_layout()
     return fig

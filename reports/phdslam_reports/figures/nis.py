@@ -17,7 +17,7 @@ import numpy as np
 from matplotlib.figure import Figure
 from scipy import stats as scipy_stats
 
-from ..style import estimator_colour, new_figure
+from ..style import estimator_colour, panel_grid
 
 MEASUREMENT_DOF = 2
 
@@ -79,12 +79,9 @@ def plot_nis(series: list[NisSeries], display_name: Callable[[str], str] = str) 
     """One panel per group: pooled NIS over steps on a log axis, its bounds as a band."""
     if not series:
         return None
-    cols = min(2, len(series))
-    rows = (len(series) + cols - 1) // cols
-    fig, axes = new_figure(6.5 * cols, 3.8 * rows, rows, cols)
+    fig, axes = panel_grid(len(series))
     estimators = [s.estimator for s in series]
-    for index, s in enumerate(series):
-        ax = axes[index // cols][index % cols]
+    for ax, s in zip(axes, series):
         k = np.arange(s.nis.size)
         ax.fill_between(k, s.low, s.high, color="#bbb", alpha=0.6, lw=0,
                         label="95 % chi-square bounds")
@@ -98,7 +95,5 @@ def plot_nis(series: list[NisSeries], display_name: Callable[[str], str] = str) 
         ax.set_xlabel("step k")
         ax.set_ylabel("NIS per measurement (2 dof)")
         ax.legend(loc="best", framealpha=0.85)
-    for index in range(len(series), rows * cols):
-        axes[index // cols][index % cols].set_visible(False)
     fig.tight_layout()
     return fig
