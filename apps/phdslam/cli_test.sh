@@ -217,7 +217,17 @@ printf 'scenario: paper-synthetic\nestimators: [phd3, nosuch]\nseeds: 1\n' >"$sc
 expect_exit 2 "$phdslam" run --experiment "$scratch/bad.yaml" --out "$scratch/bad" --quiet
 expect_in "$scratch/err" "bad.yaml: unknown estimator 'nosuch'"
 expect_exit 2 "$phdslam" run --experiment "$scratch/missing.yaml" --out "$scratch/bad" --quiet
+printf 'scenario: paper-synthetic\nestimators: [odometry]\nseeds: 1\nname: caf\xe9\n' \
+  >"$scratch/latin1.yaml"
+expect_exit 2 "$phdslam" run --experiment "$scratch/latin1.yaml" --out "$scratch/bad" --quiet
+expect_in "$scratch/err" "latin1.yaml: line 4, column 10: not valid UTF-8 (byte 0xE9)"
 [ -e "$scratch/typo" ] || [ -e "$scratch/bad" ] && fail "a bad experiment file left results"
+# A folder name that is not UTF-8 is a legal Linux path: config.json records it with U+FFFD.
+odd_dir="$scratch/dir$(printf '\xff')"
+mkdir -p "$odd_dir"
+printf 'scenario: paper-synthetic\nestimators: [odometry]\nseeds: 1\nsteps: 5\n' >"$odd_dir/e.yaml"
+expect_exit 0 "$phdslam" run --experiment "$odd_dir/e.yaml" --out "$odd_dir/results" --quiet
+expect_in "$odd_dir/results/config.json" "dir$(printf '\xef\xbf\xbd')/e.yaml"
 
 # The whole experiment, then two shards merged: the same results.
 whole="$scratch/whole"

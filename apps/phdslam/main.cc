@@ -701,7 +701,7 @@ int Evaluate(const EvaluateArguments& a) {
                                          datasets::ReadTumTrajectory(a.trajectory),
                                          a.time_tolerance));
   }
-  std::cout << result.dump(2) << "\n";
+  std::cout << v::JsonFileText(result);
   return 0;
 }
 
@@ -721,7 +721,7 @@ int ParentWeights(const ParentWeightsArguments& a) {
   meta["scenario"] = a.scenario;
   meta["seed"] = a.seed;
   v::WriteFileAtomically(out / "parent_weights.csv", v::ParentWeightsCsv(w));
-  v::WriteFileAtomically(out / "parent_weights.json", meta.dump(2) + "\n");
+  v::WriteFileAtomically(out / "parent_weights.json", v::JsonFileText(meta));
   std::cout << "parent weights: " << (out / "parent_weights.csv").string() << " (ESS "
             << meta.at("ess_single_cluster").get<double>() << " single-cluster, "
             << meta.at("ess_rb_phd").get<double>() << " RB-PHD (46), "
@@ -741,7 +741,7 @@ int ParentWeights(const ParentWeightsArguments& a) {
   summary["spread"] = a.spread;
   summary["every"] = a.every;
   v::WriteFileAtomically(out / "parent_weights_steps.csv", v::StepEssCsv(rows));
-  v::WriteFileAtomically(out / "parent_weights_steps.json", summary.dump(2) + "\n");
+  v::WriteFileAtomically(out / "parent_weights_steps.json", v::JsonFileText(summary));
   std::cout << "parent weights over " << rows.size() << " steps: mean ESS "
             << summary.at("mean_ess_single_cluster").get<double>() << " single-cluster, "
             << summary.at("mean_ess_rb_phd").get<double>() << " RB-PHD (46), "

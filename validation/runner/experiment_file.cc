@@ -8,6 +8,7 @@
 
 #include "validation/runner/list_arguments.h"
 #include "validation/runner/results_io.h"
+#include "validation/runner/utf8_text.h"
 #include "validation/runner/yaml_shape.h"
 
 namespace phdslam::validation {
@@ -241,6 +242,7 @@ std::vector<ExperimentSweep> ReadSweep(const YAML::Node& node, const FileErrors&
 Experiment ParseExperimentYaml(std::string_view text, const std::string& source,
                                const std::string& default_name) {
   const FileErrors errors(source);
+  RequireUtf8(text, source);
   CheckYamlShape(text, source);
   YAML::Node root;
   try {

@@ -65,7 +65,8 @@ struct Experiment {
 /// Parses an experiment file's text. `source` names the file in error messages and in
 /// Experiment::source; `default_name` is the experiment name when the file has no `name`.
 /// Throws std::invalid_argument "<source>:<line>: ..." for YAML syntax errors, unknown keys,
-/// missing required keys (scenario, estimators, seeds) and values of the wrong kind.
+/// missing required keys (scenario, estimators, seeds) and values of the wrong kind, and
+/// "<source>: line L, column C: not valid UTF-8" for text that is not UTF-8.
 Experiment ParseExperimentYaml(std::string_view text, const std::string& source,
                                const std::string& default_name);
 

@@ -172,6 +172,20 @@ TEST(ExperimentFile, AliasesAndDeepNestingAreRefusedWithoutExpanding) {
   EXPECT_NE(e.find("nested deeper than"), std::string::npos) << e;
 }
 
+TEST(ExperimentFile, TextThatIsNotUtf8IsRefusedWithItsPosition) {
+  // The fuzzer's finding: a sweep value with a byte that is not UTF-8 reached a JSON dump, which
+  // threw nlohmann's type_error instead of std::invalid_argument.
+  std::string e = ParseError(
+      "scenario: s\nestimators: [e]\nseeds: 1\nsweep:\n  parameter: pd\n  values: [0.3, a\x9d]\n");
+  EXPECT_NE(e.find("exp.yaml: line 6, column 18: not valid UTF-8 (byte 0x9D)"), std::string::npos)
+      << e;
+  // Anywhere in the file, comments included: config.json records the whole text.
+  e = ParseError("# caf\xe9\nscenario: s\nestimators: [e]\nseeds: 1\n");
+  EXPECT_NE(e.find("exp.yaml: line 1, column 6: not valid UTF-8 (byte 0xE9)"), std::string::npos)
+      << e;
+  EXPECT_EQ(ParseError("# caf\xc3\xa9\nscenario: s\nestimators: [e]\nseeds: 1\n"), "");
+}
+
 TEST(ExperimentFile, RejectsBadValues) {
   const std::string base = "scenario: s\nestimators: [e]\n";
   const auto expect_error = [](const std::string& text, const std::string& part) {

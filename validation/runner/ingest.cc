@@ -386,7 +386,7 @@ IngestReport IngestResults(const IngestRequest& request, const std::filesystem::
   std::filesystem::create_directories(out);
   const ResultsLock lock(out);
   const nlohmann::json config = JoinedConfig(out, IngestConfig(request, parameters));
-  WriteFileAtomically(out / kConfigFile, config.dump(2) + "\n");
+  WriteFileAtomically(out / kConfigFile, JsonFileText(config));
   if (!std::filesystem::exists(out / kTruthMapFile)) {
     const auto lowest = std::min_element(
         runs.begin(), runs.end(),
@@ -407,7 +407,7 @@ IngestReport IngestResults(const IngestRequest& request, const std::filesystem::
       {"wall_seconds", report.wall_seconds},
       {"ingested_from", std::filesystem::absolute(request.from).lexically_normal().string()},
       {"runs_ingested", report.runs}};
-  WriteFileAtomically(out / kTimingFile, timing.dump(2) + "\n");
+  WriteFileAtomically(out / kTimingFile, JsonFileText(timing));
   return report;
 }
 

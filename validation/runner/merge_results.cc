@@ -213,7 +213,7 @@ void ExecuteFolderMerge(const fs::path& out, const std::vector<fs::path>& inputs
   }
   report.runs_already_present += plan.already_present;
   for (const fs::path& input : inputs) CopyTruthFiles(input, out);
-  WriteFileAtomically(out / kConfigFile, plan.config.dump(2) + "\n");
+  WriteFileAtomically(out / kConfigFile, JsonFileText(plan.config));
   WriteSummaryFiles(out);
   ++report.folders;
 }
@@ -303,7 +303,7 @@ MergeReport MergeResults(const fs::path& out, const std::vector<fs::path>& input
       {"failed_runs_copied", report.failed_runs_copied}};
   fs::create_directories(out);
   for (const auto& [folder, unused] : folders) {
-    WriteFileAtomically(folder / kTimingFile, timing.dump(2) + "\n");
+    WriteFileAtomically(folder / kTimingFile, JsonFileText(timing));
   }
   return report;
 }

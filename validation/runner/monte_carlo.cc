@@ -299,7 +299,7 @@ MonteCarloReport RunMonteCarlo(const MonteCarloPlan& plan, const MonteCarloSetti
   const std::vector<PlannedJob>& todo = prepared.todo;
   MonteCarloReport report = prepared.report;
   std::filesystem::create_directories(settings.out);
-  WriteFileAtomically(settings.out / kConfigFile, prepared.config.dump(2) + "\n");
+  WriteFileAtomically(settings.out / kConfigFile, JsonFileText(prepared.config));
   if (!todo.empty() && !plan.seeds.empty() &&
       !std::filesystem::exists(settings.out / kTruthMapFile)) {
     WriteRootTruthMap(settings.out,
@@ -446,7 +446,7 @@ MonteCarloReport RunMonteCarlo(const MonteCarloPlan& plan, const MonteCarloSetti
       {"runs_finished", report.finished},
       {"runs_failed", report.failures.size()},
       {"interrupted", report.interrupted}};
-  WriteFileAtomically(settings.out / kTimingFile, timing.dump(2) + "\n");
+  WriteFileAtomically(settings.out / kTimingFile, JsonFileText(timing));
   return report;
 }
 

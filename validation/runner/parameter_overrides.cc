@@ -3,6 +3,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "validation/runner/utf8_text.h"
+
 namespace phdslam::validation {
 namespace {
 
@@ -77,6 +79,7 @@ nlohmann::json ApplyOverrides(const nlohmann::json& defaults, const nlohmann::js
 }
 
 ParameterAssignment ParseParameterAssignment(std::string_view text) {
+  RequireUtf8(text, "--set");
   const std::size_t eq = text.find('=');
   if (eq == std::string_view::npos) {
     throw std::invalid_argument("--set '" + std::string(text) + "': expected key=value");

@@ -24,7 +24,8 @@ struct ParameterAssignment {
 
 /// Parses `[estimator:]key[.subkey...]=value`. The value is read as JSON when it parses (numbers,
 /// true/false, null, quoted strings, arrays, objects) and is otherwise taken as a plain string.
-/// Throws std::invalid_argument for a missing '=', an empty key or an empty key segment.
+/// Throws std::invalid_argument for text that is not UTF-8, a missing '=', an empty key or an
+/// empty key segment.
 ParameterAssignment ParseParameterAssignment(std::string_view text);
 
 /// Merges `b` into `a` key by key (objects recursively; other values of `b` win).

@@ -69,7 +69,8 @@ TEST(ParseParameterAssignment, ValuesAreJsonWhenTheyParse) {
 }
 
 TEST(ParseParameterAssignment, RejectsMalformedText) {
-  for (const char* bad : {"hypotheses", "=3", ".a=1", "a.=1", "a..b=1", ":a=1", "phd3:=1"}) {
+  for (const char* bad : {"hypotheses", "=3", ".a=1", "a.=1", "a..b=1", ":a=1", "phd3:=1",
+                          "variant=\xff", "a\xc0\xaf=1"}) {
     EXPECT_THROW(ParseParameterAssignment(bad), std::invalid_argument) << bad;
   }
 }

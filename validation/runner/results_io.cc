@@ -35,6 +35,10 @@ std::string CsvRow(const std::vector<std::string>& cells) {
   return row;
 }
 
+std::string JsonFileText(const nlohmann::json& json) {
+  return json.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
+}
+
 void WriteFileAtomically(const std::filesystem::path& path,
                          const std::function<void(const std::filesystem::path&)>& writer,
                          std::string_view tag) {

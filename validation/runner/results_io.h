@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -28,6 +29,10 @@ std::string CsvRow(const std::vector<std::string>& cells);
 /// file on failure.
 void WriteFileAtomically(const std::filesystem::path& path, std::string_view content,
                          std::string_view tag = "0");
+
+/// `json` as the text of a results file: two-space indentation, a final newline, and any byte of a
+/// string that is not UTF-8 (a path's name, say) replaced by U+FFFD rather than thrown on.
+std::string JsonFileText(const nlohmann::json& json);
 
 /// Same, with a writer that fills the temporary file itself (for writers that take a path).
 void WriteFileAtomically(const std::filesystem::path& path,

@@ -139,7 +139,7 @@ void WriteRunFiles(const std::filesystem::path& folder, const RunRecord& record,
   std::filesystem::remove(folder / kErrorFile, ignored);
   nlohmann::json metrics = identity;
   metrics.update(ToJson(evaluation.metrics));
-  WriteFileAtomically(folder / kMetricsFile, metrics.dump(2) + "\n");
+  WriteFileAtomically(folder / kMetricsFile, JsonFileText(metrics));
 }
 
 void WriteRunError(const std::filesystem::path& folder, const nlohmann::json& identity,
@@ -147,8 +147,7 @@ void WriteRunError(const std::filesystem::path& folder, const nlohmann::json& id
   std::filesystem::create_directories(folder);
   nlohmann::json j = identity;
   j["error"] = message;
-  WriteFileAtomically(folder / kErrorFile,
-                      j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
+  WriteFileAtomically(folder / kErrorFile, JsonFileText(j));
 }
 
 namespace {

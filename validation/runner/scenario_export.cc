@@ -163,7 +163,7 @@ std::map<std::string, std::string> ExportFiles(const datasets::Scenario& scenari
   files[seed + "steps.csv"] = StepsCsv(scenario);
   files[seed + "controls.csv"] = ControlsCsv(scenario);
   files[seed + "measurements.csv"] = MeasurementsCsv(scenario);
-  files[seed + "models.json"] = ModelsJson(scenario).dump(2) + "\n";
+  files[seed + "models.json"] = JsonFileText(ModelsJson(scenario));
   if (scenario.truth.poses.size() == scenario.steps.size() && !scenario.truth.poses.empty()) {
     files[truth + "trajectory.tum"] = TruthTum(scenario);
   }
@@ -193,7 +193,7 @@ void WriteExport(const std::filesystem::path& out, const ExportDescription& desc
                                    {"request", description.request},
                                    {"seeds", description.seeds},
                                    {"steps", steps}};
-  const std::string manifest_text = manifest.dump(2) + "\n";
+  const std::string manifest_text = JsonFileText(manifest);
   WriteFileAtomically(out / kExportManifestFile, manifest_text);
   checksums[kExportManifestFile] = datasets::Sha256Hex(manifest_text);
   std::string sums;

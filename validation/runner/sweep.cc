@@ -204,7 +204,7 @@ void WriteSweepFiles(const std::filesystem::path& root, const std::vector<Experi
     json["parameter"] = sweep.front().parameter;
     json["values"] = sweep.front().values;
   }
-  WriteFileAtomically(root / kSweepFile, json.dump(2) + "\n");
+  WriteFileAtomically(root / kSweepFile, JsonFileText(json));
   WriteFileAtomically(root / kSweepTableFile, first_line + table);
 }
 
