@@ -183,9 +183,11 @@ void AddRunCommand(CLI::App& app, RunArguments& a) {
       run->add_option("--particles", a.particles,
                       "Particle count (1 to 100000), or a comma list such as 1,10,100")
           ->capture_default_str();
-  a.seeds_option = run->add_option("--seeds", a.seeds,
-                                   "Monte Carlo seeds: a range a-b (inclusive), a single seed, or "
-                                   "a comma list such as 1,3,10-12");
+  a.seeds_option =
+      run->add_option("--seeds", a.seeds,
+                      "Monte Carlo seeds: a range a-b (inclusive), a single seed, or "
+                      "a comma list such as 1,3,10-12; at most 10^6 runs (seeds x estimators x "
+                      "particle counts) per results folder");
   run->add_option("--out", a.out, "Results folder (created if needed)")->required();
   a.data_dir_option =
       run->add_option("--data-dir", a.data_dir,

@@ -9,8 +9,6 @@
 namespace phdslam::validation {
 namespace {
 
-constexpr std::uint64_t kMaxSeedsInRange = 10'000'000;
-
 std::string_view Trim(std::string_view s) {
   while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
   while (!s.empty() && (s.back() == ' ' || s.back() == '\t')) s.remove_suffix(1);
@@ -67,6 +65,12 @@ void RejectDuplicates(std::vector<T> values, std::string_view what, std::string_
   }
 }
 
+std::invalid_argument TooManySeeds(std::string_view text) {
+  return std::invalid_argument("seeds '" + std::string(text) + "': more than " +
+                               std::to_string(kMaxSeeds) +
+                               " seeds; split them over several results folders");
+}
+
 }  // namespace
 
 std::vector<std::uint64_t> ParseSeedList(std::string_view text) {
@@ -75,6 +79,7 @@ std::vector<std::uint64_t> ParseSeedList(std::string_view text) {
   for (std::string_view item : SplitCommas(text, kWhat)) {
     const std::size_t dash = item.find('-', 1);  // a leading '-' is a sign, rejected below
     if (dash == std::string_view::npos) {
+      if (seeds.size() >= kMaxSeeds) throw TooManySeeds(text);
       seeds.push_back(ParseNumber<std::uint64_t>(item, kWhat, text));
       continue;
     }
@@ -89,10 +94,7 @@ std::vector<std::uint64_t> ParseSeedList(std::string_view text) {
       throw std::invalid_argument("seeds '" + std::string(text) + "': range '" + std::string(item) +
                                   "' is reversed (expected a-b with a <= b)");
     }
-    if (last - first >= kMaxSeedsInRange) {
-      throw std::invalid_argument("seeds '" + std::string(text) + "': range '" + std::string(item) +
-                                  "' holds more than 10^7 seeds");
-    }
+    if (last - first >= kMaxSeeds - seeds.size()) throw TooManySeeds(text);
     for (std::uint64_t s = first;; ++s) {
       seeds.push_back(s);
       if (s == last) break;

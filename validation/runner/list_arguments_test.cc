@@ -45,7 +45,11 @@ TEST(ParseSeedList, ErrorNamesTheOffendingItem) {
 }
 
 TEST(ParseSeedList, RejectsHugeRanges) {
-  EXPECT_THROW(ParseSeedList("0-10000000"), std::invalid_argument);
+  EXPECT_THROW(ParseSeedList("0-1000000"), std::invalid_argument);
+  EXPECT_EQ(ParseSeedList("1-1000000").size(), 1000000u);
+  // The cap is on the whole list, not on each range.
+  EXPECT_THROW(ParseSeedList("1-600000,2000001-2400001"), std::invalid_argument);
+  EXPECT_THROW(ParseSeedList("1-1000000,0"), std::invalid_argument);
   EXPECT_EQ(ParseSeedList("1-100").size(), 100u);
 }
 

@@ -14,6 +14,7 @@
 #include <thread>
 #include <utility>
 
+#include "validation/runner/list_arguments.h"
 #include "validation/runner/map_ospa_trace.h"
 #include "validation/runner/out_of_memory_valve.h"
 #include "validation/runner/parameter_overrides.h"
@@ -62,7 +63,17 @@ void ValidatePlan(const MonteCarloPlan& plan) {
       throw std::invalid_argument("a particle count is listed twice");
     }
   }
-  if (std::set<std::uint64_t>(plan.seeds.begin(), plan.seeds.end()).size() != plan.seeds.size()) {
+  std::uint64_t runs = 0;
+  for (const EstimatorSelection& s : plan.estimators) runs += ParticlesOf(plan, s).size();
+  if (plan.seeds.size() > kMaxSeeds / runs) {
+    throw std::invalid_argument(
+        std::to_string(plan.seeds.size()) + " seeds x " + std::to_string(runs) +
+        " estimator and particle counts is more than " + std::to_string(kMaxSeeds) +
+        " runs in one results folder; split the seeds over several results folders");
+  }
+  std::vector<std::uint64_t> sorted = plan.seeds;
+  std::sort(sorted.begin(), sorted.end());
+  if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) {
     throw std::invalid_argument("a seed is listed twice");
   }
 }

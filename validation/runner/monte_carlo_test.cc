@@ -7,6 +7,7 @@
 #include <chrono>
 #include <fstream>
 #include <new>
+#include <numeric>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -15,6 +16,7 @@
 #include "datasets/data_dir.h"
 #include "datasets/test_temp_dir.h"
 #include "src/core/random.h"
+#include "validation/runner/list_arguments.h"
 #include "validation/runner/parameter_overrides.h"
 #include "validation/runner/results_config.h"
 #include "validation/runner/results_io.h"
@@ -544,6 +546,23 @@ TEST(MonteCarlo, RejectsBadPlansBeforeRunning) {
   EXPECT_THROW(RunMonteCarlo(plan, Quiet(out, 1)), std::invalid_argument);
   plan = OdometryPlan("generated", 20, {});
   EXPECT_THROW(RunMonteCarlo(plan, Quiet(out, 1)), std::invalid_argument);
+  plan = OdometryPlan("generated", 20, {3, 1, 3});
+  EXPECT_THROW(RunMonteCarlo(plan, Quiet(out, 1)), std::invalid_argument);
+  // More runs than one folder may plan: refused before any seed is planned or run.
+  std::vector<std::uint64_t> many(kMaxSeeds / 2 + 1);
+  std::iota(many.begin(), many.end(), std::uint64_t{1});
+  plan = OdometryPlan("generated", 20, many);
+  plan.estimators.push_back(plan.estimators[0]);
+  plan.estimators[1].entry.name = "odometry-copy";
+  try {
+    RunMonteCarlo(plan, Quiet(out, 1));
+    ADD_FAILURE() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("500001 seeds x 2 estimator and particle counts is more "
+                                         "than 1000000 runs in one results folder"),
+              std::string::npos)
+        << e.what();
+  }
   EXPECT_FALSE(fs::exists(out / kRunsFolder));
   EXPECT_THROW(MakeScenarioSource("nosuch", {}), std::invalid_argument);
   ScenarioOptions bad;
