@@ -3,6 +3,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
+#include <cstdio>
 #include <set>
 #include <stdexcept>
 
@@ -50,9 +51,23 @@ void RequireKnownKeys(const YAML::Node& map, const std::set<std::string>& known,
   }
 }
 
+// A scalar's text, refused when it is not UTF-8: the file itself was checked, but the YAML reader
+// turns some byte sequences of valid text into bytes that are not (e.g. a lone 0x85, NEL).
+const std::string& Utf8Scalar(const YAML::Node& node, const FileErrors& errors) {
+  const std::string& text = node.Scalar();
+  if (const auto bad = FirstInvalidUtf8Byte(text)) {
+    char hex[8];
+    std::snprintf(hex, sizeof hex, "0x%02X",
+                  static_cast<unsigned>(static_cast<unsigned char>(text[*bad])));
+    errors.Fail(
+        node, std::string("a value the YAML reader decoded is not valid UTF-8 (byte ") + hex + ")");
+  }
+  return text;
+}
+
 std::string ScalarText(const YAML::Node& node, const std::string& key, const FileErrors& errors) {
   if (!node.IsScalar()) errors.Fail(node, "'" + key + "': expected a single value");
-  return node.Scalar();
+  return Utf8Scalar(node, errors);
 }
 
 template <typename T>
@@ -81,12 +96,12 @@ nlohmann::json ToJson(const YAML::Node& node, const FileErrors& errors) {
     case YAML::NodeType::Map: {
       nlohmann::json object = nlohmann::json::object();
       for (const auto& item : node) {
-        object[item.first.Scalar()] = ToJson(item.second, errors);
+        object[Utf8Scalar(item.first, errors)] = ToJson(item.second, errors);
       }
       return object;
     }
     case YAML::NodeType::Scalar: {
-      const std::string& text = node.Scalar();
+      const std::string& text = Utf8Scalar(node, errors);
       if (node.Tag() == "!") return text;  // quoted
       if (text == "~" || text.empty()) return nullptr;
       nlohmann::json parsed = nlohmann::json::parse(text, nullptr, false);
@@ -152,7 +167,7 @@ std::vector<ExperimentEstimator> EstimatorList(const YAML::Node& node, const Fil
   for (const auto& item : node) {
     ExperimentEstimator e;
     if (item.IsScalar()) {
-      e.name = item.Scalar();
+      e.name = Utf8Scalar(item, errors);
     } else if (item.IsMap()) {
       RequireKnownKeys(item, {"name", "set", "particles"}, "an 'estimators' item", errors);
       if (!item["name"]) errors.Fail(item, "an 'estimators' item has no 'name'");
@@ -180,7 +195,7 @@ void ReadScenarioOptions(const YAML::Node& node, const FileErrors& errors, Exper
   if (!node.IsMap()) errors.Fail(node, "'scenario_options': expected a mapping of keys to values");
   for (const auto& item : node) {
     try {
-      SetScenarioOption(x, item.first.Scalar(), ToJson(item.second, errors));
+      SetScenarioOption(x, Utf8Scalar(item.first, errors), ToJson(item.second, errors));
     } catch (const std::invalid_argument& e) {
       errors.Fail(item.second, std::string("'scenario_options': ") + e.what());
     }

@@ -184,6 +184,16 @@ TEST(ExperimentFile, TextThatIsNotUtf8IsRefusedWithItsPosition) {
   EXPECT_NE(e.find("exp.yaml: line 1, column 6: not valid UTF-8 (byte 0xE9)"), std::string::npos)
       << e;
   EXPECT_EQ(ParseError("# caf\xc3\xa9\nscenario: s\nestimators: [e]\nseeds: 1\n"), "");
+  // The fuzzer's second finding: valid UTF-8 that the YAML reader decodes into a string that is
+  // not (a NUL byte before 'N' in a flow sequence becomes 0x85).
+  const std::string decoded_badly(
+      "scenario: c\nestimators: [1]\nseeds: 1\nsweep:\n  parameter: _\n"
+      "  values: [: \0N]",
+      75);
+  e = ParseError(decoded_badly);
+  EXPECT_NE(e.find("exp.yaml:6: a value the YAML reader decoded is not valid UTF-8"),
+            std::string::npos)
+      << e;
 }
 
 TEST(ExperimentFile, RejectsBadValues) {
