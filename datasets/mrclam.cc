@@ -1,6 +1,5 @@
 #include "datasets/mrclam.h"
 
-#include <Eigen/Cholesky>
 #include <algorithm>
 #include <array>
 #include <charconv>
@@ -14,6 +13,7 @@
 #include <string_view>
 #include <system_error>
 
+#include "datasets/covariance_option.h"
 #include "datasets/text_fields.h"
 #include "src/core/angles.h"
 
@@ -211,13 +211,6 @@ std::filesystem::path RobotFile(int robot, std::string_view kind) {
   return "Robot" + std::to_string(robot) + "_" + std::string(kind) + ".dat";
 }
 
-bool IsCovariance(const Mat2& m) {
-  if (!m.allFinite() || (m - m.transpose()).cwiseAbs().maxCoeff() > 1e-12 * m.norm()) {
-    return false;
-  }
-  return m.llt().info() == Eigen::Success;
-}
-
 /// The index of the last command with time <= t, or -1 when every command comes after t.
 std::ptrdiff_t CommandInForce(const std::vector<double>& times, double t) {
   const auto it = std::upper_bound(times.begin(), times.end(), t);
@@ -342,16 +335,8 @@ void MrclamOptions::Validate() const {
   if (!std::isfinite(angle_buffer) || angle_buffer < 0.0) {
     fail("angle_buffer", "a finite value >= 0", angle_buffer);
   }
-  if (!IsCovariance(measurement_noise_cov)) {
-    throw std::invalid_argument(
-        "MrclamOptions.measurement_noise_cov: expected a finite symmetric positive-definite 2x2 "
-        "matrix");
-  }
-  if (!IsCovariance(control_noise_cov)) {
-    throw std::invalid_argument(
-        "MrclamOptions.control_noise_cov: expected a finite symmetric positive-definite 2x2 "
-        "matrix");
-  }
+  RequireCovarianceOption(measurement_noise_cov, "MrclamOptions.measurement_noise_cov");
+  RequireCovarianceOption(control_noise_cov, "MrclamOptions.control_noise_cov");
   if (max_steps < 0) fail("max_steps", ">= 0 (0 = all steps)", max_steps);
 }
 

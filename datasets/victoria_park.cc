@@ -1,6 +1,5 @@
 #include "datasets/victoria_park.h"
 
-#include <Eigen/Cholesky>
 #include <algorithm>
 #include <array>
 #include <charconv>
@@ -15,6 +14,7 @@
 #include <string_view>
 #include <system_error>
 
+#include "datasets/covariance_option.h"
 #include "datasets/mat_file.h"
 #include "datasets/range_bearing_simulator.h"
 #include "datasets/text_fields.h"
@@ -220,13 +220,6 @@ void RequireFile(const std::filesystem::path& path) {
   }
 }
 
-bool IsCovariance(const Mat2& m) {
-  if (!m.allFinite() || (m - m.transpose()).cwiseAbs().maxCoeff() > 1e-12 * m.norm()) {
-    return false;
-  }
-  return m.llt().info() == Eigen::Success;
-}
-
 }  // namespace
 
 VictoriaParkData LoadVictoriaParkData(const std::filesystem::path& data_dir) {
@@ -306,16 +299,8 @@ void VictoriaParkOptions::Validate() const {
   if (!(detection_probability_nominal > 0.0 && detection_probability_nominal < 1.0)) {
     fail("detection_probability_nominal", "in (0, 1)", detection_probability_nominal);
   }
-  if (!IsCovariance(measurement_noise_cov)) {
-    throw std::invalid_argument(
-        "VictoriaParkOptions.measurement_noise_cov: expected a finite symmetric positive-definite "
-        "2x2 matrix");
-  }
-  if (!IsCovariance(control_noise_cov)) {
-    throw std::invalid_argument(
-        "VictoriaParkOptions.control_noise_cov: expected a finite symmetric positive-definite 2x2 "
-        "matrix");
-  }
+  RequireCovarianceOption(measurement_noise_cov, "VictoriaParkOptions.measurement_noise_cov");
+  RequireCovarianceOption(control_noise_cov, "VictoriaParkOptions.control_noise_cov");
   if (max_steps < 0) fail("max_steps", ">= 0 (0 = all scans)", max_steps);
 }
 
