@@ -3,7 +3,6 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
-#include <cstdio>
 #include <set>
 #include <stdexcept>
 
@@ -56,11 +55,8 @@ void RequireKnownKeys(const YAML::Node& map, const std::set<std::string>& known,
 const std::string& Utf8Scalar(const YAML::Node& node, const FileErrors& errors) {
   const std::string& text = node.Scalar();
   if (const auto bad = FirstInvalidUtf8Byte(text)) {
-    char hex[8];
-    std::snprintf(hex, sizeof hex, "0x%02X",
-                  static_cast<unsigned>(static_cast<unsigned char>(text[*bad])));
-    errors.Fail(
-        node, std::string("a value the YAML reader decoded is not valid UTF-8 (byte ") + hex + ")");
+    errors.Fail(node, "a value the YAML reader decoded is not valid UTF-8 (byte " +
+                          ByteText(text[*bad]) + ")");
   }
   return text;
 }

@@ -49,6 +49,12 @@ std::optional<std::size_t> FirstInvalidUtf8Byte(std::string_view text) {
   return std::nullopt;
 }
 
+std::string ByteText(char byte) {
+  char hex[8];
+  std::snprintf(hex, sizeof hex, "0x%02X", static_cast<unsigned>(static_cast<unsigned char>(byte)));
+  return hex;
+}
+
 void RequireUtf8(std::string_view text, const std::string& source) {
   const std::optional<std::size_t> bad = FirstInvalidUtf8Byte(text);
   if (!bad) return;
@@ -57,11 +63,9 @@ void RequireUtf8(std::string_view text, const std::string& source) {
       1 + static_cast<std::size_t>(std::count(before.begin(), before.end(), '\n'));
   const std::size_t line_start = before.rfind('\n');
   const std::size_t column = *bad - (line_start == std::string_view::npos ? 0 : line_start + 1) + 1;
-  char hex[8];
-  std::snprintf(hex, sizeof hex, "0x%02X",
-                static_cast<unsigned>(static_cast<unsigned char>(text[*bad])));
   throw std::invalid_argument(source + ": line " + std::to_string(line) + ", column " +
-                              std::to_string(column) + ": not valid UTF-8 (byte " + hex + ")");
+                              std::to_string(column) + ": not valid UTF-8 (byte " +
+                              ByteText(text[*bad]) + ")");
 }
 
 }  // namespace phdslam::validation

@@ -14,6 +14,9 @@ namespace phdslam::validation {
 /// sequence (RFC 3629: no overlong forms, no surrogates, nothing above U+10FFFF), or nullopt.
 std::optional<std::size_t> FirstInvalidUtf8Byte(std::string_view text);
 
+/// "0xHH": a byte as error messages show it.
+std::string ByteText(char byte);
+
 /// Throws std::invalid_argument "<source>: line L, column C: not valid UTF-8 (byte 0xHH)" at the
 /// first invalid byte; lines and columns count from 1, columns in bytes.
 void RequireUtf8(std::string_view text, const std::string& source);
