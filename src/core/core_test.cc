@@ -2,6 +2,7 @@
 
 #include <Eigen/LU>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "src/core/angles.h"
@@ -45,6 +46,35 @@ TEST(Gaussian, LogPdfMatchesClosedFormAndRejectsIndefinite) {
   bad << 1.0, 2.0, 2.0, 1.0;
   EXPECT_FALSE(LogNormalPdf<2>(x, mu, bad).has_value());
   EXPECT_FALSE(CholeskyLower<2>(Eigen::Matrix2d::Zero()).has_value());
+}
+
+TEST(Gaussian, FirstCoordinatePreGateNeverSkipsAPairTheFullTestKeeps) {
+  // Random positive-definite S (condition numbers up to about 1e5, as range-bearing innovation
+  // covariances have) and residuals near the gate: every skipped residual fails the full test.
+  RandomStream rng(11);
+  const double gate = 9.21;
+  int skipped = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    const double a = std::exp(4.0 * rng.Normal());
+    const double b = std::exp(4.0 * rng.Normal());
+    const double c = 0.99 * std::sqrt(a * b) * std::tanh(rng.Normal());
+    Eigen::Matrix2d s;
+    s << a, c, c, b;
+    const double w = FirstCoordinateGateHalfWidth(s, gate);
+    const Eigen::Vector2d nu(3.0 * std::sqrt(a) * rng.Normal(), 3.0 * std::sqrt(b) * rng.Normal());
+    if (std::abs(nu(0)) > w) {
+      ++skipped;
+      EXPECT_GE(nu.dot(s.inverse() * nu), gate) << "trial " << trial;
+    }
+  }
+  EXPECT_GT(skipped, 1000);  // the pre-gate does skip
+  // Not positive definite, or NaN: nothing is skipped.
+  Eigen::Matrix2d indefinite;
+  indefinite << 1.0, 2.0, 2.0, 1.0;
+  EXPECT_EQ(FirstCoordinateGateHalfWidth(indefinite, gate), std::numeric_limits<double>::infinity());
+  Eigen::Matrix2d with_nan = Eigen::Matrix2d::Identity();
+  with_nan(1, 1) = std::nan("");
+  EXPECT_FALSE(std::abs(1e300) > FirstCoordinateGateHalfWidth(with_nan, gate));
 }
 
 TEST(RandomStream, IsReproducibleAndSeedsAreIndependent) {

@@ -11,6 +11,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <optional>
 
@@ -55,6 +56,18 @@ std::optional<double> LogNormalPdf(const Eigen::Matrix<double, N, 1>& x,
   const Eigen::Matrix<double, N, 1> w = l->template triangularView<Eigen::Lower>().solve(x - mu);
   const double log_det = 2.0 * l->diagonal().array().log().sum();
   return -0.5 * (N * std::log(2.0 * std::numbers::pi) + log_det + w.squaredNorm());
+}
+
+/// A pre-gate for the test nu' S^-1 nu < gate with a 2x2 positive-definite S: when
+/// |nu(0)| > FirstCoordinateGateHalfWidth(S, gate), the test fails, since nu' S^-1 nu >=
+/// nu(0)^2 / S(0, 0). The half-width is enlarged by a relative 1e-3 so that no rounding of the full
+/// test can disagree with the skip: the pre-gate saves the quadratic form of pairs that are far
+/// apart and changes no gating decision. When S is not positive definite (the bound needs it) or
+/// holds NaN, the half-width is infinite or NaN, which skips nothing.
+inline double FirstCoordinateGateHalfWidth(const Eigen::Matrix2d& s, double gate) {
+  const bool positive_definite = s(0, 0) > 0.0 && s(0, 0) * s(1, 1) - s(0, 1) * s(1, 0) > 0.0;
+  if (!positive_definite) return std::numeric_limits<double>::infinity();
+  return 1.001 * std::sqrt(gate * s(0, 0));
 }
 
 /// log N(r; 0, S) for a 2-D residual with an explicit 2x2 inverse, plus the squared Mahalanobis

@@ -9,23 +9,27 @@
 
 namespace phdslam::filters {
 
-PreparedProposal PrepareProposal(GaussianMixtureProposal mixture) {
-  PreparedProposal p;
+void PrepareProposal(GaussianMixtureProposal mixture, PreparedProposal& out) {
   const double total = LogSumExp(mixture.log_weights);
   for (double& w : mixture.log_weights) w -= total;
   const std::size_t n = mixture.size();
-  p.chol.resize(n);
-  p.log_norm.assign(n, kNegInf);
-  p.inv_chol.assign(n, Mat3::Zero());
+  out.chol.assign(n, std::nullopt);
+  out.log_norm.assign(n, kNegInf);
+  out.inv_chol.assign(n, Mat3::Zero());
   for (std::size_t t = 0; t < n; ++t) {
-    p.chol[t] = CholeskyLower<3>(mixture.covs[t]);
-    if (p.chol[t]) {
-      const Mat3& l = *p.chol[t];
-      p.inv_chol[t] = l.triangularView<Eigen::Lower>().solve(Mat3::Identity());
-      p.log_norm[t] = -1.5 * std::log(2.0 * std::numbers::pi) - l.diagonal().array().log().sum();
+    out.chol[t] = CholeskyLower<3>(mixture.covs[t]);
+    if (out.chol[t]) {
+      const Mat3& l = *out.chol[t];
+      out.inv_chol[t] = l.triangularView<Eigen::Lower>().solve(Mat3::Identity());
+      out.log_norm[t] = -1.5 * std::log(2.0 * std::numbers::pi) - l.diagonal().array().log().sum();
     }
   }
-  p.mixture = std::move(mixture);
+  out.mixture = std::move(mixture);
+}
+
+PreparedProposal PrepareProposal(GaussianMixtureProposal mixture) {
+  PreparedProposal p;
+  PrepareProposal(std::move(mixture), p);
   return p;
 }
 

@@ -20,6 +20,11 @@ struct GaussianMixtureProposal {
     means.push_back(mean);
     covs.push_back(cov);
   }
+  void Reserve(std::size_t n) {
+    log_weights.reserve(n);
+    means.reserve(n);
+    covs.reserve(n);
+  }
   void Clear() {
     log_weights.clear();
     means.clear();
@@ -37,6 +42,9 @@ struct PreparedProposal {
 };
 
 PreparedProposal PrepareProposal(GaussianMixtureProposal mixture);
+/// The same, written into `out`, whose storage is reused (the filter prepares one proposal per
+/// particle and step).
+void PrepareProposal(GaussianMixtureProposal mixture, PreparedProposal& out);
 
 /// The component picked by uniform u: the first t with cumulative normalised weight >= u, the
 /// first component if rounding leaves none.

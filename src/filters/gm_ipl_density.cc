@@ -4,12 +4,14 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <vector>
 
 #include "src/assignment/block_murty.h"
 #include "src/core/angles.h"
 #include "src/core/gaussian.h"
 #include "src/filters/ipl.h"
 #include "src/models/range_bearing_model.h"
+#include "src/models/sensor_model.h"
 
 namespace phdslam::filters {
 namespace {
@@ -37,49 +39,57 @@ AssociationCosts BuildAssociationCosts(const ProposalInput& input, const PhdSlam
   AssociationCosts c;
   c.pd.resize(m);
   c.miss.resize(m);
-  Eigen::MatrixXd gain = Eigen::MatrixXd::Constant(m, nz, -kInf);
-  std::vector<bool> col_used(nz, false);
+  // The gated log gains, row by row: (index into c.rows, measurement, gain).
+  struct Gated {
+    int row;
+    int col;
+    double gain;
+  };
+  std::vector<Gated> gated;
+  std::vector<int> col_of(nz, -1);
   const models::FovView fov(*input.sensor, input.predicted_mean);
+  models::LogDetectionTerms log_pd;
   for (int i = 0; i < m; ++i) {
     const phd::GaussianComponent& comp = active[i];
     const double pd = fov.DetectionProbability(comp.mean);
+    log_pd.Set(pd);
     c.pd[i] = pd;
-    c.miss[i] = std::log1p(-pd) + comp.log_weight;
+    c.miss[i] = log_pd.log_miss() + comp.log_weight;
     if (pd <= 0.0) continue;
-    const auto j = models::MeasurementJacobians(input.predicted_mean, comp.mean);
-    const Measurement z_hat = models::PredictMeasurement(input.predicted_mean, comp.mean);
+    const auto [z_hat, j] = models::PredictWithJacobians(input.predicted_mean, comp.mean);
     Mat2 s = j.hx * input.predicted_cov * j.hx.transpose() + j.hm * comp.cov * j.hm.transpose() +
              input.sensor->noise_cov;
     Symmetrize(s);
     const double base =
-        std::log(pd) + comp.log_weight - log_clutter - log_two_pi - 0.5 * std::log(s.determinant());
+        log_pd.log_pd() + comp.log_weight - log_clutter - log_two_pi - 0.5 * std::log(s.determinant());
     const Mat2 s_inv = s.inverse();
-    bool any = false;
+    const int row = static_cast<int>(c.rows.size());
+    const double range_window = FirstCoordinateGateHalfWidth(s, params.map.gate_threshold);
     for (int jz = 0; jz < nz; ++jz) {
+      if (std::abs(input.measurements[jz](0) - z_hat(0)) > range_window) continue;
       Vec2 nu = input.measurements[jz] - z_hat;
       nu(1) = WrapAngle(nu(1));
       const double d2 = nu.dot(s_inv * nu);
       if (d2 < params.map.gate_threshold) {
-        gain(i, jz) = base - 0.5 * d2;
-        col_used[jz] = true;
-        any = true;
+        gated.push_back({row, jz, base - 0.5 * d2});
+        col_of[jz] = 0;
       }
     }
-    if (any) c.rows.push_back(i);
+    if (!gated.empty() && gated.back().row == row) c.rows.push_back(i);
   }
   for (int jz = 0; jz < nz; ++jz) {
-    if (col_used[jz]) c.cols.push_back(jz);
+    if (col_of[jz] == 0) {
+      col_of[jz] = static_cast<int>(c.cols.size());
+      c.cols.push_back(jz);
+    }
   }
   const int r = static_cast<int>(c.rows.size());
   const int k = static_cast<int>(c.cols.size());
   c.cost = Eigen::MatrixXd::Constant(r, k + r, kInf);
-  for (int a = 0; a < r; ++a) {
-    for (int b = 0; b < k; ++b) {
-      const double g = gain(c.rows[a], c.cols[b]);
-      if (g > -kInf) c.cost(a, b) = -g;
-    }
-    c.cost(a, k + a) = -c.miss[c.rows[a]];
+  for (const Gated& g : gated) {
+    if (g.gain > -kInf) c.cost(g.row, col_of[g.col]) = -g.gain;
   }
+  for (int a = 0; a < r; ++a) c.cost(a, k + a) = -c.miss[c.rows[a]];
   return c;
 }
 
@@ -108,10 +118,14 @@ ProposalOutput GmIplDensity::Build(const ProposalInput& input) const {
   }
 
   ProposalOutput out;
+  out.mixture.Reserve(hypotheses.size() + 1);
   out.best_association.assign(input.measurements.size(), -1);
   std::vector<IplPair> pairs;
   std::vector<int> detected_rows;
+  pairs.reserve(r);
+  detected_rows.reserve(r);
   const IplOptions ipl_options{params_.ipl_iterations, params_.ipl_kl_tolerance};
+  models::LogDetectionTerms log_pd;
   for (std::size_t h = 0; h < hypotheses.size(); ++h) {
     const auto& row_to_col = hypotheses[h].row_to_col;
     pairs.clear();
@@ -132,13 +146,14 @@ ProposalOutput GmIplDensity::Build(const ProposalInput& input) const {
     for (std::size_t p = 0; p < pairs.size(); ++p) {
       const int i = costs.rows[detected_rows[p]];
       const phd::GaussianComponent& comp = active[i];
-      const auto j = models::MeasurementJacobians(ipl.mean, comp.mean);
+      log_pd.Set(costs.pd[i]);
+      const auto [z_hat, j] = models::PredictWithJacobians(ipl.mean, comp.mean);
       Mat2 s = j.hx * ipl.cov * j.hx.transpose() + j.hm * comp.cov * j.hm.transpose() +
                input.sensor->noise_cov;
       Symmetrize(s);
-      Vec2 nu = pairs[p].z - models::PredictMeasurement(ipl.mean, comp.mean);
+      Vec2 nu = pairs[p].z - z_hat;
       nu(1) = WrapAngle(nu(1));
-      log_kappa += -costs.miss[i] + std::log(costs.pd[i]) + comp.log_weight - log_clutter +
+      log_kappa += -costs.miss[i] + log_pd.log_pd() + comp.log_weight - log_clutter +
                    EvalGaussian2(nu, s).log_pdf;
     }
     out.mixture.Add(log_kappa, ipl.mean, ipl.cov);

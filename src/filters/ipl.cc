@@ -10,27 +10,54 @@
 
 namespace phdslam::filters {
 
-double KlDivergence3(const Vec3& m0, const Mat3& p0, const Vec3& m1, const Mat3& p1) {
-  const Eigen::LLT<Mat3> llt1(p1);
-  const Eigen::LLT<Mat3> llt0(p0);
-  const Mat3 l1 = llt1.matrixL();
-  const Mat3 l0 = llt0.matrixL();
-  const double log_det1 = 2.0 * l1.diagonal().array().log().sum();
-  const double log_det0 = 2.0 * l0.diagonal().array().log().sum();
+namespace {
+
+/// The Cholesky factorisation of a 3x3 covariance with its log-determinant.
+struct Factorised3 {
+  Eigen::LLT<Mat3> llt;
+  double log_det;
+  /// What CholeskyLower<3> accepts: the factorisation succeeded, every pivot positive and finite.
+  [[nodiscard]] bool PositiveDefinite() const {
+    if (llt.info() != Eigen::Success) return false;
+    const Mat3 l = llt.matrixL();
+    for (int i = 0; i < 3; ++i) {
+      if (!(l(i, i) > 0.0) || !std::isfinite(l(i, i))) return false;
+    }
+    return true;
+  }
+};
+
+Factorised3 Factorise(const Mat3& p) {
+  Factorised3 f{Eigen::LLT<Mat3>(p), 0.0};
+  const Mat3 l = f.llt.matrixL();
+  f.log_det = 2.0 * l.diagonal().array().log().sum();
+  return f;
+}
+
+/// KL(N(m0, P0) || N(m1, P1)) given log det P0 and the factorisation of P1.
+double KlDivergenceFactorised(const Vec3& m0, const Mat3& p0, double log_det0, const Vec3& m1,
+                              const Factorised3& p1) {
   const Vec3 dm = m1 - m0;
-  return 0.5 * ((llt1.solve(p0)).trace() - log_det0 + log_det1 - 3.0 + dm.dot(llt1.solve(dm)));
+  return 0.5 * ((p1.llt.solve(p0)).trace() - log_det0 + p1.log_det - 3.0 +
+                dm.dot(p1.llt.solve(dm)));
+}
+
+}  // namespace
+
+double KlDivergence3(const Vec3& m0, const Mat3& p0, const Vec3& m1, const Mat3& p1) {
+  return KlDivergenceFactorised(m0, p0, Factorise(p0).log_det, m1, Factorise(p1));
 }
 
 IplResult PartitionedIpl(const Pose& prior_mean, const Mat3& prior_cov,
                          std::span<const IplPair> pairs, const Mat2& noise_cov,
                          const IplOptions& options) {
   IplResult lin{prior_mean, prior_cov, 0, false};
+  double lin_log_det = 0.0;  // log det lin.cov, from iteration 1 on (when the KL test needs it)
   for (int l = 1; l <= options.max_iterations; ++l) {
     Vec3 m = prior_mean;
     Mat3 p = prior_cov;
     for (const IplPair& pair : pairs) {
-      const auto j = models::MeasurementJacobians(lin.mean, pair.landmark_mean);
-      const Measurement z_hat = models::PredictMeasurement(lin.mean, pair.landmark_mean);
+      const auto [z_hat, j] = models::PredictWithJacobians(lin.mean, pair.landmark_mean);
       const Mat2 omega = j.hm * pair.landmark_cov * j.hm.transpose() + noise_cov;
       // nu = z - (A m + b) with A = Hx, b = z_hat - A mu_bar.
       Vec2 nu = pair.z - z_hat - j.hx * (m - lin.mean);
@@ -43,13 +70,19 @@ IplResult PartitionedIpl(const Pose& prior_mean, const Mat3& prior_cov,
       p -= k * s * k.transpose();
       Symmetrize(p);
     }
-    if (!CholeskyLower<3>(p)) {
+    // One factorisation of p serves the positive-definiteness test, this iteration's KL test and
+    // (its log-determinant) the next one's.
+    const Factorised3 factor = Factorise(p);
+    if (!factor.PositiveDefinite()) {
       lin.cholesky_failed = true;
       break;
     }
-    const bool converged = l >= 2 && KlDivergence3(lin.mean, lin.cov, m, p) < options.kl_tolerance;
+    const bool converged =
+        l >= 2 && KlDivergenceFactorised(lin.mean, lin.cov, lin_log_det, m, factor) <
+                      options.kl_tolerance;
     lin.mean = m;
     lin.cov = p;
+    lin_log_det = factor.log_det;
     lin.iterations = l;
     if (converged) break;
   }

@@ -195,7 +195,7 @@ void ParticleFilter<Model>::Propagate(int idx, const StepData& step, double unif
       built = density_->Build(input);
     }
     proposal_increment_ = built.log_weight_increment;
-    proposal_ = PrepareProposal(std::move(built.mixture));
+    PrepareProposal(std::move(built.mixture), proposal_);
     std::vector<Landmark> means;
     if (!built.best_association.empty()) {
       means.assign(built.best_association.size(), Landmark::Constant(std::nan("")));

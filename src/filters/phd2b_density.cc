@@ -77,6 +77,26 @@ double ChiSquareUpperQuantileEvenDof(int dof, double tail_probability) {
   return 0.5 * (lo + hi);
 }
 
+EvenDofChiSquareQuantiles::EvenDofChiSquareQuantiles(double tail_probability)
+    : tail_probability_(tail_probability) {
+  if (!(tail_probability > 0.0 && tail_probability < 1.0)) {
+    throw std::invalid_argument(
+        "EvenDofChiSquareQuantiles: tail_probability must lie in (0, 1)");
+  }
+}
+
+double EvenDofChiSquareQuantiles::operator()(int dof) {
+  if (dof < 2 || dof % 2 != 0) return ChiSquareUpperQuantileEvenDof(dof, tail_probability_);
+  const auto half = static_cast<std::size_t>(dof / 2);
+  if (by_half_dof_.size() <= half) {
+    by_half_dof_.resize(half + 1, std::numeric_limits<double>::quiet_NaN());
+  }
+  if (std::isnan(by_half_dof_[half])) {
+    by_half_dof_[half] = ChiSquareUpperQuantileEvenDof(dof, tail_probability_);
+  }
+  return by_half_dof_[half];
+}
+
 JointIplResult JointIpl(const Pose& prior_mean, const Mat3& prior_cov,
                         std::span<const IplPair> pairs, const Mat2& noise_cov,
                         const JointIplOptions& options) {
@@ -98,9 +118,12 @@ JointIplResult JointIpl(const Pose& prior_mean, const Mat3& prior_cov,
   Eigen::MatrixXd h = Eigen::MatrixXd::Zero(nz, n);
   Eigen::VectorXd nu(nz);
   Eigen::MatrixXd s(nz, nz);
-  const double nis_limit = options.nis_tail_probability > 0.0
-                               ? ChiSquareUpperQuantileEvenDof(nz, options.nis_tail_probability)
-                               : std::numeric_limits<double>::infinity();
+  double nis_limit = std::numeric_limits<double>::infinity();
+  if (options.nis_tail_probability > 0.0) {
+    nis_limit = options.nis_quantiles != nullptr
+                    ? (*options.nis_quantiles)(nz)
+                    : ChiSquareUpperQuantileEvenDof(nz, options.nis_tail_probability);
+  }
   for (int l = 1; l <= options.max_iterations; ++l) {
     // Stacked linearisation at the previous joint iterate: z ~ h(lin) + H (x - lin) + r.
     const Pose lin_pose = lin.mean.head<3>();
@@ -183,7 +206,8 @@ ProposalOutput JointIplDensity::Build(const ProposalInput& input) const {
   }
   const JointIplResult joint =
       JointIpl(input.predicted_mean, input.predicted_cov, pairs, input.sensor->noise_cov,
-               {params_.ipl_iterations, params_.ipl_kl_tolerance, nis_tail_probability_});
+               {params_.ipl_iterations, params_.ipl_kl_tolerance, nis_tail_probability_,
+                nis_quantiles_ ? &*nis_quantiles_ : nullptr});
   out.mixture.Add(0.0, joint.pose_mean(), joint.pose_cov());
   return out;
 }

@@ -46,12 +46,29 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <optional>
 #include <span>
+#include <vector>
 
 #include "src/filters/importance_density.h"
 #include "src/filters/ipl.h"
 
 namespace phdslam::filters {
+
+/// ChiSquareUpperQuantileEvenDof(dof, tail_probability) for one tail probability, each dof
+/// computed once (the bisection costs hundreds of logarithms; the IPL asks at every call). Not
+/// thread-safe: a density owns one, and a filter's density runs on one thread.
+class EvenDofChiSquareQuantiles {
+ public:
+  /// Throws std::invalid_argument unless 0 < tail_probability < 1.
+  explicit EvenDofChiSquareQuantiles(double tail_probability);
+  /// Throws std::invalid_argument for an odd dof or dof < 2.
+  double operator()(int dof);
+
+ private:
+  double tail_probability_;
+  std::vector<double> by_half_dof_;  ///< NaN where not computed yet
+};
 
 struct JointIplOptions {
   int max_iterations = 5;      ///< L
@@ -61,6 +78,9 @@ struct JointIplOptions {
   /// linearisation, reaches the chi-square quantile with this tail probability and 2M degrees of
   /// freedom stops the IPL, and the previous iterate is kept (the prior in iteration 1).
   double nis_tail_probability = 0.0;
+  /// Optional memo of the quantiles for nis_tail_probability (EvenDofChiSquareQuantiles); when
+  /// null, each call computes its quantile afresh (the same value).
+  EvenDofChiSquareQuantiles* nis_quantiles = nullptr;
 };
 
 struct JointIplResult {
@@ -94,12 +114,15 @@ class JointIplDensity final : public ImportanceDensity {
   /// nis_tail_probability > 0 enables the innovation guard (JointIplOptions), 0 disables it.
   explicit JointIplDensity(const PhdSlamParams& params,
                            double nis_tail_probability = kPredecessorNisTailProbability)
-      : params_(params), nis_tail_probability_(nis_tail_probability) {}
+      : params_(params), nis_tail_probability_(nis_tail_probability) {
+    if (nis_tail_probability > 0.0) nis_quantiles_.emplace(nis_tail_probability);
+  }
   [[nodiscard]] ProposalOutput Build(const ProposalInput& input) const override;
 
  private:
   PhdSlamParams params_;
   double nis_tail_probability_;
+  mutable std::optional<EvenDofChiSquareQuantiles> nis_quantiles_;  ///< when the guard is on
 };
 
 }  // namespace phdslam::filters

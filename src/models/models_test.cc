@@ -137,5 +137,28 @@ TEST(SensorModel, RangeBearingBoxClutterIntensityIsTheBoxDensity) {
   EXPECT_NEAR(s.ClutterIntensity(), 0.796, 5e-4);
 }
 
+TEST(RangeBearingModel, FusedPredictionEqualsTheSeparateFunctionsBitForBit) {
+  const Pose x(3.0, -2.0, 2.9);
+  for (const Landmark& m : {Landmark(10.0, 4.0), Landmark(-7.0, -1.0), Landmark(3.0, 8.5),
+                            Landmark(-20.0, -2.0 + 1e-9)}) {
+    const auto [z_hat, j] = PredictWithJacobians(x, m);
+    const Measurement z_sep = PredictMeasurement(x, m);
+    const RangeBearingJacobians j_sep = MeasurementJacobians(x, m);
+    EXPECT_EQ(z_hat(0), z_sep(0));
+    EXPECT_EQ(z_hat(1), z_sep(1));
+    EXPECT_TRUE((j.hx.array() == j_sep.hx.array()).all());
+    EXPECT_TRUE((j.hm.array() == j_sep.hm.array()).all());
+  }
+}
+
+TEST(SensorModel, LogDetectionTermsFollowTheLastPd) {
+  LogDetectionTerms terms;
+  for (const double pd : {0.95, 0.95, 0.3, 0.0, 1.0, 0.7}) {
+    terms.Set(pd);
+    EXPECT_EQ(terms.log_pd(), std::log(pd));
+    EXPECT_EQ(terms.log_miss(), std::log1p(-pd));
+  }
+}
+
 }  // namespace
 }  // namespace phdslam::models

@@ -7,23 +7,6 @@
 
 namespace phdslam::models {
 
-Measurement PredictMeasurement(const Pose& x, const Landmark& m) {
-  const double dx = m(0) - x(0);
-  const double dy = m(1) - x(1);
-  return {std::sqrt(dx * dx + dy * dy), WrapAngle(std::atan2(dy, dx) - x(2))};
-}
-
-RangeBearingJacobians MeasurementJacobians(const Pose& x, const Landmark& m) {
-  const double dx = m(0) - x(0);
-  const double dy = m(1) - x(1);
-  const double q = dx * dx + dy * dy;
-  const double r = std::sqrt(q);
-  RangeBearingJacobians j;
-  j.hm << dx / r, dy / r, -dy / q, dx / q;
-  j.hx << -dx / r, -dy / r, 0.0, dy / q, -dx / q, -1.0;
-  return j;
-}
-
 Landmark InverseMeasurement(const Pose& x, const Measurement& z) {
   const double a = x(2) + z(1);
   return {x(0) + z(0) * std::cos(a), x(1) + z(0) * std::sin(a)};

@@ -1,6 +1,9 @@
 // Range-bearing measurement model, its Jacobians and inverse model (reference notes section 5).
 #pragma once
 
+#include <cmath>
+
+#include "src/core/angles.h"
 #include "src/core/types.h"
 
 namespace phdslam::models {
@@ -11,9 +14,41 @@ struct RangeBearingJacobians {
 };
 
 /// h(m, x) = [r, wrap(atan2(dy, dx) - theta)].
-Measurement PredictMeasurement(const Pose& x, const Landmark& m);
+inline Measurement PredictMeasurement(const Pose& x, const Landmark& m) {
+  const double dx = m(0) - x(0);
+  const double dy = m(1) - x(1);
+  return {std::sqrt(dx * dx + dy * dy), WrapAngle(std::atan2(dy, dx) - x(2))};
+}
+
+/// Jacobians of h at (x, m), given the offsets dx, dy of m from x, q = dx^2 + dy^2 and r = sqrt(q).
+inline RangeBearingJacobians JacobiansFromOffsets(double dx, double dy, double q, double r) {
+  RangeBearingJacobians j;
+  j.hm << dx / r, dy / r, -dy / q, dx / q;
+  j.hx << -dx / r, -dy / r, 0.0, dy / q, -dx / q, -1.0;
+  return j;
+}
+
 /// Jacobians of h at (x, m).
-RangeBearingJacobians MeasurementJacobians(const Pose& x, const Landmark& m);
+inline RangeBearingJacobians MeasurementJacobians(const Pose& x, const Landmark& m) {
+  const double dx = m(0) - x(0);
+  const double dy = m(1) - x(1);
+  const double q = dx * dx + dy * dy;
+  return JacobiansFromOffsets(dx, dy, q, std::sqrt(q));
+}
+
+/// h(m, x) and its Jacobians from one evaluation of the offsets: the same values, bit for bit, as
+/// PredictMeasurement and MeasurementJacobians, for the hot loops that need both.
+struct PredictionWithJacobians {
+  Measurement z_hat;
+  RangeBearingJacobians j;
+};
+inline PredictionWithJacobians PredictWithJacobians(const Pose& x, const Landmark& m) {
+  const double dx = m(0) - x(0);
+  const double dy = m(1) - x(1);
+  const double q = dx * dx + dy * dy;
+  const double r = std::sqrt(q);
+  return {{r, WrapAngle(std::atan2(dy, dx) - x(2))}, JacobiansFromOffsets(dx, dy, q, r)};
+}
 /// Inverse model: the landmark a measurement z taken at pose x points to.
 Landmark InverseMeasurement(const Pose& x, const Measurement& z);
 /// Jacobian of the inverse model with respect to z.

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "src/core/angles.h"
@@ -122,6 +123,25 @@ class FovView {
   double cos_half_;
   double enlarged_range2_;
   double cos_enlarged_half_;
+};
+
+/// log pD and log(1 - pD) of the last pD given, recomputed only when pD changes: with a constant
+/// detection profile the hot loops take the two logarithms once instead of once per component.
+class LogDetectionTerms {
+ public:
+  void Set(double pd) {
+    if (pd == pd_) return;
+    pd_ = pd;
+    log_pd_ = std::log(pd);
+    log_miss_ = std::log1p(-pd);
+  }
+  [[nodiscard]] double log_pd() const { return log_pd_; }      ///< log pD
+  [[nodiscard]] double log_miss() const { return log_miss_; }  ///< log(1 - pD)
+
+ private:
+  double pd_ = std::numeric_limits<double>::quiet_NaN();
+  double log_pd_ = 0.0;
+  double log_miss_ = 0.0;
 };
 
 inline double SensorModel::DetectionProbability(const Pose& x, const Landmark& m) const {

@@ -3,7 +3,9 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
+#include <numeric>
 
 #include "src/core/angles.h"
 #include "src/core/gaussian.h"
@@ -33,8 +35,9 @@ PhdUpdateResult GmPhdMap::Update(const Pose& pose, std::span<const Measurement> 
   // Per-component predicted measurement, innovation covariance and updated covariance.
   struct Predicted {
     int index;
-    double pd;
+    double log_miss;  // log(1 - pD)
     Measurement z_hat;
+    double range_window;  // pre-gate on the range innovation (FirstCoordinateGateHalfWidth)
     Mat2 s_inv;
     Eigen::Matrix2d gain;
     Mat2 cov_post;
@@ -42,14 +45,18 @@ PhdUpdateResult GmPhdMap::Update(const Pose& pose, std::span<const Measurement> 
   };
   std::vector<Predicted> predicted;
   predicted.reserve(active_.size());
+  // The missed-detection mass enters the likelihood only when the reference omission is off.
+  const bool needs_missed_mass = !params.reference_omit_missed_detection_mass;
   double missed_mass = 0.0;
   const models::FovView fov(sensor, pose);
+  models::LogDetectionTerms log_pd;
   for (int i = 0; i < static_cast<int>(active_.size()); ++i) {
     const GaussianComponent& c = active_[i];
     const double pd = fov.DetectionProbability(c.mean);
     if (pd <= 0.0) continue;
-    missed_mass += pd * std::exp(c.log_weight);
-    const auto j = models::MeasurementJacobians(pose, c.mean);
+    if (needs_missed_mass) missed_mass += pd * std::exp(c.log_weight);
+    log_pd.Set(pd);
+    const auto [z_hat, j] = models::PredictWithJacobians(pose, c.mean);
     const Mat2 ph = c.cov * j.hm.transpose();
     Mat2 s = j.hm * ph + sensor.noise_cov;
     Symmetrize(s);
@@ -57,9 +64,11 @@ PhdUpdateResult GmPhdMap::Update(const Pose& pose, std::span<const Measurement> 
     const Mat2 gain = ph * s_inv;
     Mat2 cov_post = c.cov - gain * s * gain.transpose();
     Symmetrize(cov_post);
-    predicted.push_back(
-        {i, pd, models::PredictMeasurement(pose, c.mean), s_inv, gain, cov_post,
-         std::log(pd) + c.log_weight - log_two_pi - 0.5 * std::log(s.determinant())});
+    predicted.push_back({i, log_pd.log_miss(), z_hat,
+                         FirstCoordinateGateHalfWidth(s, params.gate_threshold), s_inv, gain,
+                         cov_post,
+                         log_pd.log_pd() + c.log_weight - log_two_pi -
+                             0.5 * std::log(s.determinant())});
   }
 
   // Gated detection terms l_ij, grouped by measurement (one flat list with offsets).
@@ -76,6 +85,7 @@ PhdUpdateResult GmPhdMap::Update(const Pose& pose, std::span<const Measurement> 
     first[j] = static_cast<int>(detections.size());
     for (int p = 0; p < static_cast<int>(predicted.size()); ++p) {
       const Predicted& pc = predicted[p];
+      if (std::abs(measurements[j](0) - pc.z_hat(0)) > pc.range_window) continue;
       Vec2 nu = measurements[j] - pc.z_hat;
       nu(1) = WrapAngle(nu(1));
       const double d2 = nu.dot(pc.s_inv * nu);
@@ -91,7 +101,7 @@ PhdUpdateResult GmPhdMap::Update(const Pose& pose, std::span<const Measurement> 
   const std::size_t old_size = active_.size();
   active_.reserve(old_size + detections.size());
   for (const Predicted& pc : predicted) {
-    active_[pc.index].log_weight += std::log1p(-pc.pd);
+    active_[pc.index].log_weight += pc.log_miss;
   }
   for (int j = 0; j < num_z; ++j) {
     if (first[j] == first[j + 1]) {
@@ -126,20 +136,46 @@ PhdUpdateResult GmPhdMap::Update(const Pose& pose, std::span<const Measurement> 
   return result;
 }
 
+namespace {
+
+/// The positions of `components` in the order of std::stable_sort by descending log-weight.
+/// Short lists (every active list of the synthetic scenario) are sorted by insertion, which gives
+/// the same order without stable_sort's buffer.
+std::vector<int> OrderByWeightDescending(const std::vector<GaussianComponent>& components) {
+  std::vector<int> order(components.size());
+  std::iota(order.begin(), order.end(), 0);
+  const auto heavier = [&components](int a, int b) {
+    return components[a].log_weight > components[b].log_weight;
+  };
+  constexpr std::size_t kInsertionSortMax = 32;
+  if (order.size() > kInsertionSortMax) {
+    std::stable_sort(order.begin(), order.end(), heavier);
+    return order;
+  }
+  for (std::size_t i = 1; i < order.size(); ++i) {
+    const int moving = order[i];
+    std::size_t j = i;
+    for (; j > 0 && heavier(moving, order[j - 1]); --j) order[j] = order[j - 1];
+    order[j] = moving;
+  }
+  return order;
+}
+
+}  // namespace
+
 std::vector<GaussianComponent> PruneAndMerge(std::vector<GaussianComponent> components,
                                              const MapParams& params) {
   if (components.empty()) return components;
-  // 1. Stable sort by log-weight, descending.
-  std::stable_sort(components.begin(), components.end(),
-                   [](const GaussianComponent& a, const GaussianComponent& b) {
-                     return a.log_weight > b.log_weight;
-                   });
+  // 1. Stable sort by log-weight, descending (the order of positions; components stay in place).
+  const std::vector<int> order = OrderByWeightDescending(components);
+  const auto sorted = [&](std::size_t k) -> const GaussianComponent& {
+    return components[order[k]];
+  };
   // 2. Prune: keep the leading components above the threshold, and always the first.
   std::size_t kept = 1;
-  while (kept < components.size() && components[kept].log_weight >= params.prune_log_weight) {
+  while (kept < components.size() && sorted(kept).log_weight >= params.prune_log_weight) {
     ++kept;
   }
-  components.resize(kept);
 
   // 3. Greedy merge in descending order.
   std::vector<GaussianComponent> merged;
@@ -149,22 +185,28 @@ std::vector<GaussianComponent> PruneAndMerge(std::vector<GaussianComponent> comp
   std::vector<double> member_log_w;
   for (std::size_t i = 0; i < kept; ++i) {
     if (used[i]) continue;
-    const GaussianComponent& lead = components[i];
+    const GaussianComponent& lead = sorted(i);
     members.clear();
     member_log_w.clear();
     members.push_back(static_cast<int>(i));
     member_log_w.push_back(lead.log_weight);
     used[i] = true;
     const Mat2 lead_inv = lead.cov.inverse();
+    // With the leading covariance, a pre-gate on the x offset skips the far components.
+    const double x_window = params.reference_merge_leading_covariance
+                                ? FirstCoordinateGateHalfWidth(lead.cov, params.merge_threshold)
+                                : std::numeric_limits<double>::infinity();
     for (std::size_t j = i + 1; j < kept; ++j) {
       if (!params.reference_merge_double_membership && used[j]) continue;
-      const Vec2 d = lead.mean - components[j].mean;
+      const GaussianComponent& candidate = sorted(j);
+      if (std::abs(lead.mean(0) - candidate.mean(0)) > x_window) continue;
+      const Vec2 d = lead.mean - candidate.mean;
       const double dist = params.reference_merge_leading_covariance
                               ? d.dot(lead_inv * d)
-                              : d.dot(components[j].cov.inverse() * d);
+                              : d.dot(candidate.cov.inverse() * d);
       if (dist < params.merge_threshold) {
         members.push_back(static_cast<int>(j));
-        member_log_w.push_back(components[j].log_weight);
+        member_log_w.push_back(candidate.log_weight);
         used[j] = true;
       }
     }
@@ -175,11 +217,11 @@ std::vector<GaussianComponent> PruneAndMerge(std::vector<GaussianComponent> comp
       out.log_weight = LogSumExp(member_log_w);
       Vec2 mean = Vec2::Zero();
       for (std::size_t m = 0; m < members.size(); ++m) {
-        mean += std::exp(member_log_w[m] - out.log_weight) * components[members[m]].mean;
+        mean += std::exp(member_log_w[m] - out.log_weight) * sorted(members[m]).mean;
       }
       Mat2 cov = Mat2::Zero();
       for (std::size_t m = 0; m < members.size(); ++m) {
-        const GaussianComponent& c = components[members[m]];
+        const GaussianComponent& c = sorted(members[m]);
         const Vec2 dm = mean - c.mean;
         cov += std::exp(member_log_w[m] - out.log_weight) * (c.cov + dm * dm.transpose());
       }

@@ -145,6 +145,15 @@ TEST(ChiSquareUpperQuantileEvenDof, MatchesTabulatedValues) {
   EXPECT_THROW(ChiSquareUpperQuantileEvenDof(4, 0.0), std::invalid_argument);
 }
 
+TEST(EvenDofChiSquareQuantiles, RemembersTheSameValues) {
+  EvenDofChiSquareQuantiles quantiles(1e-6);
+  for (const int dof : {6, 2, 40, 6, 12, 2, 40}) {
+    EXPECT_EQ(quantiles(dof), ChiSquareUpperQuantileEvenDof(dof, 1e-6)) << "dof " << dof;
+  }
+  EXPECT_THROW(quantiles(3), std::invalid_argument);
+  EXPECT_THROW(EvenDofChiSquareQuantiles(1.0), std::invalid_argument);
+}
+
 TEST(JointIpl, InnovationGuardKeepsThePriorForAnInconsistentAssociation) {
   std::vector<IplPair> pairs = SeveralPairs();
   pairs[1].z(0) += 40.0;  // 40 m range error: NIS far beyond any quantile
