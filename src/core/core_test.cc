@@ -71,7 +71,8 @@ TEST(Gaussian, FirstCoordinatePreGateNeverSkipsAPairTheFullTestKeeps) {
   // Not positive definite, or NaN: nothing is skipped.
   Eigen::Matrix2d indefinite;
   indefinite << 1.0, 2.0, 2.0, 1.0;
-  EXPECT_EQ(FirstCoordinateGateHalfWidth(indefinite, gate), std::numeric_limits<double>::infinity());
+  EXPECT_EQ(FirstCoordinateGateHalfWidth(indefinite, gate),
+            std::numeric_limits<double>::infinity());
   Eigen::Matrix2d with_nan = Eigen::Matrix2d::Identity();
   with_nan(1, 1) = std::nan("");
   EXPECT_FALSE(std::abs(1e300) > FirstCoordinateGateHalfWidth(with_nan, gate));

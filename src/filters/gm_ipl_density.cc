@@ -60,8 +60,8 @@ AssociationCosts BuildAssociationCosts(const ProposalInput& input, const PhdSlam
     Mat2 s = j.hx * input.predicted_cov * j.hx.transpose() + j.hm * comp.cov * j.hm.transpose() +
              input.sensor->noise_cov;
     Symmetrize(s);
-    const double base =
-        log_pd.log_pd() + comp.log_weight - log_clutter - log_two_pi - 0.5 * std::log(s.determinant());
+    const double base = log_pd.log_pd() + comp.log_weight - log_clutter - log_two_pi -
+                        0.5 * std::log(s.determinant());
     const Mat2 s_inv = s.inverse();
     const int row = static_cast<int>(c.rows.size());
     const double range_window = FirstCoordinateGateHalfWidth(s, params.map.gate_threshold);

@@ -38,8 +38,8 @@ Factorised3 Factorise(const Mat3& p) {
 double KlDivergenceFactorised(const Vec3& m0, const Mat3& p0, double log_det0, const Vec3& m1,
                               const Factorised3& p1) {
   const Vec3 dm = m1 - m0;
-  return 0.5 * ((p1.llt.solve(p0)).trace() - log_det0 + p1.log_det - 3.0 +
-                dm.dot(p1.llt.solve(dm)));
+  return 0.5 *
+         ((p1.llt.solve(p0)).trace() - log_det0 + p1.log_det - 3.0 + dm.dot(p1.llt.solve(dm)));
 }
 
 }  // namespace
@@ -77,9 +77,8 @@ IplResult PartitionedIpl(const Pose& prior_mean, const Mat3& prior_cov,
       lin.cholesky_failed = true;
       break;
     }
-    const bool converged =
-        l >= 2 && KlDivergenceFactorised(lin.mean, lin.cov, lin_log_det, m, factor) <
-                      options.kl_tolerance;
+    const bool converged = l >= 2 && KlDivergenceFactorised(lin.mean, lin.cov, lin_log_det, m,
+                                                            factor) < options.kl_tolerance;
     lin.mean = m;
     lin.cov = p;
     lin_log_det = factor.log_det;

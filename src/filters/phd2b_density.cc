@@ -80,8 +80,7 @@ double ChiSquareUpperQuantileEvenDof(int dof, double tail_probability) {
 EvenDofChiSquareQuantiles::EvenDofChiSquareQuantiles(double tail_probability)
     : tail_probability_(tail_probability) {
   if (!(tail_probability > 0.0 && tail_probability < 1.0)) {
-    throw std::invalid_argument(
-        "EvenDofChiSquareQuantiles: tail_probability must lie in (0, 1)");
+    throw std::invalid_argument("EvenDofChiSquareQuantiles: tail_probability must lie in (0, 1)");
   }
 }
 

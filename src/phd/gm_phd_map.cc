@@ -64,11 +64,10 @@ PhdUpdateResult GmPhdMap::Update(const Pose& pose, std::span<const Measurement> 
     const Mat2 gain = ph * s_inv;
     Mat2 cov_post = c.cov - gain * s * gain.transpose();
     Symmetrize(cov_post);
-    predicted.push_back({i, log_pd.log_miss(), z_hat,
-                         FirstCoordinateGateHalfWidth(s, params.gate_threshold), s_inv, gain,
-                         cov_post,
-                         log_pd.log_pd() + c.log_weight - log_two_pi -
-                             0.5 * std::log(s.determinant())});
+    predicted.push_back(
+        {i, log_pd.log_miss(), z_hat, FirstCoordinateGateHalfWidth(s, params.gate_threshold), s_inv,
+         gain, cov_post,
+         log_pd.log_pd() + c.log_weight - log_two_pi - 0.5 * std::log(s.determinant())});
   }
 
   // Gated detection terms l_ij, grouped by measurement (one flat list with offsets).
