@@ -20,6 +20,7 @@ from .comparison import (
 )
 from .csv_table import ResultsFormatError
 from .figures.glmb_paper import plot_mean_std_per_rate, plot_rmse_over_time
+from .figures.map_scaling import map_scaling_ratios, plot_map_scaling
 from .figures.metrics_over_time import collect_series, plot_metrics_over_time
 from .figures.nees import nees_series, plot_nees
 from .figures.nis import nis_series, plot_nis
@@ -52,6 +53,8 @@ from .html_page import Section, escape, figure_html, note_html, render_page, tab
 from .paper import PaperValues
 from .results import (
     GPS_FILE,
+    MAP_SCALING_COLUMNS,
+    MAP_SCALING_FILE,
     PARENT_WEIGHTS_FILE,
     PARENT_WEIGHTS_META_FILE,
     SCALING_COLUMNS,
@@ -71,7 +74,7 @@ from .tables_shared import matched_paper_tables, ours_with_se, paper_table_rows
 REFERENCE_SMOOTHER = "smoother-"
 
 FOLDER_SECTIONS = ("summary", "paper-tables", "fig1", "fig2", "fig3", "nees", "scaling",
-                   "parent-weights")
+                   "map-scaling", "parent-weights")
 """Section ids of each results folder (prefixed by ``d<index>-`` when there are several)."""
 
 
@@ -435,6 +438,35 @@ class ReportBuilder:
                                "least-squares fit a \u00b7 n^b."))
         return Section(sid, title, body=body)
 
+    def map_scaling_section(self, sid: str, prefix: str, folder: ResultsFolder) -> Section:
+        """Time per step and map bytes against the size of the map, from map_scaling.csv."""
+        title = "Cost against the size of the map"
+        table = folder.optional_table(MAP_SCALING_FILE, MAP_SCALING_COLUMNS)
+        if table is None:
+            return Section(sid, title, skipped_note=(
+                f"no {MAP_SCALING_FILE} in the results folder (written by "
+                f"benchmarks/map_scaling_benchmark --csv=FILE)"))
+        fig = plot_map_scaling(table)
+        if fig is None:
+            return Section(sid, title, skipped_note=f"{MAP_SCALING_FILE} has no rows")
+        rows = [[(str(int(n)), ""), (str(int(m)), ""), (format_value(t), ""),
+                 (format_value(b / 1e6), "")]
+                for m, n, t, b in sorted(zip(table.num("landmarks"), table.num("particles"),
+                                             table.num("ms_per_step"), table.num("map_bytes")),
+                                         key=lambda r: (r[1], r[0]))]
+        ratios = map_scaling_ratios(table)
+        growth = "; ".join(f"N = {n}: \u00d7{r:.2f}" for n, r in ratios.items())
+        body = ("<p>Time per step from the smallest to the largest map"
+                + (f": {growth}." if growth else ": fewer than two map sizes per N.")
+                + " Bytes: heap bytes held by all particles' maps after the last step, storage "
+                "shared between particles counted once.</p>"
+                + table_html(["N", "landmarks", "ms per step", "map MB"], rows)
+                + self._figure(fig, f"{prefix}map-scaling.png",
+                               "Time per step (left) and bytes of all particles' maps (right) "
+                               "against the number of landmarks in the map, per particle "
+                               "count N."))
+        return Section(sid, title, body=body)
+
     def parent_weights_section(self, sid: str, prefix: str, folder: ResultsFolder) -> Section:
         """Lee, Clark & Salvi (2012) Fig. 4 analogue, from parent_weights.csv/.json."""
         title = ("Single-cluster vs RB-PHD parent weighting (Lee, Clark & Salvi 2012, "
@@ -745,6 +777,7 @@ class ReportBuilder:
                 self.particles_section(f"{prefix}fig3", prefix, folder),
                 self.nees_section(f"{prefix}nees", prefix, folder),
                 self.scaling_section(f"{prefix}scaling", prefix, folder),
+                self.map_scaling_section(f"{prefix}map-scaling", prefix, folder),
                 self.parent_weights_section(f"{prefix}parent-weights", prefix, folder),
             ]
             for s in built:

@@ -305,4 +305,9 @@ def make_results_folder(root: Path, spec: FixtureSpec | None = None) -> Path:
                 rows.append([estimator, n, float(2.0 * n ** exponent), 100])
         _write_csv(root / "scaling.csv", ["estimator", "landmarks_in_fov", "us_per_call",
                                           "calls"], rows)
+        map_rows = [[m, n, 0.01 * n * (1.0 + 0.1 * i), 1000 * m + 500 * n]
+                    for n in (1, 10) for i, m in enumerate((100, 1000, 10000))]
+        map_rows.append([100, 1000, 12.0, 600000])
+        _write_csv(root / "map_scaling.csv", ["landmarks", "particles", "ms_per_step",
+                                              "map_bytes"], map_rows)
     return root

@@ -51,12 +51,12 @@ class FullReportTest(unittest.TestCase):
     def test_figures_are_written_and_embedded(self):
         names = sorted(p.name for p in self.report.figure_files)
         self.assertEqual(names, ["fig1-trajectory-map.png", "fig2-metrics-over-time.png",
-                                 "fig3-particle-paths.png", "nees.png", "nis.png",
-                                 "parent-weights.png", "scaling.png"])
+                                 "fig3-particle-paths.png", "map-scaling.png", "nees.png",
+                                 "nis.png", "parent-weights.png", "scaling.png"])
         for path in self.report.figure_files:
             self.assertTrue(path.read_bytes().startswith(PNG_MAGIC), path)
         embedded = re.findall(r'<img src="data:image/png;base64,([A-Za-z0-9+/=]+)"', self.html)
-        self.assertEqual(len(embedded), 7)
+        self.assertEqual(len(embedded), 8)
         for data in embedded:
             self.assertTrue(base64.b64decode(data).startswith(PNG_MAGIC))
         png_files = {p.read_bytes() for p in self.report.figure_files}
@@ -102,6 +102,14 @@ class FullReportTest(unittest.TestCase):
         self.assertIn("NIS per measurement (pooled)", body)
         self.assertIn("nis.png", body)
 
+    def test_map_scaling_growth_and_table(self):
+        body = self.report.section("map-scaling").body
+        # 0.01 N (1 + 0.1 i) over i = 0 .. 2: x1.20 from the smallest to the largest map.
+        self.assertIn("N = 1: \u00d71.20", body)
+        self.assertIn("N = 10: \u00d71.20", body)
+        self.assertNotIn("N = 1000:", body)  # one map size only
+        self.assertIn("map-scaling.png", body)
+
     def test_scaling_exponents(self):
         body = self.report.section("scaling").body
         self.assertIn("1.000", body)  # phd3 built with n^1
@@ -133,14 +141,15 @@ class MinimalReportTest(unittest.TestCase):
         self.assertIn("<title>Minimal</title>", self.html)
 
     def test_sections_without_data_are_skipped_with_notes(self):
-        for section_id in ("paper-tables", "fig3", "nees", "scaling", "parent-weights",
-                           "sensitivity"):
+        for section_id in ("paper-tables", "fig3", "nees", "scaling", "map-scaling",
+                           "parent-weights", "sensitivity"):
             self.assertEqual(section_status(self.html, section_id), "skipped", section_id)
         for section_id in ("summary", "fig1", "fig2"):
             self.assertEqual(section_status(self.html, section_id), "shown", section_id)
         self.assertIn("no run folder holds particles.csv", self.html)
         self.assertIn("steps.csv has no &#x27;nees&#x27; column", self.html)
         self.assertIn("no scaling.csv", self.html)
+        self.assertIn("no map_scaling.csv", self.html)
         self.assertIn("Skipped: no parent_weights.csv in the results folder (written by phdslam "
                       "parent-weights --out DIR)", self.html)
 
