@@ -78,6 +78,30 @@ TEST(Gaussian, FirstCoordinatePreGateNeverSkipsAPairTheFullTestKeeps) {
   EXPECT_FALSE(std::abs(1e300) > FirstCoordinateGateHalfWidth(with_nan, gate));
 }
 
+template <typename Matrix>
+void ExpectSymmetrizeEqualsTheMatrixExpression(RandomStream& rng, Matrix p) {
+  for (Eigen::Index r = 0; r < p.rows(); ++r) {
+    for (Eigen::Index c = 0; c < p.cols(); ++c)
+      p(r, c) = std::exp(6.0 * rng.Normal()) * rng.Normal();
+  }
+  const Matrix expected = (0.5 * (p + p.transpose())).eval();
+  Symmetrize(p);
+  for (Eigen::Index r = 0; r < p.rows(); ++r) {
+    for (Eigen::Index c = 0; c < p.cols(); ++c) {
+      EXPECT_EQ(p(r, c), expected(r, c)) << r << "," << c;  // bit for bit, not approximately
+    }
+  }
+}
+
+TEST(Gaussian, SymmetrizeGivesTheValuesOfTheMatrixExpressionBitForBit) {
+  RandomStream rng(5);
+  for (int trial = 0; trial < 200; ++trial) {
+    ExpectSymmetrizeEqualsTheMatrixExpression(rng, Eigen::Matrix2d());
+    ExpectSymmetrizeEqualsTheMatrixExpression(rng, Eigen::Matrix3d());
+    ExpectSymmetrizeEqualsTheMatrixExpression(rng, Eigen::MatrixXd(7, 7));
+  }
+}
+
 TEST(RandomStream, IsReproducibleAndSeedsAreIndependent) {
   RandomStream a(DeriveSeed(1, 2, 3));
   RandomStream b(DeriveSeed(1, 2, 3));

@@ -17,10 +17,18 @@
 
 namespace phdslam {
 
-/// Replaces P by (P + P^T) / 2 in place.
+/// Replaces P by (P + P^T) / 2 in place: each pair of off-diagonal entries by 0.5 (a + b), each
+/// diagonal entry by 0.5 (d + d), element by element without a temporary matrix (the values of
+/// (0.5 * (P + P^T)).eval(), bit for bit).
 template <typename Derived>
 void Symmetrize(Eigen::MatrixBase<Derived>& p) {
-  p = (0.5 * (p + p.transpose())).eval();
+  for (Eigen::Index c = 0; c < p.cols(); ++c) {
+    for (Eigen::Index r = 0; r <= c && r < p.rows(); ++r) {
+      const typename Derived::Scalar v = 0.5 * (p(r, c) + p(c, r));
+      p(r, c) = v;
+      p(c, r) = v;
+    }
+  }
 }
 
 /// Lower Cholesky factor, or nullopt when P is not numerically positive definite

@@ -60,8 +60,9 @@ AssociationCosts BuildAssociationCosts(const ProposalInput& input, const PhdSlam
     Mat2 s = j.hx * input.predicted_cov * j.hx.transpose() + j.hm * comp.cov * j.hm.transpose() +
              input.sensor->noise_cov;
     Symmetrize(s);
-    const double base = log_pd.log_pd() + comp.log_weight - log_clutter - log_two_pi -
-                        0.5 * std::log(s.determinant());
+    // The log-normaliser, formed when the first measurement passes the gate.
+    double base = 0.0;
+    bool have_base = false;
     const Mat2 s_inv = s.inverse();
     const int row = static_cast<int>(c.rows.size());
     const double range_window = FirstCoordinateGateHalfWidth(s, params.map.gate_threshold);
@@ -71,6 +72,11 @@ AssociationCosts BuildAssociationCosts(const ProposalInput& input, const PhdSlam
       nu(1) = WrapAngle(nu(1));
       const double d2 = nu.dot(s_inv * nu);
       if (d2 < params.map.gate_threshold) {
+        if (!have_base) {
+          base = log_pd.log_pd() + comp.log_weight - log_clutter - log_two_pi -
+                 0.5 * std::log(s.determinant());
+          have_base = true;
+        }
         gated.push_back({row, jz, base - 0.5 * d2});
         col_of[jz] = 0;
       }

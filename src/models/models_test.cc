@@ -151,6 +151,22 @@ TEST(RangeBearingModel, FusedPredictionEqualsTheSeparateFunctionsBitForBit) {
   }
 }
 
+TEST(RangeBearingModel, FusedBirthEqualsTheSeparateFunctionsBitForBit) {
+  Mat2 r;
+  r << 0.64, 0.01, 0.01, 2.7e-5;
+  for (const Pose& x : {Pose(3.0, -2.0, 2.9), Pose(-40.0, 7.5, -3.1), Pose(0.0, 0.0, 0.0)}) {
+    for (const Measurement& z : {Measurement(12.0, 0.4), Measurement(149.0, -1.5),
+                                 Measurement(0.5, 3.0), Measurement(60.0, -0.001)}) {
+      const BirthGaussian birth = BirthFromMeasurement(x, z, r);
+      const Landmark mean = InverseMeasurement(x, z);
+      const Mat2 cov = BirthCovariance(x, z, r);
+      EXPECT_EQ(birth.mean(0), mean(0));
+      EXPECT_EQ(birth.mean(1), mean(1));
+      EXPECT_TRUE((birth.cov.array() == cov.array()).all());
+    }
+  }
+}
+
 TEST(SensorModel, LogDetectionTermsFollowTheLastPd) {
   LogDetectionTerms terms;
   for (const double pd : {0.95, 0.95, 0.3, 0.0, 1.0, 0.7}) {

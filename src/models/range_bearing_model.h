@@ -55,5 +55,11 @@ Landmark InverseMeasurement(const Pose& x, const Measurement& z);
 Mat2 InverseMeasurementJacobian(const Pose& x, const Measurement& z);
 /// Birth covariance G R G^T (no pose-uncertainty term).
 Mat2 BirthCovariance(const Pose& x, const Measurement& z, const Mat2& r);
+/// InverseMeasurement and BirthCovariance from one sine and cosine: the same values, bit for bit.
+struct BirthGaussian {
+  Landmark mean;
+  Mat2 cov;
+};
+BirthGaussian BirthFromMeasurement(const Pose& x, const Measurement& z, const Mat2& r);
 
 }  // namespace phdslam::models

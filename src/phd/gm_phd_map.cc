@@ -18,8 +18,8 @@ void GmPhdMap::AddBirths(const Pose& pose, std::span<const Measurement> measurem
                          const Mat2& noise_cov, const MapParams& params) {
   active_.reserve(active_.size() + measurements.size());
   for (const Measurement& z : measurements) {
-    active_.push_back({models::InverseMeasurement(pose, z),
-                       models::BirthCovariance(pose, z, noise_cov), params.birth_log_weight});
+    const models::BirthGaussian birth = models::BirthFromMeasurement(pose, z, noise_cov);
+    active_.push_back({birth.mean, birth.cov, params.birth_log_weight});
   }
 }
 
@@ -32,14 +32,20 @@ PhdUpdateResult GmPhdMap::Update(const Pose& pose, std::span<const Measurement> 
   const double log_clutter = std::log(sensor.ClutterIntensity());
   const double log_two_pi = std::log(2.0 * std::numbers::pi);
 
-  // Per-component predicted measurement, innovation covariance and updated covariance.
+  // Per-component predicted measurement and innovation covariance; the gain, the updated
+  // covariance and the log-normaliser only for components that gate a measurement.
   struct Predicted {
     int index;
     double log_miss;  // log(1 - pD)
+    double log_pd;
+    double log_weight;  // eta, before this update
     Measurement z_hat;
     double range_window;  // pre-gate on the range innovation (FirstCoordinateGateHalfWidth)
+    Mat2 ph;              // P Hm^T
+    Mat2 s;
     Mat2 s_inv;
-    Eigen::Matrix2d gain;
+    bool gated = false;  // the members below are set
+    Mat2 gain;
     Mat2 cov_post;
     double log_norm;  // log pD + eta - log 2 pi - 1/2 log det S
   };
@@ -60,15 +66,24 @@ PhdUpdateResult GmPhdMap::Update(const Pose& pose, std::span<const Measurement> 
     const Mat2 ph = c.cov * j.hm.transpose();
     Mat2 s = j.hm * ph + sensor.noise_cov;
     Symmetrize(s);
-    const Mat2 s_inv = s.inverse();
-    const Mat2 gain = ph * s_inv;
-    Mat2 cov_post = c.cov - gain * s * gain.transpose();
-    Symmetrize(cov_post);
-    predicted.push_back(
-        {i, log_pd.log_miss(), z_hat, FirstCoordinateGateHalfWidth(s, params.gate_threshold), s_inv,
-         gain, cov_post,
-         log_pd.log_pd() + c.log_weight - log_two_pi - 0.5 * std::log(s.determinant())});
+    Predicted& pc = predicted.emplace_back();
+    pc.index = i;
+    pc.log_miss = log_pd.log_miss();
+    pc.log_pd = log_pd.log_pd();
+    pc.log_weight = c.log_weight;
+    pc.z_hat = z_hat;
+    pc.range_window = FirstCoordinateGateHalfWidth(s, params.gate_threshold);
+    pc.ph = ph;
+    pc.s = s;
+    pc.s_inv = s.inverse();
   }
+  const auto complete = [&](Predicted& pc) {
+    pc.gain = pc.ph * pc.s_inv;
+    pc.cov_post = active_[pc.index].cov - pc.gain * pc.s * pc.gain.transpose();
+    Symmetrize(pc.cov_post);
+    pc.log_norm = pc.log_pd + pc.log_weight - log_two_pi - 0.5 * std::log(pc.s.determinant());
+    pc.gated = true;
+  };
 
   // Gated detection terms l_ij, grouped by measurement (one flat list with offsets).
   struct Detection {
@@ -83,12 +98,13 @@ PhdUpdateResult GmPhdMap::Update(const Pose& pose, std::span<const Measurement> 
   for (int j = 0; j < num_z; ++j) {
     first[j] = static_cast<int>(detections.size());
     for (int p = 0; p < static_cast<int>(predicted.size()); ++p) {
-      const Predicted& pc = predicted[p];
+      Predicted& pc = predicted[p];
       if (std::abs(measurements[j](0) - pc.z_hat(0)) > pc.range_window) continue;
       Vec2 nu = measurements[j] - pc.z_hat;
       nu(1) = WrapAngle(nu(1));
       const double d2 = nu.dot(pc.s_inv * nu);
       if (d2 < params.gate_threshold) {
+        if (!pc.gated) complete(pc);
         detections.push_back({p, pc.log_norm - 0.5 * d2, nu, d2});
       }
     }
@@ -182,6 +198,7 @@ std::vector<GaussianComponent> PruneAndMerge(std::vector<GaussianComponent> comp
   std::vector<bool> used(kept, false);
   std::vector<int> members;
   std::vector<double> member_log_w;
+  std::vector<double> member_w;
   for (std::size_t i = 0; i < kept; ++i) {
     if (used[i]) continue;
     const GaussianComponent& lead = sorted(i);
@@ -190,7 +207,8 @@ std::vector<GaussianComponent> PruneAndMerge(std::vector<GaussianComponent> comp
     members.push_back(static_cast<int>(i));
     member_log_w.push_back(lead.log_weight);
     used[i] = true;
-    const Mat2 lead_inv = lead.cov.inverse();
+    Mat2 lead_inv;  // lead.cov^-1, formed when the first candidate passes the pre-gate
+    bool have_lead_inv = false;
     // With the leading covariance, a pre-gate on the x offset skips the far components.
     const double x_window = params.reference_merge_leading_covariance
                                 ? FirstCoordinateGateHalfWidth(lead.cov, params.merge_threshold)
@@ -200,6 +218,10 @@ std::vector<GaussianComponent> PruneAndMerge(std::vector<GaussianComponent> comp
       const GaussianComponent& candidate = sorted(j);
       if (std::abs(lead.mean(0) - candidate.mean(0)) > x_window) continue;
       const Vec2 d = lead.mean - candidate.mean;
+      if (params.reference_merge_leading_covariance && !have_lead_inv) {
+        lead_inv = lead.cov.inverse();
+        have_lead_inv = true;
+      }
       const double dist = params.reference_merge_leading_covariance
                               ? d.dot(lead_inv * d)
                               : d.dot(candidate.cov.inverse() * d);
@@ -214,15 +236,17 @@ std::vector<GaussianComponent> PruneAndMerge(std::vector<GaussianComponent> comp
       out = lead;
     } else {
       out.log_weight = LogSumExp(member_log_w);
+      member_w.clear();
+      for (const double log_w : member_log_w) member_w.push_back(std::exp(log_w - out.log_weight));
       Vec2 mean = Vec2::Zero();
       for (std::size_t m = 0; m < members.size(); ++m) {
-        mean += std::exp(member_log_w[m] - out.log_weight) * sorted(members[m]).mean;
+        mean += member_w[m] * sorted(members[m]).mean;
       }
       Mat2 cov = Mat2::Zero();
       for (std::size_t m = 0; m < members.size(); ++m) {
         const GaussianComponent& c = sorted(members[m]);
         const Vec2 dm = mean - c.mean;
-        cov += std::exp(member_log_w[m] - out.log_weight) * (c.cov + dm * dm.transpose());
+        cov += member_w[m] * (c.cov + dm * dm.transpose());
       }
       Symmetrize(cov);
       out.mean = mean;
