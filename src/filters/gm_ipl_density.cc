@@ -46,6 +46,9 @@ AssociationCosts BuildAssociationCosts(const ProposalInput& input, const PhdSlam
     double gain;
   };
   std::vector<Gated> gated;
+  gated.reserve(static_cast<std::size_t>(2 * m));
+  c.rows.reserve(m);
+  c.cols.reserve(nz);
   std::vector<int> col_of(nz, -1);
   const models::FovView fov(*input.sensor, input.predicted_mean);
   models::LogDetectionTerms log_pd;

@@ -95,6 +95,7 @@ PhdUpdateResult GmPhdMap::Update(const Pose& pose, std::span<const Measurement> 
   std::vector<Detection> detections;
   std::vector<int> first(num_z + 1, 0);
   detections.reserve(predicted.size() * 2);
+  result.ungated.reserve(num_z);
   for (int j = 0; j < num_z; ++j) {
     first[j] = static_cast<int>(detections.size());
     for (int p = 0; p < static_cast<int>(predicted.size()); ++p) {
@@ -199,6 +200,10 @@ std::vector<GaussianComponent> PruneAndMerge(std::vector<GaussianComponent> comp
   std::vector<int> members;
   std::vector<double> member_log_w;
   std::vector<double> member_w;
+  constexpr std::size_t kTypicalMembers = 8;
+  members.reserve(kTypicalMembers);
+  member_log_w.reserve(kTypicalMembers);
+  member_w.reserve(kTypicalMembers);
   for (std::size_t i = 0; i < kept; ++i) {
     if (used[i]) continue;
     const GaussianComponent& lead = sorted(i);
