@@ -46,7 +46,7 @@ AssociationCosts BuildAssociationCosts(const ProposalInput& input, const PhdSlam
     double gain;
   };
   std::vector<Gated> gated;
-  gated.reserve(static_cast<std::size_t>(2 * m));
+  gated.reserve(2 * static_cast<std::size_t>(m));
   c.rows.reserve(m);
   c.cols.reserve(nz);
   std::vector<int> col_of(nz, -1);
