@@ -33,15 +33,24 @@ void Symmetrize(Eigen::MatrixBase<Derived>& p) {
 
 /// Lower Cholesky factor, or nullopt when P is not numerically positive definite
 /// (any pivot <= 0 or not finite).
+/// Whether an Eigen::LLT factorisation shows P numerically positive definite: it succeeded and
+/// every pivot (diagonal of L) is positive and finite. The test of CholeskyLower, for callers that
+/// keep the factorisation to solve with it.
+template <typename Llt>
+bool LltIsPositiveDefinite(const Llt& llt) {
+  if (llt.info() != Eigen::Success) return false;
+  const auto pivots = llt.matrixLLT().diagonal();
+  for (Eigen::Index i = 0; i < pivots.size(); ++i) {
+    if (!(pivots(i) > 0.0) || !std::isfinite(pivots(i))) return false;
+  }
+  return true;
+}
+
 template <int N>
 std::optional<Eigen::Matrix<double, N, N>> CholeskyLower(const Eigen::Matrix<double, N, N>& p) {
-  Eigen::LLT<Eigen::Matrix<double, N, N>> llt(p);
-  if (llt.info() != Eigen::Success) return std::nullopt;
-  Eigen::Matrix<double, N, N> l = llt.matrixL();
-  for (int i = 0; i < N; ++i) {
-    if (!(l(i, i) > 0.0) || !std::isfinite(l(i, i))) return std::nullopt;
-  }
-  return l;
+  const Eigen::LLT<Eigen::Matrix<double, N, N>> llt(p);
+  if (!LltIsPositiveDefinite(llt)) return std::nullopt;
+  return Eigen::Matrix<double, N, N>(llt.matrixL());
 }
 
 /// A square root S (S S^T = P) of a symmetric positive semi-definite P through its

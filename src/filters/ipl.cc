@@ -16,15 +16,8 @@ namespace {
 struct Factorised3 {
   Eigen::LLT<Mat3> llt;
   double log_det;
-  /// What CholeskyLower<3> accepts: the factorisation succeeded, every pivot positive and finite.
-  [[nodiscard]] bool PositiveDefinite() const {
-    if (llt.info() != Eigen::Success) return false;
-    const Mat3 l = llt.matrixL();
-    for (int i = 0; i < 3; ++i) {
-      if (!(l(i, i) > 0.0) || !std::isfinite(l(i, i))) return false;
-    }
-    return true;
-  }
+  /// What CholeskyLower<3> accepts.
+  [[nodiscard]] bool PositiveDefinite() const { return LltIsPositiveDefinite(llt); }
 };
 
 Factorised3 Factorise(const Mat3& p) {

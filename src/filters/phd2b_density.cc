@@ -11,6 +11,7 @@
 
 #include "src/assignment/linear_assignment.h"
 #include "src/core/angles.h"
+#include "src/core/gaussian.h"
 #include "src/core/log_sum_exp.h"
 #include "src/filters/gm_ipl_density.h"
 #include "src/models/range_bearing_model.h"
@@ -27,13 +28,7 @@ ProposalOutput PriorProposal(const ProposalInput& input) {
 
 /// True when the symmetric matrix p is numerically positive definite (every pivot > 0, finite).
 bool IsPositiveDefinite(const Eigen::MatrixXd& p) {
-  const Eigen::LLT<Eigen::MatrixXd> llt(p);
-  if (llt.info() != Eigen::Success) return false;
-  const Eigen::VectorXd d = llt.matrixLLT().diagonal();
-  for (Eigen::Index i = 0; i < d.size(); ++i) {
-    if (!(d(i) > 0.0) || !std::isfinite(d(i))) return false;
-  }
-  return true;
+  return LltIsPositiveDefinite(Eigen::LLT<Eigen::MatrixXd>(p));
 }
 
 /// log of the chi-square survival function for even dof = 2k:
