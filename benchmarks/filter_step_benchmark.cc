@@ -24,6 +24,7 @@
 
 #include "datasets/data_dir.h"
 #include "datasets/paper_synthetic.h"
+#include "src/core/malloc_name.h"
 #include "src/core/random.h"
 #include "src/filters/phd_slam_family.h"
 #include "src/filters/pose_mixture_moments.h"
@@ -101,6 +102,7 @@ void Register(const std::string& variant, int particles) {
 int main(int argc, char** argv) {
   using phdslam::benchmarks::Register;
   benchmark::Initialize(&argc, argv);
+  benchmark::AddCustomContext("malloc", phdslam::MallocName());
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   Register("phd3", 1);
   Register("phd3", 10);

@@ -36,6 +36,7 @@
 
 #include "datasets/scenario_generator.h"
 #include "src/core/gaussian.h"
+#include "src/core/malloc_name.h"
 #include "src/core/random.h"
 #include "src/filters/phd2b_density.h"
 #include "src/filters/phd_slam_family.h"
@@ -273,6 +274,7 @@ int RunBenchmarks(int argc, char** argv) {
   }
   argc = kept;
   benchmark::Initialize(&argc, argv);
+  benchmark::AddCustomContext("malloc", phdslam::MallocName());
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
 
   const filters::PhdSlamParams params;

@@ -32,6 +32,7 @@
 
 #include "datasets/scenario_generator.h"
 #include "src/core/byte_tally.h"
+#include "src/core/malloc_name.h"
 #include "src/core/random.h"
 #include "src/filters/phd_slam_family.h"
 
@@ -165,6 +166,7 @@ int main(int argc, char** argv) {
   using namespace phdslam::benchmarks;
   const std::string csv = TakeCsvFlag(argc, argv);
   benchmark::Initialize(&argc, argv);
+  benchmark::AddCustomContext("malloc", phdslam::MallocName());
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   ScenarioCache cache;
   std::vector<CaseResult> results;

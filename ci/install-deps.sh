@@ -16,7 +16,7 @@ packages=(
   libmrpt-slam-dev libmrpt-maps-dev libmrpt-obs-dev libmrpt-bayes-dev libmrpt-poses-dev
   libmrpt-random-dev libmrpt-system-dev libmrpt-math-dev libmrpt-core-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  libyaml-cpp-dev nlohmann-json3-dev libcli11-dev zlib1g-dev
+  libyaml-cpp-dev nlohmann-json3-dev libcli11-dev zlib1g-dev libtcmalloc-minimal4
   python3 python3-matplotlib python3-numpy python3-scipy python3-yaml
   clang-format clang-tidy
   clang-14 libclang-rt-14-dev valgrind

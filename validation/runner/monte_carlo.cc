@@ -14,6 +14,7 @@
 #include <thread>
 #include <utility>
 
+#include "src/core/malloc_name.h"
 #include "validation/runner/list_arguments.h"
 #include "validation/runner/map_ospa_trace.h"
 #include "validation/runner/out_of_memory_valve.h"
@@ -449,6 +450,7 @@ MonteCarloReport RunMonteCarlo(const MonteCarloPlan& plan, const MonteCarloSetti
       {"jobs", report.jobs},
       {"hardware_concurrency", HardwareThreads()},
       {"host", HostName()},
+      {"malloc", MallocName()},
       {"shard", settings.shard.IsWhole() ? nlohmann::json(nullptr)
                                          : nlohmann::json(settings.shard.ToString())},
       {"runs_outside_shard", report.outside_shard},
