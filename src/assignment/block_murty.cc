@@ -1,8 +1,11 @@
 #include "src/assignment/block_murty.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstddef>
 #include <limits>
+#include <memory_resource>
 #include <numeric>
 #include <stdexcept>
 
@@ -11,7 +14,10 @@
 namespace phdslam::assignment {
 namespace {
 
-int Find(std::vector<int>& parent, int i) {
+/// Stack bytes for the block structure of one cost matrix.
+constexpr std::size_t kArenaBytes = 4 * 1024;
+
+int Find(std::pmr::vector<int>& parent, int i) {
   while (parent[i] != i) {
     parent[i] = parent[parent[i]];
     i = parent[i];
@@ -29,12 +35,14 @@ std::vector<Assignment> BlockMurtyKBest(const Eigen::MatrixXd& cost, int k, doub
   if (std::isnan(max_cost_gap)) throw std::invalid_argument("BlockMurtyKBest: NaN cost gap");
 
   // The finite columns of every row (one flat list), and rows that share one joined in a block.
-  std::vector<int> row_start(rows + 1, 0);
-  std::vector<int> finite_cols;
+  std::array<std::byte, kArenaBytes> arena_bytes;  // uninitialised: the arena writes it
+  std::pmr::monotonic_buffer_resource arena(arena_bytes.data(), arena_bytes.size());
+  std::pmr::vector<int> row_start(rows + 1, 0, &arena);
+  std::pmr::vector<int> finite_cols(&arena);
   finite_cols.reserve(static_cast<std::size_t>(rows) * 4);
-  std::vector<int> parent(rows);
+  std::pmr::vector<int> parent(rows, &arena);
   std::iota(parent.begin(), parent.end(), 0);
-  std::vector<int> first_row_of_col(cols, -1);
+  std::pmr::vector<int> first_row_of_col(cols, -1, &arena);
   for (int r = 0; r < rows; ++r) {
     row_start[r] = static_cast<int>(finite_cols.size());
     for (int c = 0; c < cols; ++c) {
@@ -52,7 +60,7 @@ std::vector<Assignment> BlockMurtyKBest(const Eigen::MatrixXd& cost, int k, doub
     }
   }
   row_start[rows] = static_cast<int>(finite_cols.size());
-  std::vector<int> block_size(rows, 0);
+  std::pmr::vector<int> block_size(rows, 0, &arena);
   for (int r = 0; r < rows; ++r) ++block_size[Find(parent, r)];
   if (block_size[Find(parent, 0)] == rows) return MurtyKBest(cost, k, max_cost_gap);
 
@@ -65,7 +73,7 @@ std::vector<Assignment> BlockMurtyKBest(const Eigen::MatrixXd& cost, int k, doub
     std::vector<Assignment> ranked;
   };
   std::vector<MultiBlock> multi;
-  std::vector<char> done(rows, 0);
+  std::pmr::vector<char> done(rows, 0, &arena);
   for (int r0 = 0; r0 < rows; ++r0) {
     if (done[r0]) continue;
     const int root = Find(parent, r0);

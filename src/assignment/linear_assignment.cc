@@ -34,7 +34,7 @@ std::optional<Assignment> SolveLinearAssignment(const Eigen::MatrixXd& cost) {
     if (!solver.AugmentToFreeColumn(row)) return std::nullopt;
   }
   Assignment result;
-  result.row_to_col = solver.col_for_row;
+  result.row_to_col.assign(solver.col_for_row.begin(), solver.col_for_row.end());
   for (int row = 0; row < solver.rows(); ++row) result.cost += cost(row, result.row_to_col[row]);
   return result;
 }

@@ -1,8 +1,11 @@
 #include "src/assignment/murty.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstddef>
 #include <limits>
+#include <memory_resource>
 #include <queue>
 #include <stdexcept>
 #include <string>
@@ -13,6 +16,8 @@ namespace phdslam::assignment {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
+/// Stack bytes of one ranking: enough for the gated blocks of PHD-SLAM's association matrices.
+constexpr std::size_t kArenaBytes = 32 * 1024;
 
 // Murty's partitioning. Every solved subproblem ("node") keeps its assignment, its duals, the rows
 // it forces and one forbidden pair; its full set of forbidden pairs is that pair plus those of the
@@ -21,10 +26,26 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // is solved (one augmenting path from its parent's state) only when it reaches the queue's front.
 class MurtyRanker {
  public:
-  explicit MurtyRanker(const Eigen::MatrixXd& cost) : cost_matrix_(cost) {
+  explicit MurtyRanker(const Eigen::MatrixXd& cost)
+      : arena_(arena_bytes_.data(), arena_bytes_.size()),
+        cost_matrix_(cost),
+        solver_(&arena_),
+        nodes_(&arena_),
+        node_col_for_row_(&arena_),
+        node_row_forced_(&arena_),
+        node_row_dual_(&arena_),
+        node_col_dual_(&arena_),
+        orders_(&arena_),
+        queue_(LaterFirst{}, std::pmr::vector<QueueEntry>(&arena_)),
+        saved_entries_(&arena_),
+        removed_cols_(&arena_),
+        row_slack_(&arena_),
+        row_slack_col_(&arena_) {
     rows_ = static_cast<int>(cost.rows());
     cols_ = static_cast<int>(cost.cols());
   }
+  MurtyRanker(const MurtyRanker&) = delete;
+  MurtyRanker& operator=(const MurtyRanker&) = delete;
 
   std::vector<Assignment> Run(int k, double max_cost_gap);
 
@@ -70,26 +91,29 @@ class MurtyRanker {
   void Forbid(int row, int col);
   void ForbidNodePairs(int node);
   void RestoreForbidden();
-  double ReducedSlack(int row, const std::vector<char>& removed_cols, int* argmin) const;
+  double ReducedSlack(int row, const std::pmr::vector<char>& removed_cols, int* argmin) const;
   void Expand(int node);
   int SolveChild(int parent, int child);
 
+  // Every list below lives in this arena: the ranker's stack frame first, the heap beyond it.
+  std::array<std::byte, kArenaBytes> arena_bytes_;  // uninitialised: the arena writes it
+  std::pmr::monotonic_buffer_resource arena_;
   const Eigen::MatrixXd& cost_matrix_;
   int rows_ = 0;
   int cols_ = 0;
   ShortestAugmentingPath solver_;
-  std::vector<Node> nodes_;
-  std::vector<int> node_col_for_row_;
-  std::vector<char> node_row_forced_;
-  std::vector<double> node_row_dual_;
-  std::vector<double> node_col_dual_;
-  std::vector<int> orders_;
-  std::priority_queue<QueueEntry, std::vector<QueueEntry>, LaterFirst> queue_;
+  std::pmr::vector<Node> nodes_;
+  std::pmr::vector<int> node_col_for_row_;
+  std::pmr::vector<char> node_row_forced_;
+  std::pmr::vector<double> node_row_dual_;
+  std::pmr::vector<double> node_col_dual_;
+  std::pmr::vector<int> orders_;
+  std::priority_queue<QueueEntry, std::pmr::vector<QueueEntry>, LaterFirst> queue_;
   // Workspace.
-  std::vector<SavedEntry> saved_entries_;
-  std::vector<char> removed_cols_;
-  std::vector<double> row_slack_;
-  std::vector<int> row_slack_col_;
+  std::pmr::vector<SavedEntry> saved_entries_;
+  std::pmr::vector<char> removed_cols_;
+  std::pmr::vector<double> row_slack_;
+  std::pmr::vector<int> row_slack_col_;
 };
 
 int MurtyRanker::StoreSolverState(int parent, int forbidden_row, int forbidden_col) {
@@ -144,7 +168,7 @@ void MurtyRanker::RestoreForbidden() {
 
 // Smallest reduced cost of `row` to an active column other than its own and not removed: by dual
 // feasibility, forbidding the row's current pair raises the optimal cost by at least this much.
-double MurtyRanker::ReducedSlack(int row, const std::vector<char>& removed_cols,
+double MurtyRanker::ReducedSlack(int row, const std::pmr::vector<char>& removed_cols,
                                  int* argmin) const {
   const int own = solver_.col_for_row[row];
   const double row_dual = solver_.row_dual[row];
@@ -235,7 +259,8 @@ std::vector<Assignment> MurtyRanker::Run(int k, double max_cost_gap) {
   removed_cols_.assign(cols_, 0);
   row_slack_.assign(rows_, 0.0);
   row_slack_col_.assign(rows_, -1);
-  const std::size_t expected_nodes = static_cast<std::size_t>(std::min(k, 64)) * 2;
+  // Room for the nodes of a short ranking (PHD-SLAM keeps a few hypotheses); more grow the lists.
+  const std::size_t expected_nodes = static_cast<std::size_t>(std::min(k, 16)) * 2;
   nodes_.reserve(expected_nodes);
   node_col_for_row_.reserve(expected_nodes * rows_);
   node_row_forced_.reserve(expected_nodes * rows_);

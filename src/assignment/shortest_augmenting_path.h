@@ -16,12 +16,28 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <memory_resource>
 #include <vector>
 
 namespace phdslam::assignment {
 
 class ShortestAugmentingPath {
  public:
+  /// Every list of the state and the workspace is allocated from `resource`.
+  explicit ShortestAugmentingPath(
+      std::pmr::memory_resource* resource = std::pmr::get_default_resource())
+      : col_for_row(resource),
+        row_for_col(resource),
+        row_dual(resource),
+        col_dual(resource),
+        col_active(resource),
+        cost_(resource),
+        distance_(resource),
+        predecessor_(resource),
+        unscanned_cols_(resource),
+        scanned_rows_(resource),
+        scanned_cols_(resource) {}
+
   /// Copies `cost` (row-major), clears the assignment and the duals, activates everything.
   void Reset(const Eigen::MatrixXd& cost);
 
@@ -45,25 +61,25 @@ class ShortestAugmentingPath {
   }
 
   // State, read and written directly by the callers that save and restore it.
-  std::vector<int> col_for_row;  // -1 when unassigned
-  std::vector<int> row_for_col;  // -1 when unassigned
-  std::vector<double> row_dual;
-  std::vector<double> col_dual;
+  std::pmr::vector<int> col_for_row;  // -1 when unassigned
+  std::pmr::vector<int> row_for_col;  // -1 when unassigned
+  std::pmr::vector<double> row_dual;
+  std::pmr::vector<double> col_dual;
   double free_column_dual = 0.0;
-  std::vector<char> col_active;  // inactive columns are ignored by the path search
+  std::pmr::vector<char> col_active;  // inactive columns are ignored by the path search
 
  private:
   bool Augment(int start_row, int target_col);
 
   int rows_ = 0;
   int cols_ = 0;
-  std::vector<double> cost_;
+  std::pmr::vector<double> cost_;
   // Path-search workspace, sized once per Reset.
-  std::vector<double> distance_;
-  std::vector<int> predecessor_;
-  std::vector<int> unscanned_cols_;
-  std::vector<int> scanned_rows_;
-  std::vector<int> scanned_cols_;
+  std::pmr::vector<double> distance_;
+  std::pmr::vector<int> predecessor_;
+  std::pmr::vector<int> unscanned_cols_;
+  std::pmr::vector<int> scanned_rows_;
+  std::pmr::vector<int> scanned_cols_;
 };
 
 }  // namespace phdslam::assignment

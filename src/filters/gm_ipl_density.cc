@@ -1,8 +1,11 @@
 #include "src/filters/gm_ipl_density.h"
 
 #include <Eigen/LU>
+#include <array>
 #include <cmath>
+#include <cstddef>
 #include <limits>
+#include <memory_resource>
 #include <numbers>
 #include <vector>
 
@@ -17,6 +20,8 @@ namespace phdslam::filters {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
+/// Stack bytes for the scratch lists of one association-cost or proposal build.
+constexpr std::size_t kScratchArenaBytes = 8 * 1024;
 
 ProposalOutput PriorOnly(const ProposalInput& input) {
   ProposalOutput out;
@@ -45,11 +50,14 @@ AssociationCosts BuildAssociationCosts(const ProposalInput& input, const PhdSlam
     int col;
     double gain;
   };
-  std::vector<Gated> gated;
+  std::array<std::byte, kScratchArenaBytes> arena_bytes;  // uninitialised: the arena writes it
+  std::pmr::monotonic_buffer_resource arena(arena_bytes.data(), arena_bytes.size());
+  std::pmr::vector<Gated> gated(&arena);
   gated.reserve(2 * static_cast<std::size_t>(m));
   c.rows.reserve(m);
+  c.row_prediction.reserve(m);
   c.cols.reserve(nz);
-  std::vector<int> col_of(nz, -1);
+  std::pmr::vector<int> col_of(nz, -1, &arena);
   const models::FovView fov(*input.sensor, input.predicted_mean);
   models::LogDetectionTerms log_pd;
   for (int i = 0; i < m; ++i) {
@@ -59,7 +67,9 @@ AssociationCosts BuildAssociationCosts(const ProposalInput& input, const PhdSlam
     c.pd[i] = pd;
     c.miss[i] = log_pd.log_miss() + comp.log_weight;
     if (pd <= 0.0) continue;
-    const auto [z_hat, j] = models::PredictWithJacobians(input.predicted_mean, comp.mean);
+    const models::PredictionWithJacobians prediction =
+        models::PredictWithJacobians(input.predicted_mean, comp.mean);
+    const auto& [z_hat, j] = prediction;
     Mat2 s = j.hx * input.predicted_cov * j.hx.transpose() + j.hm * comp.cov * j.hm.transpose() +
              input.sensor->noise_cov;
     Symmetrize(s);
@@ -84,7 +94,10 @@ AssociationCosts BuildAssociationCosts(const ProposalInput& input, const PhdSlam
         col_of[jz] = 0;
       }
     }
-    if (!gated.empty() && gated.back().row == row) c.rows.push_back(i);
+    if (!gated.empty() && gated.back().row == row) {
+      c.rows.push_back(i);
+      c.row_prediction.push_back(prediction);
+    }
   }
   for (int jz = 0; jz < nz; ++jz) {
     if (col_of[jz] == 0) {
@@ -129,8 +142,10 @@ ProposalOutput GmIplDensity::Build(const ProposalInput& input) const {
   ProposalOutput out;
   out.mixture.Reserve(hypotheses.size() + 1);
   out.best_association.assign(input.measurements.size(), -1);
-  std::vector<IplPair> pairs;
-  std::vector<int> detected_rows;
+  std::array<std::byte, kScratchArenaBytes> arena_bytes;  // uninitialised: the arena writes it
+  std::pmr::monotonic_buffer_resource arena(arena_bytes.data(), arena_bytes.size());
+  std::pmr::vector<IplPair> pairs(&arena);
+  std::pmr::vector<int> detected_rows(&arena);
   pairs.reserve(r);
   detected_rows.reserve(r);
   const IplOptions ipl_options{params_.ipl_iterations, params_.ipl_kl_tolerance};
@@ -144,7 +159,8 @@ ProposalOutput GmIplDensity::Build(const ProposalInput& input) const {
       const int col = row_to_col[a];
       if (col < k) {
         const phd::GaussianComponent& comp = active[costs.rows[a]];
-        pairs.push_back({comp.mean, comp.cov, input.measurements[costs.cols[col]]});
+        pairs.push_back(
+            {comp.mean, comp.cov, input.measurements[costs.cols[col]], &costs.row_prediction[a]});
         detected_rows.push_back(a);
       }
     }

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "src/filters/importance_density.h"
+#include "src/models/range_bearing_model.h"
 
 namespace phdslam::filters {
 
@@ -21,8 +22,10 @@ struct AssociationCosts {
   std::vector<double> pd;    ///< pD of every active component at the predicted mean
   std::vector<double> miss;  ///< log(1 - pD_i) + eta_i for every active component
   std::vector<int> rows;     ///< active components with at least one gated measurement
-  std::vector<int> cols;     ///< measurements gated by at least one component
-  Eigen::MatrixXd cost;      ///< rows x (cols + rows): -log gains, +inf forbidden
+  /// h and its Jacobians at the predicted mean, one per row (what the IPL's first iteration uses)
+  std::vector<models::PredictionWithJacobians> row_prediction;
+  std::vector<int> cols;  ///< measurements gated by at least one component
+  Eigen::MatrixXd cost;   ///< rows x (cols + rows): -log gains, +inf forbidden
 };
 AssociationCosts BuildAssociationCosts(const ProposalInput& input, const PhdSlamParams& params);
 

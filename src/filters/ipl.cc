@@ -22,8 +22,8 @@ struct Factorised3 {
 
 Factorised3 Factorise(const Mat3& p) {
   Factorised3 f{Eigen::LLT<Mat3>(p), 0.0};
-  const Mat3 l = f.llt.matrixL();
-  f.log_det = 2.0 * l.diagonal().array().log().sum();
+  // The diagonal of L, read in place.
+  f.log_det = 2.0 * f.llt.matrixLLT().diagonal().array().log().sum();
   return f;
 }
 
@@ -50,7 +50,9 @@ IplResult PartitionedIpl(const Pose& prior_mean, const Mat3& prior_cov,
     Vec3 m = prior_mean;
     Mat3 p = prior_cov;
     for (const IplPair& pair : pairs) {
-      const auto [z_hat, j] = models::PredictWithJacobians(lin.mean, pair.landmark_mean);
+      const auto [z_hat, j] = l == 1 && pair.at_prior != nullptr
+                                  ? *pair.at_prior
+                                  : models::PredictWithJacobians(lin.mean, pair.landmark_mean);
       const Mat2 omega = j.hm * pair.landmark_cov * j.hm.transpose() + noise_cov;
       // nu = z - (A m + b) with A = Hx, b = z_hat - A mu_bar.
       Vec2 nu = pair.z - z_hat - j.hx * (m - lin.mean);

@@ -6,6 +6,7 @@
 #include <span>
 
 #include "src/core/types.h"
+#include "src/models/range_bearing_model.h"
 
 namespace phdslam::filters {
 
@@ -14,6 +15,10 @@ struct IplPair {
   Landmark landmark_mean;
   Mat2 landmark_cov;
   Measurement z;
+  /// h and its Jacobians at (prior mean, landmark_mean), when the caller has already evaluated
+  /// them there (the association costs do): iteration 1 linearises at the prior and takes them
+  /// from here instead of evaluating again. The same values, so the same result bit for bit.
+  const models::PredictionWithJacobians* at_prior = nullptr;
 };
 
 struct IplOptions {

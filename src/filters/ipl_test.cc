@@ -68,6 +68,34 @@ TEST(PartitionedIpl, IteratesToAFixedPointAndStopsOnKl) {
   EXPECT_LT((r.mean - truth).head<2>().norm(), (mu0 - truth).head<2>().norm());
 }
 
+TEST(PartitionedIpl, TheCallersPriorLinearisationGivesTheSameResultBitForBit) {
+  const Pose mu0(300.0, 400.0, -0.1);
+  Mat3 sigma0;
+  sigma0 << 0.7, 0.1, 0.001, 0.1, 0.5, 0.002, 0.001, 0.002, 1e-4;
+  std::vector<IplPair> pairs = {
+      {Landmark(340.0, 410.0), Mat2::Identity() * 0.3, Measurement(41.0, 0.35)},
+      {Landmark(320.0, 350.0), Mat2::Identity() * 0.2, Measurement(53.0, -1.3)},
+      {Landmark(390.0, 420.0), Mat2::Identity() * 0.1, Measurement(92.0, 0.3)}};
+  const IplResult evaluated = PartitionedIpl(mu0, sigma0, pairs, NoiseCov(), {5, 1e-9});
+  std::vector<models::PredictionWithJacobians> at_prior;
+  for (const IplPair& pair : pairs) {
+    at_prior.push_back(models::PredictWithJacobians(mu0, pair.landmark_mean));
+  }
+  for (std::size_t i = 0; i < pairs.size(); ++i) pairs[i].at_prior = &at_prior[i];
+  const IplResult given = PartitionedIpl(mu0, sigma0, pairs, NoiseCov(), {5, 1e-9});
+  EXPECT_GE(given.iterations, 2);
+  EXPECT_EQ(given.iterations, evaluated.iterations);
+  EXPECT_EQ(given.mean, evaluated.mean);
+  EXPECT_EQ(given.cov, evaluated.cov);
+  // The given values are the ones used: a different prior prediction moves the first iterate.
+  at_prior[0].z_hat(0) += 1.0;
+  const IplResult moved = PartitionedIpl(mu0, sigma0, pairs, NoiseCov(), {1, 1e-9});
+  const IplResult first = PartitionedIpl(mu0, sigma0, pairs, NoiseCov(), {1, 1e-9});
+  EXPECT_EQ(moved.mean, first.mean);  // both read the moved z_hat
+  pairs[0].at_prior = nullptr;
+  EXPECT_NE(PartitionedIpl(mu0, sigma0, pairs, NoiseCov(), {1, 1e-9}).mean, moved.mean);
+}
+
 TEST(PartitionedIpl, NoPairsReturnsThePrior) {
   const Pose mu0(1, 2, 3);
   const Mat3 s = Mat3::Identity();

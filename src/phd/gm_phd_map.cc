@@ -2,8 +2,11 @@
 
 #include <Eigen/LU>
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstddef>
 #include <limits>
+#include <memory_resource>
 #include <numbers>
 #include <numeric>
 
@@ -13,6 +16,15 @@
 #include "src/models/range_bearing_model.h"
 
 namespace phdslam::phd {
+namespace {
+
+/// Stack bytes for the scratch lists of one GmPhdMap::Update: room for about 100 components in
+/// view and 100 gated pairs before any heap allocation.
+constexpr std::size_t kUpdateArenaBytes = 32 * 1024;
+/// Stack bytes for the scratch lists of one PruneAndMerge.
+constexpr std::size_t kMergeArenaBytes = 4 * 1024;
+
+}  // namespace
 
 void GmPhdMap::AddBirths(const Pose& pose, std::span<const Measurement> measurements,
                          const Mat2& noise_cov, const MapParams& params) {
@@ -34,22 +46,26 @@ PhdUpdateResult GmPhdMap::Update(const Pose& pose, std::span<const Measurement> 
 
   // Per-component predicted measurement and innovation covariance; the gain, the updated
   // covariance and the log-normaliser only for components that gate a measurement.
+  // What the gating loop reads comes first, in one 64-byte cache line.
   struct Predicted {
+    Measurement z_hat;
+    Mat2 s_inv;
+    double range_window;  // pre-gate on the range innovation (FirstCoordinateGateHalfWidth)
+    bool gated = false;   // gain, cov_post and log_norm are set
     int index;
     double log_miss;  // log(1 - pD)
     double log_pd;
     double log_weight;  // eta, before this update
-    Measurement z_hat;
-    double range_window;  // pre-gate on the range innovation (FirstCoordinateGateHalfWidth)
-    Mat2 ph;              // P Hm^T
+    Mat2 ph;            // P Hm^T
     Mat2 s;
-    Mat2 s_inv;
-    bool gated = false;  // the members below are set
     Mat2 gain;
     Mat2 cov_post;
     double log_norm;  // log pD + eta - log 2 pi - 1/2 log det S
   };
-  std::vector<Predicted> predicted;
+  // The scratch lists of this update live in a stack arena (the heap only beyond it).
+  std::array<std::byte, kUpdateArenaBytes> arena_bytes;  // uninitialised: the arena writes it
+  std::pmr::monotonic_buffer_resource arena(arena_bytes.data(), arena_bytes.size());
+  std::pmr::vector<Predicted> predicted(&arena);
   predicted.reserve(active_.size());
   // The missed-detection mass enters the likelihood only when the reference omission is off.
   const bool needs_missed_mass = !params.reference_omit_missed_detection_mass;
@@ -92,8 +108,8 @@ PhdUpdateResult GmPhdMap::Update(const Pose& pose, std::span<const Measurement> 
     Vec2 innovation;
     double nis;  // nu' S^-1 nu
   };
-  std::vector<Detection> detections;
-  std::vector<int> first(num_z + 1, 0);
+  std::pmr::vector<Detection> detections(&arena);
+  std::pmr::vector<int> first(num_z + 1, 0, &arena);
   detections.reserve(predicted.size() * 2);
   result.ungated.reserve(num_z);
   for (int j = 0; j < num_z; ++j) {
@@ -154,27 +170,32 @@ PhdUpdateResult GmPhdMap::Update(const Pose& pose, std::span<const Measurement> 
 
 namespace {
 
-/// The positions of `components` in the order of std::stable_sort by descending log-weight.
-/// Short lists (every active list of the synthetic scenario) are sorted by insertion, which gives
-/// the same order without stable_sort's buffer.
-std::vector<int> OrderByWeightDescending(const std::vector<GaussianComponent>& components) {
-  std::vector<int> order(components.size());
+/// The positions of `components` in the order of std::stable_sort by descending log-weight, into
+/// `order`. Short lists (every active list of the synthetic scenario) are sorted by insertion on
+/// (weight, position) pairs, which gives the same order without stable_sort's buffer.
+void OrderByWeightDescending(const std::vector<GaussianComponent>& components,
+                             std::pmr::vector<int>& order) {
+  order.resize(components.size());
   std::iota(order.begin(), order.end(), 0);
-  const auto heavier = [&components](int a, int b) {
-    return components[a].log_weight > components[b].log_weight;
-  };
   constexpr std::size_t kInsertionSortMax = 32;
   if (order.size() > kInsertionSortMax) {
-    std::stable_sort(order.begin(), order.end(), heavier);
-    return order;
+    std::stable_sort(order.begin(), order.end(), [&components](int a, int b) {
+      return components[a].log_weight > components[b].log_weight;
+    });
+    return;
   }
-  for (std::size_t i = 1; i < order.size(); ++i) {
-    const int moving = order[i];
+  struct Keyed {
+    double log_weight;
+    int position;
+  };
+  std::array<Keyed, kInsertionSortMax> keyed;
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    const Keyed moving{components[i].log_weight, static_cast<int>(i)};
     std::size_t j = i;
-    for (; j > 0 && heavier(moving, order[j - 1]); --j) order[j] = order[j - 1];
-    order[j] = moving;
+    for (; j > 0 && moving.log_weight > keyed[j - 1].log_weight; --j) keyed[j] = keyed[j - 1];
+    keyed[j] = moving;
   }
-  return order;
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = keyed[i].position;
 }
 
 }  // namespace
@@ -182,8 +203,11 @@ std::vector<int> OrderByWeightDescending(const std::vector<GaussianComponent>& c
 std::vector<GaussianComponent> PruneAndMerge(std::vector<GaussianComponent> components,
                                              const MapParams& params) {
   if (components.empty()) return components;
+  std::array<std::byte, kMergeArenaBytes> arena_bytes;  // uninitialised: the arena writes it
+  std::pmr::monotonic_buffer_resource arena(arena_bytes.data(), arena_bytes.size());
   // 1. Stable sort by log-weight, descending (the order of positions; components stay in place).
-  const std::vector<int> order = OrderByWeightDescending(components);
+  std::pmr::vector<int> order(&arena);
+  OrderByWeightDescending(components, order);
   const auto sorted = [&](std::size_t k) -> const GaussianComponent& {
     return components[order[k]];
   };
@@ -196,10 +220,10 @@ std::vector<GaussianComponent> PruneAndMerge(std::vector<GaussianComponent> comp
   // 3. Greedy merge in descending order.
   std::vector<GaussianComponent> merged;
   merged.reserve(kept);
-  std::vector<bool> used(kept, false);
-  std::vector<int> members;
-  std::vector<double> member_log_w;
-  std::vector<double> member_w;
+  std::pmr::vector<char> used(kept, 0, &arena);
+  std::pmr::vector<int> members(&arena);
+  std::pmr::vector<double> member_log_w(&arena);
+  std::pmr::vector<double> member_w(&arena);
   constexpr std::size_t kTypicalMembers = 8;
   members.reserve(kTypicalMembers);
   member_log_w.reserve(kTypicalMembers);
@@ -211,7 +235,7 @@ std::vector<GaussianComponent> PruneAndMerge(std::vector<GaussianComponent> comp
     member_log_w.clear();
     members.push_back(static_cast<int>(i));
     member_log_w.push_back(lead.log_weight);
-    used[i] = true;
+    used[i] = 1;
     Mat2 lead_inv;  // lead.cov^-1, formed when the first candidate passes the pre-gate
     bool have_lead_inv = false;
     // With the leading covariance, a pre-gate on the x offset skips the far components.
@@ -233,7 +257,7 @@ std::vector<GaussianComponent> PruneAndMerge(std::vector<GaussianComponent> comp
       if (dist < params.merge_threshold) {
         members.push_back(static_cast<int>(j));
         member_log_w.push_back(candidate.log_weight);
-        used[j] = true;
+        used[j] = 1;
       }
     }
     GaussianComponent out;
