@@ -47,10 +47,10 @@ std::vector<Assignment> BlockMurtyKBest(const Eigen::MatrixXd& cost, int k, doub
     row_start[r] = static_cast<int>(finite_cols.size());
     for (int c = 0; c < cols; ++c) {
       const double v = cost(r, c);
+      if (v == std::numeric_limits<double>::infinity()) continue;  // forbidden: most entries
       if (std::isnan(v) || v == -std::numeric_limits<double>::infinity()) {
         throw std::invalid_argument("BlockMurtyKBest: cost entry is NaN or -inf");
       }
-      if (!std::isfinite(v)) continue;
       finite_cols.push_back(c);
       if (first_row_of_col[c] < 0) {
         first_row_of_col[c] = r;
