@@ -15,7 +15,7 @@ namespace phdslam::assignment {
 namespace {
 
 /// Stack bytes for the block structure of one cost matrix.
-constexpr std::size_t kArenaBytes = 4 * 1024;
+constexpr std::size_t kArenaBytes = std::size_t{4} * 1024;
 
 int Find(std::pmr::vector<int>& parent, int i) {
   while (parent[i] != i) {

@@ -17,7 +17,7 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 /// Stack bytes of one ranking: enough for the gated blocks of PHD-SLAM's association matrices.
-constexpr std::size_t kArenaBytes = 32 * 1024;
+constexpr std::size_t kArenaBytes = std::size_t{32} * 1024;
 
 // Murty's partitioning. Every solved subproblem ("node") keeps its assignment, its duals, the rows
 // it forces and one forbidden pair; its full set of forbidden pairs is that pair plus those of the

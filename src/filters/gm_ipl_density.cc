@@ -21,7 +21,7 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 /// Stack bytes for the scratch lists of one association-cost or proposal build.
-constexpr std::size_t kScratchArenaBytes = 8 * 1024;
+constexpr std::size_t kScratchArenaBytes = std::size_t{8} * 1024;
 
 ProposalOutput PriorOnly(const ProposalInput& input) {
   ProposalOutput out;

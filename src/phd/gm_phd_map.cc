@@ -20,9 +20,9 @@ namespace {
 
 /// Stack bytes for the scratch lists of one GmPhdMap::Update: room for about 100 components in
 /// view and 100 gated pairs before any heap allocation.
-constexpr std::size_t kUpdateArenaBytes = 32 * 1024;
+constexpr std::size_t kUpdateArenaBytes = std::size_t{32} * 1024;
 /// Stack bytes for the scratch lists of one PruneAndMerge.
-constexpr std::size_t kMergeArenaBytes = 4 * 1024;
+constexpr std::size_t kMergeArenaBytes = std::size_t{4} * 1024;
 
 }  // namespace
 
