@@ -1,9 +1,10 @@
 # The memory allocator of phdslam's programs (the `phdslam` command line and the benchmarks).
 #
-# A filter step makes a few dozen short-lived allocations per particle; with glibc's malloc they
-# cost about 8 % of a PHD-SLAM 3.0 step (filter_step_benchmark, N = 100). TCMalloc (Debian's
-# libtcmalloc-minimal4) serves them from per-thread caches. The allocator changes no result, only
-# time: every number is computed by the same instructions on the same values.
+# A filter step makes a few dozen short-lived allocations per particle; with glibc's malloc a
+# PHD-SLAM 3.0 step takes about 6 % longer (filter_step_benchmark, validation/REPRODUCTION.md).
+# TCMalloc (Debian's libtcmalloc-minimal4) serves them from per-thread caches. The allocator
+# changes no result, only time: every number is computed by the same instructions on the same
+# values.
 #
 #   -DPHDSLAM_MALLOC=tcmalloc   (default) link libtcmalloc_minimal; a configure error when missing
 #   -DPHDSLAM_MALLOC=system     glibc's malloc
