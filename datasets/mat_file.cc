@@ -9,6 +9,7 @@
 #include <system_error>
 #include <utility>
 
+#include "datasets/mat_v4_structure.h"
 #include "datasets/mat_v5_structure.h"
 
 namespace phdslam::datasets {
@@ -91,14 +92,21 @@ Eigen::MatrixXd CopyColumnMajor(const matvar_t& var, Eigen::Index rows, Eigen::I
   return out;
 }
 
-// Reads the whole file and checks its structure when it is a version 5 MAT-file, so that a
-// truncated or inconsistent file is refused before libmatio reads past what is stored.
+// Reads the whole file and checks its structure, so that a truncated or inconsistent file is
+// refused before libmatio reads past what is stored or allocates what a corrupt header declares.
+// libmatio reads a file without a version 5 or 7.3 header as version 4; version 7.3 files are
+// left to the HDF5 library.
 void CheckStructure(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error("cannot open MAT-file '" + path.string() + "' for reading");
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (in.bad()) throw std::runtime_error("cannot read MAT-file '" + path.string() + "'");
-  if (IsMatV5(bytes)) CheckMatV5Structure(bytes, "MAT-file '" + path.string() + "'");
+  const std::string where = "MAT-file '" + path.string() + "'";
+  if (IsMatV5(bytes)) {
+    CheckMatV5Structure(bytes, where);
+  } else if (!IsMatV73(bytes)) {
+    CheckMatV4Structure(bytes, where + " (no version 5 or 7.3 header, so read as version 4)");
+  }
 }
 
 }  // namespace
@@ -143,6 +151,13 @@ Eigen::MatrixXd MatFile::ReadMatrix(const std::string& variable) const {
   const auto rows = static_cast<Eigen::Index>(info->dims[0]);
   const auto cols = static_cast<Eigen::Index>(info->dims[1]);
   if (rows == 0 || cols == 0) return Eigen::MatrixXd(rows, cols);
+  if (static_cast<std::uint64_t>(rows) >
+      kMaxMatVariableBytes / sizeof(double) / static_cast<std::uint64_t>(cols)) {
+    throw std::runtime_error(where + ": its " + std::to_string(rows) + " x " +
+                             std::to_string(cols) + " elements would take more than the " +
+                             std::to_string(kMaxMatVariableBytes) +
+                             " bytes accepted for one variable");
+  }
 
   const VarPtr var(Mat_VarRead(mat_.get(), variable.c_str()));
   if (!var || var->data == nullptr) throw std::runtime_error(where + ": cannot read its data");

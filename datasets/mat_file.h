@@ -16,8 +16,9 @@ namespace phdslam::datasets {
 class MatFile {
  public:
   /// Opens `path` read-only. Throws std::runtime_error naming the file when it does not exist,
-  /// is not a MAT-file libmatio can read, or is a version 5 MAT-file that fails
-  /// CheckMatV5Structure (truncated, or a variable storing fewer or more elements than declared).
+  /// is not a MAT-file libmatio can read, or fails CheckMatV5Structure (a version 5 file:
+  /// truncated, or a variable storing fewer or more elements than declared) or CheckMatV4Structure
+  /// (a file without a version 5 or 7.3 header: a name or data that does not fit in the file).
   explicit MatFile(const std::filesystem::path& path);
   ~MatFile();
   MatFile(MatFile&&) noexcept;
@@ -30,8 +31,8 @@ class MatFile {
 
   /// Reads a real numeric 2-D variable (class double, single or any integer class, logical
   /// included) and converts it to double. Throws std::runtime_error naming the file and the
-  /// variable when it is missing, not numeric (char, cell, struct, sparse, ...), complex, or not
-  /// 2-D.
+  /// variable when it is missing, not numeric (char, cell, struct, sparse, ...), complex, not
+  /// 2-D, or larger than kMaxMatVariableBytes as doubles (checked before anything is read).
   [[nodiscard]] Eigen::MatrixXd ReadMatrix(const std::string& variable) const;
 
   [[nodiscard]] const std::filesystem::path& path() const { return path_; }

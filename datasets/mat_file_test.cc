@@ -5,12 +5,14 @@
 
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
 #include <fstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "datasets/data_dir.h"
+#include "datasets/mat_v5_structure.h"
 #include "datasets/test_temp_dir.h"
 #include "src/core/angles.h"
 
@@ -29,11 +31,11 @@ class MatWriter {
   MatWriter& operator=(const MatWriter&) = delete;
 
   void Write(const char* name, matio_classes cls, matio_types type, std::vector<size_t> dims,
-             void* data, int flags = 0) {
+             void* data, int flags = 0, matio_compression compression = MAT_COMPRESSION_NONE) {
     matvar_t* var =
         Mat_VarCreate(name, cls, type, static_cast<int>(dims.size()), dims.data(), data, flags);
     ASSERT_NE(var, nullptr);
-    ASSERT_EQ(Mat_VarWrite(mat_, var, MAT_COMPRESSION_NONE), 0);
+    ASSERT_EQ(Mat_VarWrite(mat_, var, compression), 0);
     Mat_VarFree(var);
   }
 
@@ -147,6 +149,27 @@ TEST(MatFile, ClearErrorsForBadVariables) {
   expect_error("text", "class char");
   expect_error("z", "complex");
   expect_error("cube", "3 dimensions");
+}
+
+TEST(MatFile, VariableLargerThanTheSizeCapIsRefusedBeforeItIsRead) {
+  // A double-class variable stored as deflated uint8 zeros: 33.6 MB inflated (under the cap, so the
+  // structure check passes) but 269 MB as doubles, more than kMaxMatVariableBytes; read, it would
+  // take that twice (libmatio's copy and the matrix).
+  const auto path = testing::FreshTestDir() / "bomb.mat";
+  const std::vector<size_t> dims = {size_t{1} << 15, (size_t{1} << 10) + 1};
+  ASSERT_GT(dims[0] * dims[1] * sizeof(double), kMaxMatVariableBytes);
+  {
+    std::vector<std::uint8_t> zeros(dims[0] * dims[1], 0);
+    MatWriter w(path);
+    w.Write("bomb", MAT_C_DOUBLE, MAT_T_UINT8, dims, zeros.data(), 0, MAT_COMPRESSION_ZLIB);
+  }
+  ASSERT_LT(std::filesystem::file_size(path), 1U << 20);
+  const MatFile file(path);
+  const std::string message = ReadError(file, "bomb");
+  EXPECT_NE(message.find("'bomb': its 32768 x 1025 elements would take more than the 268435456 "
+                         "bytes accepted for one variable"),
+            std::string::npos)
+      << message;
 }
 
 TEST(MatFile, IsMovable) {

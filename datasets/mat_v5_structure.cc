@@ -181,6 +181,35 @@ void CheckMatrix(const Buffer& buf, const Element& m, const std::string& where) 
   if ((flag_word & kComplexFlag) != 0) CheckArrayPart(buf, p, end, count, "imaginary", named);
 }
 
+/// Deflate expands at most 1032:1 (a 258-byte match per 2 bits), so a compressed element of n
+/// bytes cannot inflate to more than 1032 n: a larger declared size is refused without inflating.
+constexpr std::uint64_t kMaxDeflateRatio = 1032;
+
+/// First step of the output buffer's growth while inflating.
+constexpr std::size_t kInflateChunkBytes = std::size_t{1} << 16;
+
+/// Inflates from `zs` until `out` holds `want` bytes, growing `out` with what actually arrives
+/// (at most doubling it per step), so that a declared size the stream does not reach never gets
+/// allocated. Throws when the stream ends first.
+void InflateTo(z_stream& zs, std::string& out, std::size_t want, const std::string& where) {
+  while (out.size() < want) {
+    const std::size_t from = out.size();
+    const std::size_t step = std::min(want - from, std::max(from, kInflateChunkBytes));
+    out.resize(from + step);
+    zs.next_out = reinterpret_cast<Bytef*>(out.data() + from);
+    zs.avail_out = static_cast<uInt>(step);
+    int rc = Z_OK;
+    while (zs.avail_out > 0 && rc == Z_OK) rc = inflate(&zs, Z_NO_FLUSH);
+    if (zs.avail_out > 0) {
+      const std::size_t produced = out.size() - zs.avail_out;
+      Fail(where, "its compressed data inflates to only " + std::to_string(produced) + " of " +
+                      std::to_string(want) + " declared bytes" +
+                      (zs.msg != nullptr ? std::string(" (zlib: ") + zs.msg + ")" : std::string()) +
+                      "; the file is truncated or corrupt");
+    }
+  }
+}
+
 /// Inflates a compressed variable completely: the inner tag's declared size must be produced.
 std::string Inflate(std::string_view compressed, bool swap, const std::string& where) {
   z_stream zs{};
@@ -191,21 +220,8 @@ std::string Inflate(std::string_view compressed, bool swap, const std::string& w
   } ender{&zs};
   zs.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(compressed.data()));
   zs.avail_in = static_cast<uInt>(compressed.size());
-  std::string out(kTagBytes, '\0');
-  const auto fill = [&](std::size_t from) {
-    zs.next_out = reinterpret_cast<Bytef*>(out.data() + from);
-    zs.avail_out = static_cast<uInt>(out.size() - from);
-    int rc = Z_OK;
-    while (zs.avail_out > 0 && rc == Z_OK) rc = inflate(&zs, Z_NO_FLUSH);
-    const std::size_t produced = out.size() - zs.avail_out;
-    if (produced < out.size()) {
-      Fail(where, "its compressed data inflates to only " + std::to_string(produced) + " of " +
-                      std::to_string(out.size()) + " declared bytes" +
-                      (zs.msg != nullptr ? std::string(" (zlib: ") + zs.msg + ")" : std::string()) +
-                      "; the file is truncated or corrupt");
-    }
-  };
-  fill(0);
+  std::string out;
+  InflateTo(zs, out, kTagBytes, where);
   const Buffer head{out, swap};
   const std::uint32_t first = head.U32(0);
   if (first != kMiMatrix) Fail(where, "compressed data does not hold an array");
@@ -214,22 +230,34 @@ std::string Inflate(std::string_view compressed, bool swap, const std::string& w
     Fail(where, "declares " + std::to_string(declared) + " bytes, more than the " +
                     std::to_string(kMaxMatVariableBytes) + " accepted for one variable");
   }
-  out.resize(kTagBytes + static_cast<std::size_t>(declared));
-  fill(kTagBytes);
+  if (declared + kTagBytes > kMaxDeflateRatio * compressed.size()) {
+    Fail(where, "declares " + std::to_string(declared) + " bytes, but its " +
+                    std::to_string(compressed.size()) +
+                    " compressed bytes cannot inflate to more than " +
+                    std::to_string(kMaxDeflateRatio * compressed.size()) +
+                    " (deflate expands at most 1032:1); the file is truncated or corrupt");
+  }
+  InflateTo(zs, out, kTagBytes + static_cast<std::size_t>(declared), where);
   return out;
 }
 
-}  // namespace
-
-bool IsMatV5(std::string_view bytes) {
+/// True when `bytes` starts with a 128-byte MAT-file header of the given version number (0x0100
+/// for version 5, 0x0200 for 7.3), stored in the byte order its endian indicator gives.
+bool HasHeaderVersion(std::string_view bytes, unsigned version) {
   if (bytes.size() < kHeaderBytes) return false;
   const std::string_view endian = bytes.substr(126, 2);
   const auto v0 = static_cast<unsigned char>(bytes[124]);
   const auto v1 = static_cast<unsigned char>(bytes[125]);
-  if (endian == "IM") return v0 == 0x00 && v1 == 0x01;
-  if (endian == "MI") return v0 == 0x01 && v1 == 0x00;
+  if (endian == "IM") return v0 == (version & 0xffU) && v1 == (version >> 8);
+  if (endian == "MI") return v0 == (version >> 8) && v1 == (version & 0xffU);
   return false;
 }
+
+}  // namespace
+
+bool IsMatV5(std::string_view bytes) { return HasHeaderVersion(bytes, 0x0100); }
+
+bool IsMatV73(std::string_view bytes) { return HasHeaderVersion(bytes, 0x0200); }
 
 void CheckMatV5Structure(std::string_view bytes, const std::string& where) {
   if (!IsMatV5(bytes)) Fail(where, "not a version 5 MAT-file");

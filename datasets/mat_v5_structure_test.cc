@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 #include <matio.h>
+#include <zlib.h>
 
 #include <cstdint>
 #include <cstring>
@@ -105,6 +106,31 @@ TEST(MatV5Structure, CorruptCompressedDataIsRefused) {
   for (std::size_t i = 400; i < 600; ++i) bytes[i] = static_cast<char>(bytes[i] ^ 0x5a);
   const std::string error = ErrorOf([&] { CheckMatV5Structure(bytes, "f.mat"); });
   EXPECT_NE(error.find("f.mat, variable #"), std::string::npos) << error;
+}
+
+TEST(MatV5Structure, CompressedSizeTheDataCannotInflateToIsRefusedUpFront) {
+  // A compressed variable whose inner array tag declares 200 MB but whose deflated stream is a few
+  // dozen bytes: deflate expands at most 1032:1, so the check refuses it without inflating (and
+  // without allocating the declared size).
+  const std::string header = ReadBytes(SyntheticMat(ResolveDataDir(std::nullopt))).substr(0, 128);
+  ASSERT_TRUE(IsMatV5(header));
+  std::string inner(72, '\0');
+  const std::uint32_t inner_tag[2] = {14, 200'000'000};  // miMATRIX, declared bytes
+  std::memcpy(inner.data(), inner_tag, sizeof(inner_tag));
+  std::string deflated(compressBound(inner.size()), '\0');
+  uLongf deflated_size = deflated.size();
+  ASSERT_EQ(compress(reinterpret_cast<Bytef*>(deflated.data()), &deflated_size,
+                     reinterpret_cast<const Bytef*>(inner.data()), inner.size()),
+            Z_OK);
+  deflated.resize(deflated_size);
+  const std::uint32_t outer_tag[2] = {15, static_cast<std::uint32_t>(deflated.size())};
+  std::string bytes = header + std::string(sizeof(outer_tag), '\0') + deflated;
+  std::memcpy(bytes.data() + 128, outer_tag, sizeof(outer_tag));
+  const std::string error = ErrorOf([&] { CheckMatV5Structure(bytes, "f.mat"); });
+  EXPECT_NE(error.find("f.mat, variable #1: declares 200000000 bytes, but its " +
+                       std::to_string(deflated.size()) + " compressed bytes cannot inflate to"),
+            std::string::npos)
+      << error;
 }
 
 TEST(MatV5Structure, OtherFormatsAreNotVersion5) {
