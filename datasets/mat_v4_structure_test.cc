@@ -5,35 +5,19 @@
 
 #include <cstdint>
 #include <cstring>
-#include <fstream>
-#include <functional>
-#include <iterator>
 #include <stdexcept>
 #include <string>
 
 #include "datasets/mat_file.h"
+#include "datasets/test_file_bytes.h"
 #include "datasets/test_temp_dir.h"
 
 namespace phdslam::datasets {
 namespace {
 
-std::string ReadBytes(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-void WriteBytes(const std::filesystem::path& path, const std::string& bytes) {
-  std::ofstream(path, std::ios::binary) << bytes;
-}
-
-std::string ErrorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const std::runtime_error& e) {
-    return e.what();
-  }
-  return "";
-}
+using testing::ErrorOf;
+using testing::ReadBytes;
+using testing::WriteBytes;
 
 /// A version 4 file written by libmatio: "a" (2 x 3 doubles) then "b" (1 x 2 uint8 as double).
 std::filesystem::path WriteV4File() {

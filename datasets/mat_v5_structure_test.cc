@@ -6,9 +6,6 @@
 
 #include <cstdint>
 #include <cstring>
-#include <fstream>
-#include <functional>
-#include <iterator>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -16,32 +13,18 @@
 #include "datasets/data_dir.h"
 #include "datasets/mat_file.h"
 #include "datasets/paper_synthetic.h"
+#include "datasets/test_file_bytes.h"
 #include "datasets/test_temp_dir.h"
 
 namespace phdslam::datasets {
 namespace {
 
-std::string ReadBytes(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-void WriteBytes(const std::filesystem::path& path, const std::string& bytes) {
-  std::filesystem::create_directories(path.parent_path());
-  std::ofstream(path, std::ios::binary) << bytes;
-}
+using testing::ErrorOf;
+using testing::ReadBytes;
+using testing::WriteBytes;
 
 std::filesystem::path SyntheticMat(const std::filesystem::path& data_dir) {
   return data_dir / "phdslam3-synthetic" / "Environment_SLAM.mat";
-}
-
-std::string ErrorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const std::runtime_error& e) {
-    return e.what();
-  }
-  return "";
 }
 
 TEST(MatV5Structure, TheRealFilesPass) {
