@@ -221,6 +221,9 @@ std::vector<GaussianComponent> PruneAndMerge(std::vector<GaussianComponent> comp
   std::vector<GaussianComponent> merged;
   merged.reserve(kept);
   std::pmr::vector<char> used(kept, 0, &arena);
+  // The x coordinates of the kept components in sorted order, contiguous for the pre-gate scan.
+  std::pmr::vector<double> sorted_x(kept, 0.0, &arena);
+  for (std::size_t k = 0; k < kept; ++k) sorted_x[k] = sorted(k).mean(0);
   std::pmr::vector<int> members(&arena);
   std::pmr::vector<double> member_log_w(&arena);
   std::pmr::vector<double> member_w(&arena);
@@ -242,10 +245,11 @@ std::vector<GaussianComponent> PruneAndMerge(std::vector<GaussianComponent> comp
     const double x_window = params.reference_merge_leading_covariance
                                 ? FirstCoordinateGateHalfWidth(lead.cov, params.merge_threshold)
                                 : std::numeric_limits<double>::infinity();
+    const double lead_x = sorted_x[i];
     for (std::size_t j = i + 1; j < kept; ++j) {
+      if (std::abs(lead_x - sorted_x[j]) > x_window) continue;
       if (!params.reference_merge_double_membership && used[j]) continue;
       const GaussianComponent& candidate = sorted(j);
-      if (std::abs(lead.mean(0) - candidate.mean(0)) > x_window) continue;
       const Vec2 d = lead.mean - candidate.mean;
       if (params.reference_merge_leading_covariance && !have_lead_inv) {
         lead_inv = lead.cov.inverse();
