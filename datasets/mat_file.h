@@ -1,5 +1,5 @@
-// Read access to MATLAB MAT-files (v4, v5 and, when libmatio was built with HDF5, v7.3) via
-// libmatio.
+// Read access to MATLAB MAT-files of version 4, 5 and 7 (version 5 with compressed variables) via
+// libmatio. Version 7.3 (HDF5-based) files are refused with an error that says how to re-save them.
 #pragma once
 
 #include <Eigen/Core>
@@ -16,9 +16,10 @@ namespace phdslam::datasets {
 class MatFile {
  public:
   /// Opens `path` read-only. Throws std::runtime_error naming the file when it does not exist,
-  /// is not a MAT-file libmatio can read, or fails CheckMatV5Structure (a version 5 file:
-  /// truncated, or a variable storing fewer or more elements than declared) or CheckMatV4Structure
-  /// (a file without a version 5 or 7.3 header: a name or data that does not fit in the file).
+  /// is a version 7.3 (HDF5-based) MAT-file, is not a MAT-file libmatio can read, or fails
+  /// CheckMatV5Structure (a version 5 file: truncated, or a variable storing fewer or more elements
+  /// than declared) or CheckMatV4Structure (a file without a version 5 or 7.3 header: a name or
+  /// data that does not fit in the file).
   explicit MatFile(const std::filesystem::path& path);
   ~MatFile();
   MatFile(MatFile&&) noexcept;

@@ -19,11 +19,11 @@
 namespace phdslam::datasets {
 namespace {
 
-/// Writes variables into a fresh MAT v5 file with libmatio.
+/// Writes variables into a fresh MAT-file (version 5 unless told) with libmatio.
 class MatWriter {
  public:
-  explicit MatWriter(const std::filesystem::path& path)
-      : mat_(Mat_CreateVer(path.c_str(), nullptr, MAT_FT_MAT5)) {
+  explicit MatWriter(const std::filesystem::path& path, mat_ft version = MAT_FT_MAT5)
+      : mat_(Mat_CreateVer(path.c_str(), nullptr, version)) {
     if (mat_ == nullptr) throw std::runtime_error("cannot create " + path.string());
   }
   ~MatWriter() { Mat_Close(mat_); }
@@ -94,6 +94,24 @@ TEST(MatFile, NonMatFileErrorNamesTheFile) {
     FAIL() << "no exception";
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find(path.string()), std::string::npos) << e.what();
+  }
+}
+
+TEST(MatFile, Version73FileIsRefusedWithHowToResaveIt) {
+  const auto path = testing::FreshTestDir() / "v73.mat";
+  {
+    MatWriter w(path, MAT_FT_MAT73);
+    double d[2] = {1.0, 2.0};
+    w.Write("d", MAT_C_DOUBLE, MAT_T_DOUBLE, {1, 2}, d);
+  }
+  try {
+    const MatFile file(path);
+    FAIL() << "a version 7.3 file was opened";
+  } catch (const std::runtime_error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(path.string()), std::string::npos) << what;
+    EXPECT_NE(what.find("version 7.3"), std::string::npos) << what;
+    EXPECT_NE(what.find("-v7"), std::string::npos) << what;
   }
 }
 

@@ -20,8 +20,8 @@ inline constexpr std::size_t kMaxMatVariableBytes = std::size_t{1} << 28;
 /// HDF5-based version 7.3 files give false.
 bool IsMatV5(std::string_view bytes);
 
-/// True when `bytes` starts with the 128-byte header of an HDF5-based version 7.3 MAT-file (read
-/// by libmatio through the HDF5 library, which does its own checking).
+/// True when `bytes` starts with the 128-byte header of an HDF5-based version 7.3 MAT-file (which
+/// MatFile refuses).
 bool IsMatV73(std::string_view bytes);
 
 /// Checks the data elements of a version 5 MAT-file held in `bytes`. Throws std::runtime_error
