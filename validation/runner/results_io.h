@@ -12,8 +12,8 @@
 
 namespace phdslam::validation {
 
-/// "%.10g" of a finite value; the empty string for NaN, infinities and nullopt, which the
-/// results files use for "not available".
+/// The text of printf's "%.10g" for a finite value; the empty string for NaN, infinities and
+/// nullopt, which the results files use for "not available".
 std::string FormatNumber(double value);
 std::string FormatNumber(const std::optional<double>& value);
 std::string FormatInteger(std::int64_t value);

@@ -2,9 +2,16 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
 #include <limits>
+#include <random>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "datasets/test_temp_dir.h"
 
@@ -21,6 +28,39 @@ TEST(FormatNumber, TenSignificantDigitsAndEmptyForUnknown) {
   EXPECT_EQ(FormatNumber(std::numeric_limits<double>::infinity()), "");
   EXPECT_EQ(FormatNumber(std::optional<double>()), "");
   EXPECT_EQ(FormatNumber(std::optional<double>(2.0)), "2");
+}
+
+TEST(FormatNumber, SameTextAsPrintfTenSignificantDigits) {
+  // Results files written before FormatNumber used std::to_chars held snprintf's "%.10g": the
+  // two must agree on every finite double, extremes and subnormals included.
+  std::mt19937_64 bits_source(20261125);
+  std::vector<double> values = {0.0,
+                                -0.0,
+                                1e-5,
+                                1e-4,
+                                9999999999.5,
+                                99999.999995,
+                                1e10,
+                                5e-324,
+                                2.2250738585072014e-308,
+                                1.7976931348623157e308};
+  for (int i = 0; i < 200000; ++i) {
+    const std::uint64_t bits = bits_source();
+    double v = 0.0;
+    std::memcpy(&v, &bits, sizeof v);
+    values.push_back(v);
+    values.push_back(std::ldexp(static_cast<double>(bits >> 11) / 9007199254740992.0 - 0.5,
+                                static_cast<int>(bits % 120) - 60));
+  }
+  int compared = 0;
+  for (const double v : values) {
+    if (!std::isfinite(v)) continue;
+    std::array<char, 64> expected{};
+    const int n = std::snprintf(expected.data(), expected.size(), "%.10g", v);
+    ASSERT_EQ(FormatNumber(v), std::string(expected.data(), static_cast<std::size_t>(n))) << v;
+    ++compared;
+  }
+  EXPECT_GT(compared, 390000);
 }
 
 TEST(CsvRow, JoinsCellsAndRejectsSpecialCharacters) {
