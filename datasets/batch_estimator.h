@@ -1,7 +1,7 @@
 // The batch (whole-scenario) estimator interface of the reference estimators such as the Ceres
 // smoother. Unlike an online estimator it receives a whole Scenario: the runner hands the hidden
 // origin labels only to entries that declare they read the truth, and a copy without them to the
-// others (see validation/runner/estimator_registry.h).
+// others (see validation/runner/registry/estimator_registry.h).
 #pragma once
 
 #include <optional>

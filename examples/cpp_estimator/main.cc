@@ -9,10 +9,10 @@
 #include <vector>
 
 #include "nearest_landmark_estimator.h"
-#include "validation/runner/estimator_registry.h"
-#include "validation/runner/experiment_runner.h"
-#include "validation/runner/list_arguments.h"
-#include "validation/runner/summary.h"
+#include "validation/runner/experiment/experiment_runner.h"
+#include "validation/runner/io/list_arguments.h"
+#include "validation/runner/registry/estimator_registry.h"
+#include "validation/runner/results/summary.h"
 
 namespace {
 

@@ -13,8 +13,8 @@
 #include "src/core/gaussian.h"
 #include "src/filters/phd_slam_family.h"
 #include "src/models/range_bearing_model.h"
-#include "validation/runner/estimator_registry.h"
-#include "validation/runner/run_estimator.h"
+#include "validation/runner/execution/run_estimator.h"
+#include "validation/runner/registry/estimator_registry.h"
 
 namespace phdslam::validation {
 namespace {

@@ -16,8 +16,8 @@
 #include "src/core/angles.h"
 #include "src/core/log_sum_exp.h"
 #include "src/models/velocity_motion_model.h"
-#include "validation/runner/parent_weights.h"
-#include "validation/runner/scenario_defaults.h"
+#include "validation/runner/registry/scenario_defaults.h"
+#include "validation/runner/studies/parent_weights.h"
 
 namespace phdslam::filters {
 namespace {

@@ -5,7 +5,7 @@ nis_count, the NIS per measurement. For a consistent filter sum_r nis_sum is chi
 2 C_k degrees of freedom (C_k = sum_r nis_count), so the two-sided bounds of NIS_k are
 chi2.ppf(0.025 and 0.975, 2 C_k) / C_k: they narrow where many measurements are pooled. This is
 the computation of summary.csv's nis_mean / nis_median / nis_fraction_inside
-(validation/runner/summary.cc), drawn per step.
+(validation/runner/results/summary.cc), drawn per step.
 """
 
 from __future__ import annotations

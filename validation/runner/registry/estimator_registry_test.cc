@@ -1,0 +1,225 @@
+#include "validation/runner/registry/estimator_registry.h"
+
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include "datasets/scenario_generator.h"
+#include "src/core/random.h"
+
+namespace phdslam::validation {
+namespace {
+
+datasets::Scenario TwoStepScenario() {
+  datasets::Scenario s;
+  s.name = "tiny";
+  s.initial_pose = Pose(1.0, 2.0, 0.0);
+  s.control_noise_cov = Vec2(0.01, 0.0001).asDiagonal();
+  datasets::ScenarioStep first;
+  first.data.times = {0.0};
+  datasets::ScenarioStep second;
+  second.data.times = {0.0, 1.0};
+  second.data.controls = {Control(2.0, 1e-12)};
+  second.data.measurements = {Measurement(5.0, 0.0)};
+  s.steps = {first, second};
+  return s;
+}
+
+TEST(EstimatorTable, HasOdometryAndUniqueNames) {
+  const auto& table = EstimatorTable();
+  ASSERT_FALSE(table.empty());
+  std::set<std::string> names;
+  for (const EstimatorEntry& e : table) {
+    EXPECT_TRUE(names.insert(e.name).second) << e.name << " twice";
+    EXPECT_FALSE(e.description.empty()) << e.name;
+    EXPECT_TRUE(e.resolved_parameters) << e.name;
+    EXPECT_TRUE(e.HasFactory()) << e.name;
+  }
+  EXPECT_EQ(FindEstimator("odometry").name, "odometry");
+}
+
+TEST(FindEstimator, UnknownNameListsTheKnownOnes) {
+  try {
+    FindEstimator("phd9");
+    FAIL() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("'phd9'"), std::string::npos) << what;
+    EXPECT_NE(what.find("odometry"), std::string::npos) << what;
+  }
+}
+
+TEST(OdometryEntry, DeadReckonsTheScenario) {
+  const datasets::Scenario scenario = TwoStepScenario();
+  const filters::EstimatorContext context = scenario.PublicContext();
+  EstimatorRequest request;
+  request.name = "odometry";
+  request.context = &context;
+  const EstimatorEntry& entry = FindEstimator("odometry");
+  EXPECT_EQ(entry.resolved_parameters(request), nlohmann::json::object());
+  auto estimator = entry.make_online(request);
+  const filters::StepOutput first = estimator->Step(scenario.steps[0].data);
+  EXPECT_TRUE(first.pose.isApprox(scenario.initial_pose));
+  const filters::StepOutput second = estimator->Step(scenario.steps[1].data);
+  // Straight ahead at 2 m/s for 1 s from heading 0.
+  EXPECT_NEAR(second.pose(0), 3.0, 1e-9);
+  EXPECT_NEAR(second.pose(1), 2.0, 1e-9);
+  ASSERT_EQ(estimator->Map().size(), 1u);
+  EXPECT_NEAR(estimator->Map().means[0](0), 8.0, 1e-9);
+}
+
+TEST(OdometryEntry, RejectsParticlesAndParameters) {
+  const datasets::Scenario scenario = TwoStepScenario();
+  const filters::EstimatorContext context = scenario.PublicContext();
+  EstimatorRequest request;
+  request.name = "odometry";
+  request.context = &context;
+  request.particles = 10;
+  const EstimatorEntry& entry = FindEstimator("odometry");
+  EXPECT_THROW(entry.resolved_parameters(request), std::invalid_argument);
+  request.particles = 1;
+  request.overrides = {{"hypotheses", 3}};
+  EXPECT_THROW(entry.resolved_parameters(request), std::invalid_argument);
+  request.overrides = nlohmann::json::object();
+  request.context = nullptr;
+  EXPECT_THROW(entry.make_online(request), std::invalid_argument);
+}
+
+TEST(PhdSlamEntries, VictoriaParkResamplingThresholdDependsOnTheVariant) {
+  EstimatorRequest request;
+  request.scenario_name = "victoria-park";
+  request.particles = 5;
+  const auto threshold = [&](const std::string& name) {
+    request.name = name;
+    const nlohmann::json p = FindEstimator(name).resolved_parameters(request);
+    EXPECT_EQ(p.at("ess_threshold_kind"), "absolute") << name;
+    return p.at("ess_threshold").get<double>();
+  };
+  EXPECT_EQ(threshold("phd1"), 2.5);
+  EXPECT_EQ(threshold("phd2a"), 2.5);
+  EXPECT_EQ(threshold("phd2b"), 1.0);
+  EXPECT_EQ(threshold("phd3"), 1.0);
+  EXPECT_EQ(threshold("rbphd"), 2.5);
+  // The synthetic scenario: 0.2 N for every variant.
+  request.scenario_name = "paper-synthetic";
+  request.name = "phd1";
+  EXPECT_EQ(FindEstimator("phd1").resolved_parameters(request).at("ess_threshold"), 0.2);
+}
+
+TEST(RbPhdEntry, IsPhd1WithTheSingleFeatureWeight) {
+  EstimatorRequest request;
+  request.scenario_name = "paper-synthetic";
+  request.particles = 10;
+  request.name = "rbphd";
+  nlohmann::json rb = FindEstimator("rbphd").resolved_parameters(request);
+  EXPECT_EQ(rb.at("weighting"), "single-feature");
+  request.name = "phd1";
+  nlohmann::json phd1 = FindEstimator("phd1").resolved_parameters(request);
+  EXPECT_EQ(phd1.at("weighting"), "paper-46");
+  rb.erase("weighting");
+  phd1.erase("weighting");
+  EXPECT_EQ(rb, phd1);  // every other parameter is phd1's
+  request.name = "rbphd";
+  request.overrides = {{"weighting", "empty-map"}};
+  EXPECT_EQ(FindEstimator("rbphd").resolved_parameters(request).at("weighting"), "empty-map");
+}
+
+TEST(MrptEkfPostProcessed, RunsTheSameFilterAndReportsASubsetOfItsMap) {
+  bool built = false;
+  for (const EstimatorEntry& e : EstimatorTable()) built = built || e.name == "mrpt-ekf";
+  if (!built) GTEST_SKIP() << "built without MRPT";
+  datasets::GeneratorOptions o;
+  o.steps = 60;
+  o.landmarks = 40;
+  o.corridor_half_width = 60.0;
+  const datasets::Scenario scenario = datasets::GenerateScenario(o, 3);
+  const filters::EstimatorContext context = scenario.PublicContext();
+  EstimatorRequest request;
+  request.context = &context;
+  request.name = "mrpt-ekf";
+  auto raw = FindEstimator("mrpt-ekf").make_online(request);
+  request.name = "mrpt-ekf-postprocessed";
+  auto post = FindEstimator("mrpt-ekf-postprocessed").make_online(request);
+  for (const datasets::ScenarioStep& step : scenario.steps) {
+    const filters::StepOutput a = raw->Step(step.data);
+    const filters::StepOutput b = post->Step(step.data);
+    ASSERT_EQ(a.pose, b.pose);
+  }
+  const filters::MapEstimate raw_map = raw->Map();
+  const filters::MapEstimate post_map = post->Map();
+  EXPECT_GT(post_map.size(), 0u);
+  EXPECT_LT(post_map.size(), raw_map.size());  // the clutter landmarks are dropped
+  for (const Landmark& m : post_map.means) {
+    bool found = false;
+    for (const Landmark& r : raw_map.means) found = found || r == m;
+    EXPECT_TRUE(found) << m.transpose();
+  }
+}
+
+bool Registered(const std::string& name) {
+  for (const EstimatorEntry& e : EstimatorTable()) {
+    if (e.name == name) return true;
+  }
+  return false;
+}
+
+std::string ResolveError(const std::string& name, const nlohmann::json& overrides) {
+  EstimatorRequest request;
+  request.name = name;
+  request.scenario_name = "generated";
+  request.overrides = overrides;
+  try {
+    FindEstimator(name).resolved_parameters(request);
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// A key fixed by the estimator's name accepts that value (a no-op) and rejects any other.
+TEST(ReferenceEstimators, KeysFixedByTheNameAcceptOnlyTheirOwnValue) {
+  if (!Registered("smoother-filter")) GTEST_SKIP() << "built without Ceres";
+  for (const auto& [name, mode] : {std::pair<std::string, std::string>{"smoother-known", "known"},
+                                   {"smoother-filter", "filter"},
+                                   {"smoother-unknown", "unknown"}}) {
+    EstimatorRequest request;
+    request.name = name;
+    request.scenario_name = "generated";
+    request.overrides = {{"association", mode}};
+    EXPECT_EQ(FindEstimator(name).resolved_parameters(request).at("association"), mode);
+  }
+  EXPECT_EQ(ResolveError("smoother-filter", {{"association", "known"}}),
+            "estimator 'smoother-filter': parameter 'association': fixed by the estimator's name "
+            "(smoother-known, smoother-filter, smoother-unknown): expected \"filter\", got "
+            "\"known\"");
+  EXPECT_EQ(ResolveError("smoother-known", {{"robust_loss", "tukey"}}),
+            "estimator 'smoother-known': SmootherOptions.robust_loss: expected \"cauchy\", "
+            "\"huber\" or \"none\", got \"tukey\"");
+}
+
+TEST(ReferenceEstimators, FastSlamProposalIsFixedByTheName) {
+  if (!Registered("fastslam1")) GTEST_SKIP() << "built without MRPT";
+  EXPECT_EQ(ResolveError("fastslam1", {{"proposal", "motion-model"}}), "");
+  EXPECT_EQ(ResolveError("fastslam1", {{"proposal", "measurement-conditioned"}}),
+            "estimator 'fastslam1': parameter 'proposal': fixed by the estimator's name "
+            "(fastslam1, fastslam2): expected \"motion-model\", got "
+            "\"measurement-conditioned\"");
+  EXPECT_EQ(ResolveError("mrpt-ekf", {{"prune_after_steps", -1}}),
+            "estimator 'mrpt-ekf': parameter 'prune_after_steps': must be >= 0, got -1");
+}
+
+TEST(RunStreamSeed, FollowsTheDocumentedDerivation) {
+  EXPECT_EQ(RunStreamSeed("exp", 7, "phd3", 10),
+            DeriveSeed(HashName("exp"), 7, DeriveSeed(HashName("phd3"), 10)));
+  // Every part matters.
+  const std::uint64_t base = RunStreamSeed("exp", 7, "phd3", 10);
+  EXPECT_NE(base, RunStreamSeed("exp2", 7, "phd3", 10));
+  EXPECT_NE(base, RunStreamSeed("exp", 8, "phd3", 10));
+  EXPECT_NE(base, RunStreamSeed("exp", 7, "phd1", 10));
+  EXPECT_NE(base, RunStreamSeed("exp", 7, "phd3", 100));
+}
+
+}  // namespace
+}  // namespace phdslam::validation

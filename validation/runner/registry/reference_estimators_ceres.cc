@@ -1,0 +1,76 @@
+// Registry entries of the Ceres batch smoother (built only when phdslam_reference_ceres exists).
+#include <memory>
+#include <stdexcept>
+#include <utility>
+
+#include "reference/ceres/batch_smoother.h"
+#include "reference/ceres/filter_association.h"
+#include "reference/ceres/smoother_params_json.h"
+#include "src/filters/phd_slam_family.h"
+#include "src/filters/phd_slam_params_json.h"
+#include "validation/runner/registry/estimator_registry.h"
+
+namespace phdslam::validation {
+namespace {
+
+// The association mode is fixed by the name: the table accepts an `association` override only
+// when it equals `mode` (so that resolved parameters can be fed back as overrides).
+reference::SmootherOptions ResolveSmoother(const EstimatorRequest& r,
+                                           reference::AssociationMode mode) {
+  RequireSingleParticle(r);
+  reference::SmootherOptions defaults;
+  defaults.association = mode;
+  reference::SmootherOptions o =
+      ResolveParameters(r, reference::SmootherOptionsTable(), std::move(defaults));
+  try {
+    o.Validate();
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument("estimator '" + r.name + "': " + e.what());
+  }
+  if (mode == reference::AssociationMode::kKnown) RequireKnownOrigins(r);
+  return o;
+}
+
+EstimatorEntry SmootherEntry(const std::string& name, reference::AssociationMode mode,
+                             const std::string& description) {
+  EstimatorEntry e;
+  e.name = name;
+  e.description = description;
+  e.batch = true;
+  e.reads_truth = mode == reference::AssociationMode::kKnown;
+  e.resolved_parameters = [mode](const EstimatorRequest& r) {
+    return reference::ToJson(ResolveSmoother(r, mode));
+  };
+  e.make_batch = [mode](const EstimatorRequest& r) -> std::unique_ptr<datasets::BatchEstimator> {
+    reference::SmootherOptions o = ResolveSmoother(r, mode);
+    if (mode != reference::AssociationMode::kFilter) {
+      return std::make_unique<reference::BatchSmoother>(std::move(o));
+    }
+    // The association of a single-particle PHD-SLAM 3.0 run with the paper's parameters, drawn
+    // from this run's own stream.
+    EstimatorRequest phd3 = r;
+    phd3.name = "phd3";
+    phd3.overrides = nlohmann::json::object();
+    phd3.particles = 1;
+    const filters::PhdSlamParams params = ResolveParameters(phd3, filters::PhdSlamParamsTable());
+    return std::make_unique<reference::FilterThenSmooth>(
+        filters::MakePhdSlam("phd3", RequireContext(r), params, r.stream_seed), std::move(o));
+  };
+  return e;
+}
+
+}  // namespace
+
+std::vector<EstimatorEntry> CeresEstimators() {
+  return {SmootherEntry("smoother-known", reference::AssociationMode::kKnown,
+                        "Ceres batch smoother (full SLAM graph) with the known association "
+                        "(reads the hidden origin labels): the graph-optimisation lower bound"),
+          SmootherEntry("smoother-filter", reference::AssociationMode::kFilter,
+                        "Ceres batch smoother on the data association of a PHD-SLAM 3.0 run "
+                        "(N = 1, same seed)"),
+          SmootherEntry("smoother-unknown", reference::AssociationMode::kUnknown,
+                        "Ceres batch smoother with its own association: robust loss and "
+                        "re-association between solves (reference/ceres/README.md)")};
+}
+
+}  // namespace phdslam::validation
