@@ -74,7 +74,8 @@ struct FastSlamOptions {
   /// Resample when ESS <= ess_threshold_fraction N (the paper's synthetic setting is 0.2).
   double ess_threshold_fraction = 0.2;
   ResamplingScheme resampling = ResamplingScheme::kSystematic;
-  /// Added to the predicted pose covariance once per step with propagation (reference notes 4.1:
+  /// Added to the predicted pose covariance once per step with propagation
+  /// (docs/algorithms/models.md section 2.4:
   /// Q_n regularises the rank-2 control noise).
   Vec3 pose_regulariser_diag = Vec3(1e-9, 1e-9, 1e-18);
 
