@@ -2,7 +2,7 @@
 // landmark existence counter against clutter, built on MRPT's particle-filter engine.
 //
 // MRPT 2.5 has no FastSLAM for range-bearing landmarks (its RBPF map builder cannot insert
-// bearing-range observations into a landmark map; see docs/mrpt-baselines.md and README.md), so
+// bearing-range observations into a landmark map; see README.md), so
 // the filter is assembled from MRPT's parts:
 //   MRPT's:  mrpt::bayes::CParticleFilter (executeOn drives the proposal/update callback selected
 //            by pfStandardProposal or pfOptimalProposal, then normalises the weights),
