@@ -1,7 +1,6 @@
 // Simulation of range-bearing scans and noisy odometry along a known true trajectory: the
 // measurement rules of the paper's synthetic scenario (docs/algorithms/models.md section 4), shared
-// by the
-// paper scenario and the scenario generator.
+// by the paper scenario and the scenario generator.
 #pragma once
 
 #include <string_view>

@@ -75,15 +75,14 @@ struct VictoriaParkOptions {
 };
 
 /// One Monte Carlo run (docs/algorithms/models.md sections 6.3 and 6.4). Controls and scans are
-/// merged as the reference code
-/// does: walking over the control samples k, a filter step is taken for the next scan j when
-/// tau_j < t_k (strictly). Its time stamps are [previous scan time, t_{k_last} .. t_{k-1}, tau_j]
-/// and its controls [control held at the previous scan (sample k-1 of that step),
-/// u_{k_last} .. u_{k-1}] (zero-order hold); then k_last = k. The previous scan time and held
-/// control are recorded only when k > 1 (1-based), so when the first scan precedes the first
-/// control the first step has the single time stamp tau_1 (no propagation) and the second step
-/// starts at the first control time. The merge ends when every scan is used or the controls run
-/// out (later scans are dropped). Should two scans fall between the same two control samples
+/// merged as the reference code does: walking over the control samples k, a filter step is taken
+/// for the next scan j when tau_j < t_k (strictly). Its time stamps are [previous scan time,
+/// t_{k_last} .. t_{k-1}, tau_j] and its controls [control held at the previous scan (sample k-1 of
+/// that step), u_{k_last} .. u_{k-1}] (zero-order hold); then k_last = k. The previous scan time
+/// and held control are recorded only when k > 1 (1-based), so when the first scan precedes the
+/// first control the first step has the single time stamp tau_1 (no propagation) and the second
+/// step starts at the first control time. The merge ends when every scan is used or the controls
+/// run out (later scans are dropped). Should two scans fall between the same two control samples
 /// (never in the real data), the second is taken at the same k with the single sub-interval
 /// [previous scan, tau] and the held control, where the reference loop would go back in time.
 ///

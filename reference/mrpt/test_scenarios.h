@@ -1,9 +1,8 @@
 // Small synthetic scenarios for the tests of the MRPT baselines: landmarks on a circle, a robot
 // driving a smaller concentric circle with the velocity motion model, and measurements generated
 // the way the paper's synthetic scenario generates them (docs/algorithms/models.md section 4.1):
-// visible landmarks in
-// index order, then Poisson clutter uniform in (r, phi), N(0, R) noise and pD thinning on every
-// entry, wrapped bearings, odometry = true control + N(0, Q_u). Test-only.
+// visible landmarks in index order, then Poisson clutter uniform in (r, phi), N(0, R) noise and pD
+// thinning on every entry, wrapped bearings, odometry = true control + N(0, Q_u). Test-only.
 #pragma once
 
 #include <cmath>

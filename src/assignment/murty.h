@@ -17,9 +17,9 @@ namespace phdslam::assignment {
 std::vector<Assignment> MurtyKBest(const Eigen::MatrixXd& cost, int k);
 
 /// Same, with the PHD-SLAM 3.0 early stop (docs/algorithms/phd-slam.md section 4.4): after
-/// generating hypothesis
-/// t >= 2, if its cost exceeds the best cost by more than `max_cost_gap`, generation stops and that
-/// hypothesis is discarded. Throws std::invalid_argument also when max_cost_gap is NaN.
+/// generating hypothesis t >= 2, if its cost exceeds the best cost by more than `max_cost_gap`,
+/// generation stops and that hypothesis is discarded. Throws std::invalid_argument also when
+/// max_cost_gap is NaN.
 std::vector<Assignment> MurtyKBest(const Eigen::MatrixXd& cost, int k, double max_cost_gap);
 
 }  // namespace phdslam::assignment

@@ -1,7 +1,6 @@
 // PHD-SLAM 3.0 importance density (docs/algorithms/phd-slam.md section 4.3-4.6): a Gaussian mixture
-// over the Murty-ranked
-// data-association hypotheses, each conditioned by the partitioned IPL, plus an all-clutter
-// component.
+// over the Murty-ranked data-association hypotheses, each conditioned by the partitioned IPL, plus
+// an all-clutter component.
 #pragma once
 
 #include "src/filters/importance_density.h"

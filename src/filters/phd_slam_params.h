@@ -1,7 +1,6 @@
 // Parameters of the RB-PHD-SLAM family (docs/algorithms/phd-slam.md section 7). Defaults are the
-// paper's
-// synthetic-scenario values; the defaults that depend on the scenario (Victoria Park's) are in the
-// runner's table of scenario defaults (validation/runner/scenario_defaults.cc).
+// paper's synthetic-scenario values; the defaults that depend on the scenario (Victoria Park's) are
+// in the runner's table of scenario defaults (validation/runner/scenario_defaults.cc).
 #pragma once
 
 #include <cmath>

@@ -1,7 +1,7 @@
 // Adaptive measurement-driven births with the two-level birth probability
-// (docs/algorithms/glmb-slam.md
-// section 5): after the update at step k every measurement of Z_k becomes a birth Bernoulli for
-// step k + 1, labelled (k + 1, j), placed by the inverse model at the pose the scan was taken from.
+// (docs/algorithms/glmb-slam.md section 5): after the update at step k every measurement of Z_k
+// becomes a birth Bernoulli for step k + 1, labelled (k + 1, j), placed by the inverse model at the
+// pose the scan was taken from.
 #pragma once
 
 #include <cstdint>

@@ -1,6 +1,5 @@
 // Entry-level quantities of the joint prediction/update (docs/algorithms/glmb-slam.md section 4.1),
-// computed once per
-// entry at one pose and shared by every hypothesis that holds the entry.
+// computed once per entry at one pose and shared by every hypothesis that holds the entry.
 #pragma once
 
 #include <optional>

@@ -1,6 +1,5 @@
 // A delta-GLMB map density (docs/algorithms/glmb-slam.md section 3): weighted hypotheses over
-// shared
-// immutable entries, and the quantities derived from it (existence, cardinality, the MAP
+// shared immutable entries, and the quantities derived from it (existence, cardinality, the MAP
 // cardinality estimate of docs/algorithms/glmb-slam.md section 8.1).
 #pragma once
 
@@ -37,8 +36,7 @@ std::vector<std::pair<Label, double>> LabelExistence(std::span<const Hypothesis>
 int BestHypothesis(std::span<const Hypothesis> hypotheses);
 
 /// docs/algorithms/glmb-slam.md section 8.1: n* = argmax rho (smallest n on ties), then the
-/// highest-weight hypothesis
-/// with n* entries (first on ties); -1 when empty.
+/// highest-weight hypothesis with n* entries (first on ties); -1 when empty.
 int MapCardinalityHypothesis(std::span<const Hypothesis> hypotheses);
 
 }  // namespace phdslam::glmb

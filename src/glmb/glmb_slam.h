@@ -3,19 +3,19 @@
 // (filters/particle_filter.h): each particle holds a pose and a labelled map.
 //
 //  - glmb1: GlmbMapModel with the transition density (docs/algorithms/glmb-slam.md section 6.2):
-//    x_k ~ N(f(x_{k-1}, u), Sigma_0)
-//    and the weight w * Z-hat(x_k) of the joint update (joint_update.h) at x_k.
+//    x_k ~ N(f(x_{k-1}, u), Sigma_0) and the weight w * Z-hat(x_k) of the joint update
+//    (joint_update.h) at x_k.
 //  - glmb2: GlmbMapModel with its own optimal-kernel proposal (docs/algorithms/glmb-slam.md section
-//    6.3, kernel_proposal.h): the
-//    joint problem at the predicted mean x-hat with H_x Sigma_0 H_x' in every innovation
-//    covariance is Gibbs-sampled, each (hypothesis, association) updates N(x-hat, Sigma_0) by an
-//    EKF, and the weighted updates are collapsed (kernel_form) and sampled; the joint update is
-//    then run again, independently, at the sampled pose (A5). Weight: kernel_weight (A4).
+//    6.3, kernel_proposal.h): the joint problem at the predicted mean x-hat with H_x Sigma_0 H_x'
+//    in every innovation covariance is Gibbs-sampled, each (hypothesis, association) updates
+//    N(x-hat, Sigma_0) by an EKF, and the weighted updates are collapsed (kernel_form) and sampled;
+//    the joint update is then run again, independently, at the sampled pose (A5). Weight:
+//    kernel_weight (A4).
 //  - lmb: LmbMapModel (docs/algorithms/glmb-slam.md section 7): each update converts the LMB
-//    (in-FOV tracks, existence p_S r)
-//    into one delta-GLMB hypothesis, runs the same joint update with all Gibbs samples on it,
-//    converts back (glmb2lmb), prunes r < existence_prune_threshold, caps at max_tracks and
-//    reduces each track's mixture; no measurement clustering. Out-of-FOV tracks are untouched.
+//    (in-FOV tracks, existence p_S r) into one delta-GLMB hypothesis, runs the same joint update
+//    with all Gibbs samples on it, converts back (glmb2lmb), prunes r < existence_prune_threshold,
+//    caps at max_tracks and reduces each track's mixture; no measurement clustering. Out-of-FOV
+//    tracks are untouched.
 //
 // Common to the three (each option in glmb_slam_params.h with its default):
 //  - p_D is the sensor's at the entry's (heaviest component's) mean, the FOV a point test there;

@@ -382,8 +382,7 @@ TEST(GlmbJointUpdate, DuplicateChildrenAreMerged) {
 }
 
 // docs/algorithms/glmb-slam.md section 7, birth survival sensitivity: a birth (r_B = 1e-4)
-// re-detected once at its
-// mean, kappa = lambda / (3 m * 2 pi). Its LMB existence is
+// re-detected once at its mean, kappa = lambda / (3 m * 2 pi). Its LMB existence is
 // r_B (1 - pD + pD q / kappa) / (1 - r_B pD + r_B pD q / kappa): above LMB-SLAM's pruning
 // threshold 0.019 at lambda = 1, below it at lambda = 15.
 TEST(Lmb, BirthReDetectedOnceSurvivesPruningOnlyAtLowClutter) {

@@ -1,8 +1,8 @@
 // The joint prediction/update of a delta-GLMB map at one pose (docs/algorithms/glmb-slam.md section
-// 4): the
-// entry terms, the eta matrix of each prior hypothesis (out-of-FOV entries passed through with
-// factor 1, never entering the sampler), Gibbs sampling from the optimal association, children,
-// the normaliser, merging of duplicates, pruning and the cap. Every weight is a natural log.
+// 4): the entry terms, the eta matrix of each prior hypothesis (out-of-FOV entries passed through
+// with factor 1, never entering the sampler), Gibbs sampling from the optimal association,
+// children, the normaliser, merging of duplicates, pruning and the cap. Every weight is a natural
+// log.
 #pragma once
 
 #include <cstdint>

@@ -1,7 +1,6 @@
 // Labelled multi-Bernoulli maps for LMB-SLAM (docs/algorithms/glmb-slam.md section 7): the
-// conversions to and
-// from a delta-GLMB, the per-track Gaussian-mixture reduction and the LMB estimate
-// (docs/algorithms/glmb-slam.md section 8.2).
+// conversions to and from a delta-GLMB, the per-track Gaussian-mixture reduction and the LMB
+// estimate (docs/algorithms/glmb-slam.md section 8.2).
 #pragma once
 
 #include <cstdint>
@@ -46,8 +45,7 @@ std::vector<TrackComponent> ReduceMixture(std::vector<TrackComponent> gm,
 std::vector<double> LmbCardinality(std::span<const Bernoulli> lmb);
 
 /// docs/algorithms/glmb-slam.md section 8.2: N = min(#tracks, argmax rho), the indices of the N
-/// tracks with the largest r
-/// (stable on ties).
+/// tracks with the largest r (stable on ties).
 std::vector<int> LmbEstimateIndices(std::span<const Bernoulli> lmb);
 
 }  // namespace phdslam::glmb

@@ -1,7 +1,6 @@
 // Labelled track entries of the delta-GLMB map (docs/algorithms/glmb-slam.md section 3.1): an entry
-// is the
-// immutable density of one label under one association history, shared by every hypothesis (and
-// every resampled particle copy) that holds it.
+// is the immutable density of one label under one association history, shared by every hypothesis
+// (and every resampled particle copy) that holds it.
 #pragma once
 
 #include <compare>

@@ -52,8 +52,7 @@ struct SensorModel {
   /// lambda_c = lambda / V, lambda at least kMinFilterClutterRate, used by the filters as a
   /// density in (r, phi). V is the Cartesian area of the FOV sector Theta_fov R_fov^2 (reference
   /// docs/algorithms/models.md section 3.6, kept to reproduce the published numbers) or, for
-  /// ClutterSpace::kRangeBearingBox,
-  /// the (r, phi) box 2 Theta_fov R_fov.
+  /// ClutterSpace::kRangeBearingBox, the (r, phi) box 2 Theta_fov R_fov.
   [[nodiscard]] double ClutterIntensity() const {
     const double rate = std::max(clutter_rate, kMinFilterClutterRate);
     if (clutter_space == ClutterSpace::kRangeBearingBox) {

@@ -1,6 +1,5 @@
 // Velocity (unicycle) motion model of the synthetic scenario, docs/algorithms/models.md section
-// 2.1-2.2, with the
-// straight-line limit when |omega| < kStraightLineOmega.
+// 2.1-2.2, with the straight-line limit when |omega| < kStraightLineOmega.
 #pragma once
 
 #include "src/models/motion_model.h"

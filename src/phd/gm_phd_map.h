@@ -58,8 +58,7 @@ class GmPhdMap {
                  const MapParams& params);
 
   /// GM-PHD update (docs/algorithms/phd-slam.md section 3.2) at the sampled pose. Returns
-  /// immediately with a zero increment when
-  /// there are no measurements.
+  /// immediately with a zero increment when there are no measurements.
   PhdUpdateResult Update(const Pose& pose, std::span<const Measurement> measurements,
                          const models::SensorModel& sensor, const MapParams& params);
 
@@ -113,8 +112,8 @@ class GmPhdMap {
 };
 
 /// Sort, prune and greedily merge a component list as the reference code does
-/// (docs/algorithms/phd-slam.md section 3.3).
-/// Exposed for unit tests and for filters that reduce other mixtures.
+/// (docs/algorithms/phd-slam.md section 3.3). Exposed for unit tests and for filters that reduce
+/// other mixtures.
 std::vector<GaussianComponent> PruneAndMerge(std::vector<GaussianComponent> components,
                                              const MapParams& params);
 
