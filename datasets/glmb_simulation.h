@@ -1,13 +1,15 @@
 // The simulation of the delta-GLMB-SLAM paper (Moratuwage, Adams & Inostroza, Sensors 2019,
-// section 5; delta-GLMB reference notes section 8), scenario "glmb-sim":
+// section 5; docs/algorithms/models.md section 7), scenario "glmb-sim":
 //  - stated: 23 static landmarks, a pre-planned closed loop revisited (loop closure around steps
 //    125-150), speed 1 m/s, a disc field of view of radius 3 m (bearing -pi..pi), odometry noise
 //    sigma 0.1 m/s in speed and 2 deg in steering, measurement noise 0.05 m and 0.5 deg (the
-//    notes' reading of the paper's "20" and "0.50"), pD 0.7 inside the field of view and 0 outside,
-//    Poisson clutter with mean clutter_rate per scan (1, 5, 10, 15 in the paper);
+//    reading of the paper's "20" and "0.50" in models.md section 7.1), pD 0.7 inside the field of
+//    view and 0 outside, Poisson clutter with mean clutter_rate per scan (1, 5, 10, 15 in the
+//    paper);
 //  - chosen here (the paper leaves them open), each an option below where it is a number:
-//    * time step dt = 0.2 s (0.2 m per step): the notes' consistency argument, a loop of about
-//      25 m closed after about 125 steps, where a 3 m sensor sees only local landmarks;
+//    * time step dt = 0.2 s (0.2 m per step): the consistency argument of models.md section 7.2, a
+//      loop of about 25 m closed after about 125 steps, where a 3 m sensor sees only local
+//      landmarks;
 //    * motion model: the kinematic bicycle (Ackermann) model with a steering-angle control
 //      [speed, steering], Euler-integrated (models::CarMotionModel without encoder or laser
 //      offsets, as scphd-sim), wheelbase 1 m. The paper's "steering angle" noise and pre-planned

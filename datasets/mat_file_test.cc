@@ -66,7 +66,7 @@ TEST(MatFile, ReadsTheRealSyntheticEnvironment) {
   const Eigen::MatrixXd controls = file.ReadMatrix("Robot_Control");
   EXPECT_EQ(controls.rows(), 2);
   EXPECT_EQ(controls.cols(), 4000);
-  // Ranges stated in the reference notes (2.1).
+  // Ranges stated in docs/algorithms/models.md section 5.1.
   EXPECT_GE(controls.row(0).minCoeff(), 0.83);
   EXPECT_LE(controls.row(0).maxCoeff(), 1.18);
   EXPECT_LE(controls.row(1).cwiseAbs().maxCoeff(), 0.0173);

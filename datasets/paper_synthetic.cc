@@ -101,7 +101,7 @@ Scenario MakePaperSyntheticScenario(const PaperSyntheticEnvironment& env, std::u
   const SimulationSettings settings = SimulationSettings::Of(options);
   s.sensor = settings.Sensor();
 
-  // Truth: x_1 = x_0; x_k = f(x_{k-1}, u_true_{k-1}, dt) (notes 2.2 item 1).
+  // Truth: x_1 = x_0; x_k = f(x_{k-1}, u_true_{k-1}, dt) (docs/algorithms/models.md section 5.2).
   const models::VelocityMotionModel motion;
   std::vector<Control> controls(env.true_controls.begin(),
                                 env.true_controls.begin() + static_cast<std::ptrdiff_t>(steps));

@@ -38,7 +38,7 @@ class PaperSyntheticTest : public ::testing::Test {
     env_ = nullptr;
   }
 
-  /// True when m is inside the FOV of x (inclusive tests of notes 2.2 item 2).
+  /// True when m is inside the FOV of x (inclusive tests of docs/algorithms/models.md section 4.1).
   static bool Visible(const Pose& x, const Landmark& m, const SyntheticOptions& o) {
     const double dx = m(0) - x(0);
     const double dy = m(1) - x(1);

@@ -1,6 +1,6 @@
 // Simulation of range-bearing scans and noisy odometry along a known true trajectory: the
-// measurement rules of the paper's synthetic scenario (reference notes 2.2-2.3), shared by the
-// paper scenario and the scenario generator.
+// measurement rules of the paper's synthetic scenario (docs/algorithms/models.md section 4), shared
+// by the paper scenario and the scenario generator.
 #pragma once
 
 #include <string_view>
@@ -55,7 +55,7 @@ struct SimulationSettings {
 /// factor when cov is positive definite; a zero column where a variance is zero).
 Mat2 NoiseFactor(const Mat2& cov);
 
-/// Simulates every step along `truth`, reference notes 2.2 items 2-7, drawing from `rng`:
+/// Simulates every step along `truth`, docs/algorithms/models.md section 4.1, drawing from `rng`:
 ///   1. visible landmarks: squared range <= fov_range^2 and |wrap(bearing)| <= fov_half_angle
 ///      (both inclusive), listed in landmark-index order;
 ///   2. clutter: Poisson(clutter_rate) points, each a range uniform on [0, fov_range) then a

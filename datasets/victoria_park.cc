@@ -99,7 +99,8 @@ std::vector<TextRow<N>> ReadNumberRows(const std::filesystem::path& path,
   return rows;
 }
 
-/// Groups measurements.dat rows by time into scans and applies the detector limits (notes 3.2).
+/// Groups measurements.dat rows by time into scans and applies the detector limits
+/// (docs/algorithms/models.md section 6.2).
 std::vector<VictoriaParkData::Scan> ReadScans(const std::filesystem::path& path) {
   const auto rows = ReadNumberRows<4>(path, "t [s], range [m], bearing [rad], diameter [m]");
   std::vector<VictoriaParkData::Scan> scans;
@@ -323,7 +324,8 @@ Scenario MakeVictoriaParkScenario(const VictoriaParkData& data, std::uint64_t se
   Scenario scenario;
   scenario.name = std::string(kFolderName);
   scenario.seed = seed;
-  scenario.initial_pose = Pose(-67.6493, -41.7142, DegToRad(35.5));  // notes 3.5, P0 = 0
+  // docs/algorithms/models.md section 6.5, P0 = 0:
+  scenario.initial_pose = Pose(-67.6493, -41.7142, DegToRad(35.5));
   scenario.motion = MotionKind::kCar;
   scenario.car = models::CarGeometry{};
   scenario.control_noise_cov = options.control_noise_cov;

@@ -1,6 +1,6 @@
 // The Victoria Park data set (ACFR, Guivant & Nebot): tree detections, 40 Hz car odometry and GPS,
 // read from <data_dir>/victoria-park/ and turned into one Scenario per Monte Carlo seed
-// (reference notes sections 3 and 17).
+// (docs/algorithms/models.md section 6).
 #pragma once
 
 #include <cstdint>
@@ -16,7 +16,7 @@ namespace phdslam::datasets {
 /// Millisecond clock value of t = 0 s: every source is put on t = (ms - 20967) / 1000 s.
 inline constexpr double kVictoriaParkClockOriginMs = 20967.0;
 
-/// Detector limits applied on loading (notes 3.2): the kept detections.
+/// Detector limits applied on loading (docs/algorithms/models.md section 6.2): the kept detections.
 inline constexpr double kVictoriaParkMaxRange = 50.0;                 ///< m
 inline constexpr double kVictoriaParkMaxAbsBearing = DegToRad(85.0);  ///< rad
 
@@ -56,11 +56,12 @@ struct VictoriaParkOptions {
   double clutter_rate = 5.0;  ///< Poisson mean per scan; range U[0, fov_range], bearing in FOV
   double fov_range = 50.0;    ///< m
   double fov_half_angle = DegToRad(85.0);  ///< rad
-  double range_buffer = 5.0;               ///< m, active-set enlargement only (notes 9)
+  double range_buffer = 5.0;               ///< m, active set: docs/algorithms/models.md section 3.4
   double angle_buffer = DegToRad(5.0);     ///< rad, likewise
   /// pD = pd_max (1 - r / fov_range) inside the FOV (DetectionProfile::kLinearRange).
   double detection_probability_max = 0.7;
-  /// Nominal pD of the estimate threshold log((1 - pD)^2) = log(0.09) (notes 13 and 17).
+  /// Nominal pD of the estimate threshold log((1 - pD)^2) = log(0.09)
+  /// (docs/algorithms/phd-slam.md section 3.5).
   double detection_probability_nominal = 0.7;
   Mat2 measurement_noise_cov;  ///< R = diag(1 m^2, (1 deg)^2)
   Mat2 control_noise_cov;      ///< Q_u = diag(1 (m/s)^2, (4 deg)^2), steering angle variance
@@ -73,15 +74,15 @@ struct VictoriaParkOptions {
   void Validate() const;
 };
 
-/// One Monte Carlo run (notes 3.3 and 3.4). Controls and scans are merged as the reference code
-/// does: walking over the control samples k, a filter step is taken for the next scan j when
-/// tau_j < t_k (strictly). Its time stamps are [previous scan time, t_{k_last} .. t_{k-1}, tau_j]
-/// and its controls [control held at the previous scan (sample k-1 of that step),
-/// u_{k_last} .. u_{k-1}] (zero-order hold); then k_last = k. The previous scan time and held
-/// control are recorded only when k > 1 (1-based), so when the first scan precedes the first
-/// control the first step has the single time stamp tau_1 (no propagation) and the second step
-/// starts at the first control time. The merge ends when every scan is used or the controls run
-/// out (later scans are dropped). Should two scans fall between the same two control samples
+/// One Monte Carlo run (docs/algorithms/models.md sections 6.3 and 6.4). Controls and scans are
+/// merged as the reference code does: walking over the control samples k, a filter step is taken
+/// for the next scan j when tau_j < t_k (strictly). Its time stamps are [previous scan time,
+/// t_{k_last} .. t_{k-1}, tau_j] and its controls [control held at the previous scan (sample k-1 of
+/// that step), u_{k_last} .. u_{k-1}] (zero-order hold); then k_last = k. The previous scan time
+/// and held control are recorded only when k > 1 (1-based), so when the first scan precedes the
+/// first control the first step has the single time stamp tau_1 (no propagation) and the second
+/// step starts at the first control time. The merge ends when every scan is used or the controls
+/// run out (later scans are dropped). Should two scans fall between the same two control samples
 /// (never in the real data), the second is taken at the same k with the single sub-interval
 /// [previous scan, tau] and the held control, where the reference loop would go back in time.
 ///

@@ -290,7 +290,8 @@ TEST(VictoriaParkScenarioTest, FillsModelSensorAndTruth) {
   EXPECT_DOUBLE_EQ(s.sensor.noise_cov(0, 0), 1.0);
   EXPECT_NEAR(s.sensor.noise_cov(1, 1), 3.0462e-4, 1e-8);
   EXPECT_DOUBLE_EQ(s.sensor.clutter_rate, 5.0);
-  EXPECT_NEAR(s.sensor.ClutterIntensity(), 1.3481e-3, 1e-7);  // notes 17.1
+  // lambda_c of docs/algorithms/models.md section 3.6:
+  EXPECT_NEAR(s.sensor.ClutterIntensity(), 1.3481e-3, 1e-7);
   EXPECT_TRUE(s.truth.poses.empty());
   EXPECT_TRUE(s.truth.landmarks.empty());
   ASSERT_EQ(s.truth.gps.size(), 3u);
@@ -463,7 +464,7 @@ const VictoriaParkData* VictoriaParkRealDataTest::data_ = nullptr;
 const Scenario* VictoriaParkRealDataTest::scenario_ = nullptr;
 
 // Expected counts below were computed independently (a short script over measurements.dat and
-// inputs.dat applying notes 3.2 and 3.4).
+// inputs.dat applying docs/algorithms/models.md sections 6.2 and 6.4).
 TEST_F(VictoriaParkRealDataTest, ScanAndDetectionCounts) {
   EXPECT_EQ(data_->scans.size(), 7230u);  // distinct detection times in the file
   size_t kept = 0;

@@ -1,8 +1,8 @@
 // The oracle RBPF: FastSLAM 2.0 with known data association and the partitioned IPL proposal
-// (reference notes section 16, "Oracle RBPF"). It is the particle-filter skeleton
-// (src/filters/particle_filter.h) over per-landmark EKFs; it differs from PHD-SLAM only in where
-// its association comes from: it reads the scenario's hidden origin labels, and it serves as the
-// accuracy bound the PHD-SLAM filters are compared with.
+// (docs/algorithms/oracle.md). It is the particle-filter skeleton (src/filters/particle_filter.h)
+// over per-landmark EKFs; it differs from PHD-SLAM only in where its association comes from: it
+// reads the scenario's hidden origin labels, and it serves as the accuracy bound the PHD-SLAM
+// filters are compared with.
 //
 // Per step and particle (the skeleton's order and random-number layout):
 //   - proposal (known_association_density.h): the partitioned IPL from the predicted Gaussian over

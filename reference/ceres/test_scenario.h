@@ -1,6 +1,7 @@
 // Test-only: small deterministic scenarios for the smoother tests. A vehicle drives one circle
 // (radius speed / omega around the origin) inside a ring of landmarks, with the synthetic
-// scenario's noise levels, detection probability and clutter model (reference notes 2.2).
+// scenario's noise levels, detection probability and clutter model (docs/algorithms/models.md
+// section 4.1).
 #pragma once
 
 #include <cmath>

@@ -2,8 +2,8 @@
 // landmark existence counter against clutter, built on MRPT's particle-filter engine.
 //
 // MRPT 2.5 has no FastSLAM for range-bearing landmarks (its RBPF map builder cannot insert
-// bearing-range observations into a landmark map; see docs/mrpt-baselines.md and README.md), so
-// the filter is assembled from MRPT's parts:
+// bearing-range observations into a landmark map; see README.md), so the filter is assembled from
+// MRPT's parts:
 //   MRPT's:  mrpt::bayes::CParticleFilter (executeOn drives the proposal/update callback selected
 //            by pfStandardProposal or pfOptimalProposal, then normalises the weights),
 //            CParticleFilterData / CParticleFilterDataImpl (particle storage, weights, ESS,
@@ -74,8 +74,8 @@ struct FastSlamOptions {
   /// Resample when ESS <= ess_threshold_fraction N (the paper's synthetic setting is 0.2).
   double ess_threshold_fraction = 0.2;
   ResamplingScheme resampling = ResamplingScheme::kSystematic;
-  /// Added to the predicted pose covariance once per step with propagation (reference notes 4.1:
-  /// Q_n regularises the rank-2 control noise).
+  /// Added to the predicted pose covariance once per step with propagation
+  /// (docs/algorithms/models.md section 2.4: Q_n regularises the rank-2 control noise).
   Vec3 pose_regulariser_diag = Vec3(1e-9, 1e-9, 1e-18);
 
   /// Throws std::invalid_argument naming the field.

@@ -134,7 +134,8 @@ void FastSlamParticleSet::UpdateParticle(FastSlamParticle& particle, double& log
   const models::SensorModel& sensor = context_.sensor;
   const Mat2& r = sensor.noise_cov;
 
-  // Motion prior: the linearised transition density (reference notes 4.1), Q_n added once.
+  // Motion prior: the linearised transition density (docs/algorithms/models.md section 2.4), Q_n
+  // added once.
   PoseGaussian prior{particle.pose, Mat3::Zero()};
   if (step.times.size() > 1) {
     prior.cov = options_.pose_regulariser_diag.asDiagonal();

@@ -1,6 +1,6 @@
 // The odometry of one filter step as a Gaussian: propagated in the world frame (as every filter
-// in phdslam does, reference notes 4.1) or expressed as a pose increment in the robot frame (the
-// form MRPT's odometry actions take).
+// in phdslam does, docs/algorithms/models.md section 2.4) or expressed as a pose increment in the
+// robot frame (the form MRPT's odometry actions take).
 #pragma once
 
 #include "datasets/scenario.h"

@@ -1,8 +1,8 @@
 // Small synthetic scenarios for the tests of the MRPT baselines: landmarks on a circle, a robot
 // driving a smaller concentric circle with the velocity motion model, and measurements generated
-// the way the paper's synthetic scenario generates them (reference notes 2.2): visible landmarks in
-// index order, then Poisson clutter uniform in (r, phi), N(0, R) noise and pD thinning on every
-// entry, wrapped bearings, odometry = true control + N(0, Q_u). Test-only.
+// the way the paper's synthetic scenario generates them (docs/algorithms/models.md section 4.1):
+// visible landmarks in index order, then Poisson clutter uniform in (r, phi), N(0, R) noise and pD
+// thinning on every entry, wrapped bearings, odometry = true control + N(0, Q_u). Test-only.
 #pragma once
 
 #include <cmath>
@@ -110,7 +110,7 @@ inline std::vector<Pose> RunOnline(filters::OnlineEstimator& estimator,
   return poses;
 }
 
-/// Position RMSE over all steps (reference notes 15).
+/// Position RMSE over all steps (docs/algorithms/metrics.md section 1.2).
 inline double PositionRmse(const datasets::Scenario& s, const std::vector<Pose>& poses) {
   double sum = 0.0;
   for (std::size_t k = 0; k < poses.size(); ++k) {

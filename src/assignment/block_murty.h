@@ -12,9 +12,9 @@
 namespace phdslam::assignment {
 
 /// Same contract as MurtyKBest(cost, k, max_cost_gap): at most k assignments in non-decreasing
-/// cost order, every one within max_cost_gap of the best (the early stop of notes 10.2 keeps
-/// exactly these), every row assigned, rows <= cols, +inf forbidden. Every column index in the
-/// result refers to `cost`.
+/// cost order, every one within max_cost_gap of the best (the early stop of
+/// docs/algorithms/phd-slam.md section 4.4 keeps exactly these), every row assigned, rows <= cols,
+/// +inf forbidden. Every column index in the result refers to `cost`.
 std::vector<Assignment> BlockMurtyKBest(const Eigen::MatrixXd& cost, int k, double max_cost_gap);
 
 }  // namespace phdslam::assignment

@@ -16,9 +16,10 @@ namespace phdslam::assignment {
 /// Throws std::invalid_argument when rows > cols, an entry is NaN or -inf, or k < 0.
 std::vector<Assignment> MurtyKBest(const Eigen::MatrixXd& cost, int k);
 
-/// Same, with the PHD-SLAM 3.0 early stop (reference notes 10.2): after generating hypothesis
-/// t >= 2, if its cost exceeds the best cost by more than `max_cost_gap`, generation stops and that
-/// hypothesis is discarded. Throws std::invalid_argument also when max_cost_gap is NaN.
+/// Same, with the PHD-SLAM 3.0 early stop (docs/algorithms/phd-slam.md section 4.4): after
+/// generating hypothesis t >= 2, if its cost exceeds the best cost by more than `max_cost_gap`,
+/// generation stops and that hypothesis is discarded. Throws std::invalid_argument also when
+/// max_cost_gap is NaN.
 std::vector<Assignment> MurtyKBest(const Eigen::MatrixXd& cost, int k, double max_cost_gap);
 
 }  // namespace phdslam::assignment

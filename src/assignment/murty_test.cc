@@ -77,7 +77,7 @@ std::vector<Assignment> Truncate(std::vector<Assignment> all, int k) {
   return all;
 }
 
-// The reference notes' early stop applied to the brute-force list.
+// The early stop of docs/algorithms/phd-slam.md section 4.4 applied to the brute-force list.
 std::vector<Assignment> TruncateByGap(const std::vector<Assignment>& all, int k, double gap) {
   std::vector<Assignment> kept;
   for (const auto& a : all) {

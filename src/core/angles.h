@@ -1,4 +1,5 @@
-// Angle helpers. Only bearings are wrapped (reference notes section 1); headings never are.
+// Angle helpers. Only bearings are wrapped (docs/algorithms/models.md section 1.2); headings never
+// are.
 #pragma once
 
 #include <cmath>

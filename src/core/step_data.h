@@ -9,7 +9,7 @@ namespace phdslam {
 
 struct StepData {
   /// Time stamps [t_prev, ..., t_k] (s). A single entry means no propagation at this step
-  /// (reference notes 2.3).
+  /// (docs/algorithms/models.md section 4.2).
   std::vector<double> times;
   /// controls[i] is held over [times[i], times[i+1]] (zero-order hold): size times.size() - 1.
   std::vector<Control> controls;

@@ -1,5 +1,5 @@
 // A Gaussian-mixture pose proposal with log-weights, its sampling rule and density
-// (reference notes 10.4).
+// (docs/algorithms/phd-slam.md section 4.1).
 #pragma once
 
 #include <optional>

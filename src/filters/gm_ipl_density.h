@@ -1,6 +1,6 @@
-// PHD-SLAM 3.0 importance density (reference notes 10): a Gaussian mixture over the Murty-ranked
-// data-association hypotheses, each conditioned by the partitioned IPL, plus an all-clutter
-// component.
+// PHD-SLAM 3.0 importance density (docs/algorithms/phd-slam.md section 4.3-4.6): a Gaussian mixture
+// over the Murty-ranked data-association hypotheses, each conditioned by the partitioned IPL, plus
+// an all-clutter component.
 #pragma once
 
 #include "src/filters/importance_density.h"
@@ -17,7 +17,8 @@ class GmIplDensity final : public ImportanceDensity {
   PhdSlamParams params_;
 };
 
-/// The gated log-gain cost structure of notes 10.1, shared by the GM density and PHD-SLAM 2.0b.
+/// The gated log-gain cost structure of docs/algorithms/phd-slam.md section 4.3, shared by the GM
+/// density and PHD-SLAM 2.0b.
 struct AssociationCosts {
   std::vector<double> pd;    ///< pD of every active component at the predicted mean
   std::vector<double> miss;  ///< log(1 - pD_i) + eta_i for every active component

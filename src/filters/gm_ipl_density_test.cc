@@ -1,6 +1,6 @@
-// Focused tests of PHD-SLAM 3.0's importance density (reference notes 10): the mixture over the
-// Murty-ranked associations, each component conditioned by the partitioned IPL, plus the
-// all-clutter component.
+// Focused tests of PHD-SLAM 3.0's importance density (docs/algorithms/phd-slam.md section 4.3-4.6):
+// the mixture over the Murty-ranked associations, each component conditioned by the partitioned
+// IPL, plus the all-clutter component.
 #include "src/filters/gm_ipl_density.h"
 
 #include <gtest/gtest.h>

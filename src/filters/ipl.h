@@ -1,6 +1,6 @@
 // Partitioned iterated posterior linearisation of the pose (Algorithm 1 of the PHD-SLAM 3.0
-// paper, reference notes 10.3). Shared by the GM importance density of PHD-SLAM 3.0 and by the
-// oracle RBPF.
+// paper, docs/algorithms/phd-slam.md section 4.5). Shared by the GM importance density of PHD-SLAM
+// 3.0 and by the oracle RBPF.
 #pragma once
 
 #include <span>

@@ -3,7 +3,7 @@
 // parameters; PHD-SLAM 1.0/2.0a/2.0b/3.0 (GM-PHD maps, phd_map_model.h) and the oracle RBPF
 // (known-association landmark EKFs, oracle/) are instances.
 //
-// One recursion (reference notes sections 4, 10, 14):
+// One recursion (docs/algorithms/phd-slam.md section 2.2, section 4.1, section 6):
 //   1. draw N uniforms (component choice) and 3N standard normals (pose draw), in that order;
 //   2. for each particle in index order:
 //      a. Model::BeforePrediction (e.g. births from the previous scan), then the pose Gaussian is

@@ -1,17 +1,19 @@
-// PHD-SLAM 2.0a importance density (reference notes 16; Gao, Battistelli & Chisci, T-RO 2021):
-// the predicted pose Gaussian is EKF-conditioned independently on every gated (component,
-// measurement) pair, and the |M| x |Z| conditionals (plus the prior) are collapsed by moment
-// matching into one Gaussian, which is sampled (the PHD-SLAM 3.0 authors sample; Gao's code
+// PHD-SLAM 2.0a importance density (docs/algorithms/phd-slam.md section 4.7; Gao, Battistelli &
+// Chisci, T-RO 2021): the predicted pose Gaussian is EKF-conditioned independently on every gated
+// (component, measurement) pair, and the |M| x |Z| conditionals (plus the prior) are collapsed by
+// moment matching into one Gaussian, which is sampled (the PHD-SLAM 3.0 authors sample; Gao's code
 // takes the mean).
 //
 // The pair weights of Gao et al. (their eqs. 45-51) were not available. This class implements
 // the following reconstruction, chosen so that the mixture being collapsed is the pose analogue
-// of the GM-PHD posterior intensity of notes 11: one pose Gaussian per component of the updated
-// map intensity, weighted like that component.
+// of the GM-PHD posterior intensity of docs/algorithms/phd-slam.md section 3.2: one pose Gaussian
+// per component of the updated map intensity, weighted like that component.
 //
 //  With (mu_0, Sigma_0) the predicted pose, and for each active component i with pD_i > 0
-//  (point evaluation at mu_0, notes 9), Jacobians Hx, Hm at (mu_0, m_i):
-//    S_i    = Hx Sigma_0 Hx^T + Hm P_i Hm^T + R          (the cost-matrix S of notes 9/10.1)
+//  (point evaluation at mu_0, docs/algorithms/models.md section 3.3), Jacobians Hx, Hm at (mu_0,
+//  m_i):
+//    S_i    = Hx Sigma_0 Hx^T + Hm P_i Hm^T + R          (the cost-matrix S of
+//    docs/algorithms/phd-slam.md section 4.3)
 //    K_i    = Sigma_0 Hx^T S_i^-1
 //  For each measurement z_j gated by i (nu_ij = z_j - h(m_i, mu_0), bearing wrapped,
 //  nu_ij^T S_i^-1 nu_ij < T_G strictly):
@@ -27,8 +29,9 @@
 //
 // Why these choices:
 //  * S includes Hx Sigma_0 Hx^T because the pose is uncertain when the pairs are scored (the
-//    brief of notes 16 says so, and the same S gates PHD-SLAM 3.0's cost matrix), and it is the
-//    innovation covariance of the very EKF that produces mu_ij.
+//    description of 2.0a in docs/algorithms/phd-slam.md section 4.7 says so, and the same S gates
+//    PHD-SLAM 3.0's cost matrix), and it is the innovation covariance of the very EKF that produces
+//    mu_ij.
 //  * Normalising per measurement with lambda_c in the denominator gives each measurement unit
 //    mass shared between its landmark explanations and clutter; the clutter share is dropped (it
 //    is not part of the posterior intensity), so a measurement that is probably clutter adds

@@ -1,18 +1,19 @@
-// PHD-SLAM 2.0b importance density (reference notes 16; Kaltiokallio et al., SPAWC 2022, as the
-// PHD-SLAM 3.0 paper describes it): a joint iterated posterior linearisation (IPL) of the pose
-// and the associated landmarks for the single best data association, whose pose marginal is the
-// proposal.
+// PHD-SLAM 2.0b importance density (docs/algorithms/phd-slam.md section 4.8; Kaltiokallio et al.,
+// SPAWC 2022, as the PHD-SLAM 3.0 paper describes it): a joint iterated posterior linearisation
+// (IPL) of the pose and the associated landmarks for the single best data association, whose pose
+// marginal is the proposal.
 //
 // Build():
-//  1. The gated cost matrix of notes 10.1 (BuildAssociationCosts, shared with PHD-SLAM 3.0) is
-//     solved for its single best assignment (exact linear assignment: the first hypothesis of
-//     Murty's ranking). best_association is read from it.
+//  1. The gated cost matrix of docs/algorithms/phd-slam.md section 4.3 (BuildAssociationCosts,
+//     shared with PHD-SLAM 3.0) is solved for its single best assignment (exact linear assignment:
+//     the first hypothesis of Murty's ranking). best_association is read from it.
 //  2. The detected components i_1 < ... < i_M (active-list order) form the augmented state
 //     [x; m_i1; ...; m_iM] with prior N([mu_0; m_i1; ...], blkdiag(Sigma_0, P_i1, ...)).
-//  3. JointIpl runs the IPL of notes 10.3 on this state: every iteration restarts from the joint
-//     prior and applies one stacked Kalman update of all M measurements, linearised (Jacobians
-//     w.r.t. pose and landmarks) at the previous joint iterate (the prior in iteration 1). The
-//     statistical linear regression is first order, so A = [Hx, Hm] and Omega = R.
+//  3. JointIpl runs the IPL of docs/algorithms/phd-slam.md section 4.5 on this state: every
+//     iteration restarts from the joint prior and applies one stacked Kalman update of all M
+//     measurements, linearised (Jacobians w.r.t. pose and landmarks) at the previous joint iterate
+//     (the prior in iteration 1). The statistical linear regression is first order, so A = [Hx, Hm]
+//     and Omega = R.
 //  4. The proposal is the pose marginal of the result, a single Gaussian with log-weight 0, so
 //     the importance weight is (45) with one component, log N(x; mu_0, Sigma_0) - log q(x).
 //
@@ -21,8 +22,8 @@
 //
 // Choices where the paper leaves room:
 //  * Convergence: KL(previous || new) of the **pose marginals** below epsilon, from iteration 2,
-//    as in notes 10.3. The pose marginal is what is sampled, and the 3-D test is the partitioned
-//    IPL's own, so both filters stop on the same criterion.
+//    as in docs/algorithms/phd-slam.md section 4.5. The pose marginal is what is sampled, and the
+//    3-D test is the partitioned IPL's own, so both filters stop on the same criterion.
 //  * Cholesky test: on the **joint** covariance (it is the next linearisation density); when it
 //    is not positive definite the previous joint iterate is kept (the prior after a failure in
 //    iteration 1).
@@ -30,17 +31,17 @@
 //    slot): the proposal is the prior N(mu_0, Sigma_0).
 //  * Innovation guard (on by default in JointIplDensity, off in JointIplOptions): the removed
 //    results script of the reference release ran "PHD 2.0b" through a predecessor routine with
-//    an extra IPL stop rule on the accumulated normalised innovation squared (notes 16). Without
-//    it the joint Gauss-Newton iterations diverge whenever the best assignment pairs a clutter
-//    measurement with a near-field component (a birth from clutter at ~1 m range gates almost
-//    any short-range measurement through Hx Sigma_0 Hx^T, and relinearising that landmark makes
-//    the iterates jump by tens of metres); on the paper scenario (N = 10, seeds 1-5, 4000 steps)
-//    the pooled position RMSE was about 65 m without the guard and under 2 m with it (paper:
-//    3.61 m). Here the guard tests the stacked NIS at each iteration's linearisation against
-//    the chi-square quantile with tail probability kPredecessorNisTailProbability and 2M degrees
-//    of freedom; reaching it stops the IPL and keeps the previous iterate (the prior in
-//    iteration 1).
-//    Construct JointIplDensity(params, 0.0) for the paper's description without the guard.
+//    an extra IPL stop rule on the accumulated normalised innovation squared
+//    (docs/algorithms/phd-slam.md section 4.8). Without it the joint Gauss-Newton iterations
+//    diverge whenever the best assignment pairs a clutter measurement with a near-field component
+//    (a birth from clutter at ~1 m range gates almost any short-range measurement through Hx
+//    Sigma_0 Hx^T, and relinearising that landmark makes the iterates jump by tens of metres); on
+//    the paper scenario (N = 10, seeds 1-5, 4000 steps) the pooled position RMSE was about 65 m
+//    without the guard and under 2 m with it (paper: 3.61 m). Here the guard tests the stacked NIS
+//    at each iteration's linearisation against the chi-square quantile with tail probability
+//    kPredecessorNisTailProbability and 2M degrees of freedom; reaching it stops the IPL and keeps
+//    the previous iterate (the prior in iteration 1). Construct JointIplDensity(params, 0.0) for
+//    the paper's description without the guard.
 // Within one linearisation the pose marginal equals the partitioned IPL's result; the two differ
 // only because the joint version also relinearises the landmarks.
 #pragma once
@@ -73,10 +74,11 @@ class EvenDofChiSquareQuantiles {
 struct JointIplOptions {
   int max_iterations = 5;      ///< L
   double kl_tolerance = 1e-3;  ///< epsilon, on the pose marginals
-  /// Innovation guard of the predecessor code (notes 16), 0 = off (the paper's description).
-  /// When > 0, an iteration whose stacked normalised innovation squared nu^T S^-1 nu, at its
-  /// linearisation, reaches the chi-square quantile with this tail probability and 2M degrees of
-  /// freedom stops the IPL, and the previous iterate is kept (the prior in iteration 1).
+  /// Innovation guard of the predecessor code (docs/algorithms/phd-slam.md section 4.8), 0 = off
+  /// (the paper's description). When > 0, an iteration whose stacked normalised innovation squared
+  /// nu^T S^-1 nu, at its linearisation, reaches the chi-square quantile with this tail probability
+  /// and 2M degrees of freedom stops the IPL, and the previous iterate is kept (the prior in
+  /// iteration 1).
   double nis_tail_probability = 0.0;
   /// Optional memo of the quantiles for nis_tail_probability (EvenDofChiSquareQuantiles); when
   /// null, each call computes its quantile afresh (the same value).
@@ -105,7 +107,8 @@ JointIplResult JointIpl(const Pose& prior_mean, const Mat3& prior_cov,
 /// function, bisection to relative 1e-12). Throws std::invalid_argument otherwise.
 double ChiSquareUpperQuantileEvenDof(int dof, double tail_probability);
 
-/// Tail probability of the predecessor code's NIS stop rule (notes 16).
+/// Tail probability of the predecessor code's NIS stop rule (docs/algorithms/phd-slam.md section
+/// 4.8).
 inline constexpr double kPredecessorNisTailProbability = 1e-6;
 
 class JointIplDensity final : public ImportanceDensity {

@@ -1,6 +1,6 @@
-// Parameters of the RB-PHD-SLAM family (reference notes section 17). Defaults are the paper's
-// synthetic-scenario values; the defaults that depend on the scenario (Victoria Park's) are in the
-// runner's table of scenario defaults (validation/runner/registry/scenario_defaults.cc).
+// Parameters of the RB-PHD-SLAM family (docs/algorithms/phd-slam.md section 7). Defaults are the
+// paper's synthetic-scenario values; the defaults that depend on the scenario (Victoria Park's) are
+// in the runner's table of scenario defaults (validation/runner/registry/scenario_defaults.cc).
 #pragma once
 
 #include <cmath>

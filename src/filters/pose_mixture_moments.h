@@ -1,11 +1,12 @@
 // Moment matching of pose Gaussian mixtures: the Rao-Blackwellised pose covariance of a particle
 // filter (the mixture over particles of each particle's own pose Gaussian before sampling).
 //
-// Headings are not wrapped in the suite (reference notes section 1), but the components of one
-// mixture may lie on different branches; every heading difference is therefore taken relative to
-// a reference component and wrapped into [-pi, pi], and the matched mean keeps the reference's
-// branch. The covariance is sum_t w_t (Sigma_t + d_t d_t^T), d_t = mu_t - mu (heading wrapped),
-// symmetrised; it is positive semi-definite by construction (a sum of PSD terms with w_t >= 0).
+// Headings are not wrapped in the suite (docs/algorithms/models.md section 1.2), but the components
+// of one mixture may lie on different branches; every heading difference is therefore taken
+// relative to a reference component and wrapped into [-pi, pi], and the matched mean keeps the
+// reference's branch. The covariance is sum_t w_t (Sigma_t + d_t d_t^T), d_t = mu_t - mu (heading
+// wrapped), symmetrised; it is positive semi-definite by construction (a sum of PSD terms with
+// w_t >= 0).
 #pragma once
 
 #include <optional>

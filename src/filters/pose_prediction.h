@@ -1,5 +1,5 @@
-// The prediction of a pose Gaussian over one filter step (reference notes 4.1), shared by the
-// RB-PHD-SLAM family, the oracle and dead reckoning.
+// The prediction of a pose Gaussian over one filter step (docs/algorithms/models.md section 2.4),
+// shared by the RB-PHD-SLAM family, the oracle and dead reckoning.
 #pragma once
 
 #include "src/core/step_data.h"

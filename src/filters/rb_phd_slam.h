@@ -1,6 +1,6 @@
 // Rao-Blackwellised PHD-SLAM: the particle-filter skeleton (particle_filter.h) over per-particle
-// GM-PHD maps; the family members differ only in their ImportanceDensity (reference notes
-// sections 6-14).
+// GM-PHD maps; the family members differ only in their ImportanceDensity
+// (docs/algorithms/phd-slam.md section 2-6).
 //
 // Pose covariances in StepOutput: pose_cov is the weighted particle spread about the estimate
 // (the classical particle NEES); pose_cov_rb / pose_mean_rb the Rao-Blackwellised mixture

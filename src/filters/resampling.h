@@ -1,4 +1,5 @@
-// ESS and the stratified resampling routine of the reference code (reference notes 14).
+// ESS and the stratified resampling routine of the reference code (docs/algorithms/phd-slam.md
+// section 6.2-6.3).
 #pragma once
 
 #include <span>

@@ -24,7 +24,8 @@ struct ScPhdSlamParams {
   /// constructor): birth_log_weight = ln 0.01, births from every measurement of the previous
   /// step, and the missed-detection mass -sum pD w kept in the parent weight.
   phd::MapParams map;
-  /// Q_n: regularising pose noise, once per step before propagation (reference notes 4.1).
+  /// Q_n: regularising pose noise, once per step before propagation (docs/algorithms/models.md
+  /// section 2.4).
   Mat3 pose_regularisation = Vec3(1e-9, 1e-9, 1e-18).asDiagonal();
   ScPredictionSampling prediction = ScPredictionSampling::kControlNoise;
   /// Apply the missed-detection update and weight on scans without measurements.

@@ -1,6 +1,7 @@
-// Adaptive measurement-driven births with the two-level birth probability (reference notes
-// section 4): after the update at step k every measurement of Z_k becomes a birth Bernoulli for
-// step k + 1, labelled (k + 1, j), placed by the inverse model at the pose the scan was taken from.
+// Adaptive measurement-driven births with the two-level birth probability
+// (docs/algorithms/glmb-slam.md section 5): after the update at step k every measurement of Z_k
+// becomes a birth Bernoulli for step k + 1, labelled (k + 1, j), placed by the inverse model at the
+// pose the scan was taken from.
 #pragma once
 
 #include <cstdint>
@@ -12,7 +13,8 @@
 
 namespace phdslam::glmb {
 
-/// How r_B of a measurement is chosen between the "new" and "existing" levels (notes 4).
+/// How r_B of a measurement is chosen between the "new" and "existing" levels
+/// (docs/algorithms/glmb-slam.md section 5).
 enum class BirthRule {
   kThresholded,  ///< (a) r_new when r_U(z) < threshold, else r_existing (default)
   kGatesBest,    ///< (b) r_existing when z gates with an entry of the best prior hypothesis

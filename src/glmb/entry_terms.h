@@ -1,5 +1,5 @@
-// Entry-level quantities of the joint prediction/update (reference notes 3.1), computed once per
-// entry at one pose and shared by every hypothesis that holds the entry.
+// Entry-level quantities of the joint prediction/update (docs/algorithms/glmb-slam.md section 4.1),
+// computed once per entry at one pose and shared by every hypothesis that holds the entry.
 #pragma once
 
 #include <optional>
@@ -31,7 +31,8 @@ struct MeasurementSetup {
   const models::SensorModel* sensor = nullptr;
   Mat2 noise_cov = Mat2::Identity();  ///< R
   /// Pose covariance entering the innovation covariance, H_x Sigma H_x' (zero for the map update
-  /// at a sampled pose; the predicted Sigma_0 in the 2.0 proposal pass, notes 5.2).
+  /// at a sampled pose; the predicted Sigma_0 in the 2.0 proposal pass,
+  /// docs/algorithms/glmb-slam.md section 6.3).
   Mat3 pose_cov = Mat3::Zero();
   double gate = 32.236;  ///< threshold on the squared Mahalanobis distance
 };

@@ -1,6 +1,7 @@
-// The eta matrix of one prior hypothesis (reference notes 3.2) and the Gibbs sampler of its
-// joint prediction/update associations (notes 3.3, Vo, Vo & Hoang 2017, Algorithm 1), started
-// from the optimal association computed with the suite's assignment solver.
+// The eta matrix of one prior hypothesis (docs/algorithms/glmb-slam.md section 4.2) and the Gibbs
+// sampler of its joint prediction/update associations (docs/algorithms/glmb-slam.md section 4.3;
+// Vo, Vo & Hoang 2017, Algorithm 1), started from the optimal association computed with the suite's
+// assignment solver.
 #pragma once
 
 #include <optional>

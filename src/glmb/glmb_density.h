@@ -1,6 +1,6 @@
-// A delta-GLMB map density (reference notes section 2): weighted hypotheses over shared
-// immutable entries, and the quantities derived from it (existence, cardinality, the MAP
-// cardinality estimate of notes section 7).
+// A delta-GLMB map density (docs/algorithms/glmb-slam.md section 3): weighted hypotheses over
+// shared immutable entries, and the quantities derived from it (existence, cardinality, the MAP
+// cardinality estimate of docs/algorithms/glmb-slam.md section 8.1).
 #pragma once
 
 #include <memory>
@@ -21,7 +21,8 @@ struct Hypothesis {
   [[nodiscard]] std::size_t size() const { return tracks ? tracks->size() : 0; }
 };
 
-/// One hypothesis with no entries and weight 1 (the initial map, notes section 2).
+/// One hypothesis with no entries and weight 1 (the initial map, docs/algorithms/glmb-slam.md
+/// section 3.4).
 std::vector<Hypothesis> EmptyDensity();
 
 /// rho(n) = sum of the weights of the hypotheses with n entries, n = 0..max size.
@@ -34,8 +35,8 @@ std::vector<std::pair<Label, double>> LabelExistence(std::span<const Hypothesis>
 /// Index of the highest-weight hypothesis (first on ties); -1 when empty.
 int BestHypothesis(std::span<const Hypothesis> hypotheses);
 
-/// Notes section 7: n* = argmax rho (smallest n on ties), then the highest-weight hypothesis
-/// with n* entries (first on ties); -1 when empty.
+/// docs/algorithms/glmb-slam.md section 8.1: n* = argmax rho (smallest n on ties), then the
+/// highest-weight hypothesis with n* entries (first on ties); -1 when empty.
 int MapCardinalityHypothesis(std::span<const Hypothesis> hypotheses);
 
 }  // namespace phdslam::glmb

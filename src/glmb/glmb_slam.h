@@ -2,17 +2,20 @@
 // Adams & Inostroza (Sensors 2019) on the suite's particle-filter skeleton
 // (filters/particle_filter.h): each particle holds a pose and a labelled map.
 //
-//  - glmb1: GlmbMapModel with the transition density (notes 5.1): x_k ~ N(f(x_{k-1}, u), Sigma_0)
-//    and the weight w * Z-hat(x_k) of the joint update (joint_update.h) at x_k.
-//  - glmb2: GlmbMapModel with its own optimal-kernel proposal (notes 5.2, kernel_proposal.h): the
-//    joint problem at the predicted mean x-hat with H_x Sigma_0 H_x' in every innovation
-//    covariance is Gibbs-sampled, each (hypothesis, association) updates N(x-hat, Sigma_0) by an
-//    EKF, and the weighted updates are collapsed (kernel_form) and sampled; the joint update is
-//    then run again, independently, at the sampled pose (A5). Weight: kernel_weight (A4).
-//  - lmb: LmbMapModel (notes 6): each update converts the LMB (in-FOV tracks, existence p_S r)
-//    into one delta-GLMB hypothesis, runs the same joint update with all Gibbs samples on it,
-//    converts back (glmb2lmb), prunes r < existence_prune_threshold, caps at max_tracks and
-//    reduces each track's mixture; no measurement clustering. Out-of-FOV tracks are untouched.
+//  - glmb1: GlmbMapModel with the transition density (docs/algorithms/glmb-slam.md section 6.2):
+//    x_k ~ N(f(x_{k-1}, u), Sigma_0) and the weight w * Z-hat(x_k) of the joint update
+//    (joint_update.h) at x_k.
+//  - glmb2: GlmbMapModel with its own optimal-kernel proposal (docs/algorithms/glmb-slam.md section
+//    6.3, kernel_proposal.h): the joint problem at the predicted mean x-hat with H_x Sigma_0 H_x'
+//    in every innovation covariance is Gibbs-sampled, each (hypothesis, association) updates
+//    N(x-hat, Sigma_0) by an EKF, and the weighted updates are collapsed (kernel_form) and sampled;
+//    the joint update is then run again, independently, at the sampled pose (A5). Weight:
+//    kernel_weight (A4).
+//  - lmb: LmbMapModel (docs/algorithms/glmb-slam.md section 7): each update converts the LMB
+//    (in-FOV tracks, existence p_S r) into one delta-GLMB hypothesis, runs the same joint update
+//    with all Gibbs samples on it, converts back (glmb2lmb), prunes r < existence_prune_threshold,
+//    caps at max_tracks and reduces each track's mixture; no measurement clustering. Out-of-FOV
+//    tracks are untouched.
 //
 // Common to the three (each option in glmb_slam_params.h with its default):
 //  - p_D is the sensor's at the entry's (heaviest component's) mean, the FOV a point test there;
@@ -25,7 +28,8 @@
 //    from the optimal association (optimal_start), pruning at hypothesis_prune_threshold, cap
 //    max_hypotheses;
 //  - estimate: the skeleton's highest-weight particle (before resampling) gives the pose and its
-//    MAP-cardinality hypothesis the map (notes 7), LMB: the top-N tracks by r;
+//    MAP-cardinality hypothesis the map (docs/algorithms/glmb-slam.md section 8), LMB: the top-N
+//    tracks by r;
 //  - resampling every step (the paper) or at the suite's ESS threshold (resampling);
 //  - the RB pose covariance is the skeleton's (the proposal's moments: the predicted Gaussian
 //    for glmb1 and lmb, the kernel for glmb2); NIS: the detections of the best particle's

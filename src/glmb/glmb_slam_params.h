@@ -1,7 +1,7 @@
 // Parameters of delta-GLMB-SLAM 2.0 (glmb2), 1.0 (glmb1) and LMB-SLAM (lmb), one struct for the
 // three filters (glmb_slam.h) with its parameter table. Defaults are the source paper's values
-// (Moratuwage, Adams & Inostroza, Sensors 2019) and, where it is silent, the readings the
-// reference notes (glmb-slam-reference-notes.md) recommend; each such reading is named here.
+// (Moratuwage, Adams & Inostroza, Sensors 2019) and, where it is silent, the readings
+// of docs/algorithms/glmb-slam.md section 12; each such reading is named here.
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -14,26 +14,26 @@
 
 namespace phdslam::glmb {
 
-/// The 2.0 particle weight, notes 5.2 ambiguity A4.
+/// The 2.0 particle weight, docs/algorithms/glmb-slam.md section 6.3.
 enum class KernelWeight {
   kMarginal,    ///< (a) literal eq. 33: w * sum of the proposal pass's unnormalised weights
   kNormaliser,  ///< (b) w * Z-hat(x_k) at the sampled pose, no proposal correction
   kImportance,  ///< (c) w * Z-hat(x_k) N(x_k; x-hat, Sigma_0) / q(x_k) (default)
 };
 
-/// Which sampled associations enter the 2.0 pose mixture, notes 5.2 A1.
+/// Which sampled associations enter the 2.0 pose mixture, docs/algorithms/glmb-slam.md section 6.3.
 enum class KernelAssociations {
   kAll,   ///< (i) every distinct Gibbs sample of every hypothesis (default)
   kBest,  ///< (ii) only the highest-weight (hypothesis, association)
 };
 
-/// Collapse the 2.0 pose mixture or sample it, notes 5.2 A2.
+/// Collapse the 2.0 pose mixture or sample it, docs/algorithms/glmb-slam.md section 6.3.
 enum class KernelForm {
   kCollapse,  ///< one moment-matched Gaussian ("a single Gaussian", default)
   kMixture,   ///< sample the mixture itself
 };
 
-/// The clutter density kappa(z) = Lambda pdf_c(z), notes 1.
+/// The clutter density kappa(z) = Lambda pdf_c(z), docs/algorithms/glmb-slam.md section 2.3.
 enum class ClutterSpace {
   kSensor,        ///< the suite's SensorModel::ClutterIntensity (default: what the scenarios use)
   kRangeBearing,  ///< [V]: uniform over the (r, b) box, 1 / (R_fov 2 half-angle)
@@ -52,7 +52,7 @@ struct GlmbSlamParams {
   int gibbs_samples = 1000;                  ///< H_upd per particle and update ([V] gms: 1000)
   int max_hypotheses = 1000;                 ///< H_max ([V]: = H_upd)
   double hypothesis_prune_threshold = 1e-5;  ///< the source paper's 1e-5
-  bool optimal_start = true;  ///< Gibbs chains start from the optimal association (notes 3.3)
+  bool optimal_start = true;  ///< optimal Gibbs start, docs/algorithms/glmb-slam.md section 4.3
   ClutterSpace clutter_space = ClutterSpace::kSensor;
   BirthSettings birth;  ///< rule (a), 1e-4 new, 5e-5 existing, threshold 0.5
   // delta-GLMB-SLAM 2.0's optimal-kernel proposal.
@@ -67,7 +67,8 @@ struct GlmbSlamParams {
   ResamplingRule resampling = ResamplingRule::kEveryStep;
   filters::EssThresholdKind ess_threshold_kind = filters::EssThresholdKind::kRelative;
   double ess_threshold = 0.2;
-  /// Q_n, the regulariser of the rank-2 predicted pose covariance (P_{x,k-1} = 0, notes 5 A3).
+  /// Q_n, the regulariser of the rank-2 predicted pose covariance (P_{x,k-1} = 0,
+  /// docs/algorithms/glmb-slam.md section 6.1).
   Mat3 pose_regularisation = Vec3(1e-9, 1e-9, 1e-18).asDiagonal();
 };
 

@@ -1,4 +1,4 @@
-// Unit tests of the delta-GLMB map (reference notes section 9).
+// Unit tests of the delta-GLMB map (docs/algorithms/glmb-slam.md section 12).
 #include <gtest/gtest.h>
 
 #include <Eigen/LU>
@@ -381,8 +381,8 @@ TEST(GlmbJointUpdate, DuplicateChildrenAreMerged) {
   }
 }
 
-// Notes section 6, "birth survival sensitivity": a birth (r_B = 1e-4) re-detected once at its
-// mean, kappa = lambda / (3 m * 2 pi). Its LMB existence is
+// docs/algorithms/glmb-slam.md section 7, birth survival sensitivity: a birth (r_B = 1e-4)
+// re-detected once at its mean, kappa = lambda / (3 m * 2 pi). Its LMB existence is
 // r_B (1 - pD + pD q / kappa) / (1 - r_B pD + r_B pD q / kappa): above LMB-SLAM's pruning
 // threshold 0.019 at lambda = 1, below it at lambda = 15.
 TEST(Lmb, BirthReDetectedOnceSurvivesPruningOnlyAtLowClutter) {

@@ -15,7 +15,7 @@ namespace {
 double LogOrNegInf(double v) { return v > 0.0 ? std::log(v) : kNegInf; }
 
 /// The eta row of an entry with existence e (p_S for a survivor, r_B for a birth, p_S r for an
-/// LMB track) and its terms (notes 3.2).
+/// LMB track) and its terms (docs/algorithms/glmb-slam.md section 4.2).
 EtaRow MakeEtaRow(double e, const EntryTerms& terms, double log_kappa) {
   EtaRow row;
   row.log_death = e >= 1.0 ? kNegInf : std::log1p(-e);
@@ -140,7 +140,7 @@ void NormaliseLogWeights(std::vector<Child>& children) {
 }
 
 /// Normalise, prune w <= threshold (the best hypothesis is always kept), renormalise, sort
-/// descending (stable), cap, renormalise: notes 3.4 in [V]'s order.
+/// descending (stable), cap, renormalise: docs/algorithms/glmb-slam.md section 4.4, in [V]'s order.
 void Truncate(std::vector<Child>& children, const UpdateSettings& settings) {
   NormaliseLogWeights(children);
   std::stable_sort(children.begin(), children.end(),

@@ -1,7 +1,8 @@
-// The joint prediction/update of a delta-GLMB map at one pose (reference notes section 3): the
-// entry terms, the eta matrix of each prior hypothesis (out-of-FOV entries passed through with
-// factor 1, never entering the sampler), Gibbs sampling from the optimal association, children,
-// the normaliser, merging of duplicates, pruning and the cap. Every weight is a natural log.
+// The joint prediction/update of a delta-GLMB map at one pose (docs/algorithms/glmb-slam.md section
+// 4): the entry terms, the eta matrix of each prior hypothesis (out-of-FOV entries passed through
+// with factor 1, never entering the sampler), Gibbs sampling from the optimal association,
+// children, the normaliser, merging of duplicates, pruning and the cap. Every weight is a natural
+// log.
 #pragma once
 
 #include <cstdint>
@@ -52,8 +53,8 @@ struct JointProblem {
 };
 
 /// Builds the problem at pose x. `existence`, when not empty, holds per entry of the single
-/// prior hypothesis a multiplier of its survival probability (LMB-SLAM: its existence r, notes
-/// section 6); otherwise survivors have existence p_S.
+/// prior hypothesis a multiplier of its survival probability (LMB-SLAM: its existence r,
+/// docs/algorithms/glmb-slam.md section 7); otherwise survivors have existence p_S.
 JointProblem BuildJointProblem(std::span<const Hypothesis> prior, std::span<const double> existence,
                                std::span<const BirthTrack> births, const Pose& x,
                                std::span<const Measurement> measurements,

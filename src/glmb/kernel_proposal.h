@@ -1,7 +1,8 @@
-// The pose proposal of delta-GLMB-SLAM 2.0 (reference notes 5.2, the optimal kernel): the
-// associations sampled at the predicted pose (with the pose uncertainty in every innovation
-// covariance) each give an EKF update of the predicted pose Gaussian with their detected pairs;
-// the weighted updates are collapsed into one Gaussian by moment matching or kept as a mixture.
+// The pose proposal of delta-GLMB-SLAM 2.0 (docs/algorithms/glmb-slam.md section 6.3, the optimal
+// kernel): the associations sampled at the predicted pose (with the pose uncertainty in every
+// innovation covariance) each give an EKF update of the predicted pose Gaussian with their detected
+// pairs; the weighted updates are collapsed into one Gaussian by moment matching or kept as a
+// mixture.
 #pragma once
 
 #include <span>

@@ -1,5 +1,6 @@
-// Labelled multi-Bernoulli maps for LMB-SLAM (reference notes section 6): the conversions to and
-// from a delta-GLMB, the per-track Gaussian-mixture reduction and the LMB estimate (notes 7).
+// Labelled multi-Bernoulli maps for LMB-SLAM (docs/algorithms/glmb-slam.md section 7): the
+// conversions to and from a delta-GLMB, the per-track Gaussian-mixture reduction and the LMB
+// estimate (docs/algorithms/glmb-slam.md section 8.2).
 #pragma once
 
 #include <cstdint>
@@ -43,8 +44,8 @@ std::vector<TrackComponent> ReduceMixture(std::vector<TrackComponent> gm,
 /// evaluated as the Poisson-binomial recursion).
 std::vector<double> LmbCardinality(std::span<const Bernoulli> lmb);
 
-/// Notes 7: N = min(#tracks, argmax rho), the indices of the N tracks with the largest r
-/// (stable on ties).
+/// docs/algorithms/glmb-slam.md section 8.2: N = min(#tracks, argmax rho), the indices of the N
+/// tracks with the largest r (stable on ties).
 std::vector<int> LmbEstimateIndices(std::span<const Bernoulli> lmb);
 
 }  // namespace phdslam::glmb

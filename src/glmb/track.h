@@ -1,6 +1,6 @@
-// Labelled track entries of the delta-GLMB map (reference notes section 2): an entry is the
-// immutable density of one label under one association history, shared by every hypothesis (and
-// every resampled particle copy) that holds it.
+// Labelled track entries of the delta-GLMB map (docs/algorithms/glmb-slam.md section 3.1): an entry
+// is the immutable density of one label under one association history, shared by every hypothesis
+// (and every resampled particle copy) that holds it.
 #pragma once
 
 #include <compare>
@@ -29,7 +29,8 @@ struct TrackComponent {
 };
 
 /// An immutable entry. `id` is unique among the entries of one particle's lineage and orders the
-/// entries of a hypothesis; equal id vectors mean equal hypotheses (notes 3.4).
+/// entries of a hypothesis; equal id vectors mean equal hypotheses (docs/algorithms/glmb-slam.md
+/// section 4.4).
 struct Track {
   std::uint64_t id = 0;
   Label label;

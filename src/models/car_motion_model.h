@@ -1,8 +1,8 @@
-// Guivant/Nebot car model of the Victoria Park truck with the laser offset built in, reference
-// notes section 3.5. Control u = [v_e, alpha] (encoder speed m/s, steering angle rad).
-// The Jacobians are the simplified ones of the reference code (documented in the notes), not the
-// exact derivatives: Fu's v_e column omits 1/(1 - H/L tan(alpha)) and its alpha column ignores
-// the dependence of v_c on alpha.
+// Guivant/Nebot car model of the Victoria Park truck with the laser offset built in
+// (docs/algorithms/models.md section 2.3). Control u = [v_e, alpha] (encoder speed m/s, steering
+// angle rad). The Jacobians are the simplified ones of the reference code, not the exact
+// derivatives: Fu's v_e column omits 1/(1 - H/L tan(alpha)) and its alpha column ignores the
+// dependence of v_c on alpha.
 #pragma once
 
 #include "src/models/motion_model.h"

@@ -53,8 +53,9 @@ TEST(CarMotionModel, PoseJacobianMatchesFiniteDifferencesAndControlJacobianIsThe
   const auto j = f.Jacobians(x, u, dt);
   ExpectJacobianNear<3, 3>(
       j.fx, [&](const Vec3& xx) { return f.Predict(xx, u, dt); }, x);
-  // The reference Fu is deliberately approximate (notes 3.5): with alpha = 0 the v_e column is
-  // exact, and the alpha column equals the derivative with v_c held fixed.
+  // The reference Fu is deliberately approximate (docs/algorithms/models.md section 2.3): with
+  // alpha = 0 the v_e column is exact, and the alpha column equals the derivative with v_c held
+  // fixed.
   const Control u0(2.5, 0.0);
   const auto j0 = f.Jacobians(x, u0, dt);
   const auto fv = [&](const Vec2& uu) { return f.Predict(x, uu, dt); };
@@ -123,8 +124,9 @@ TEST(SensorModel, DetectionProbabilityAndFovAreInclusivePointTests) {
 }
 
 TEST(SensorModel, RangeBearingBoxClutterIntensityIsTheBoxDensity) {
-  // The delta-GLMB notes' kappa for the 3 m disc: lambda_c / (3 * 2 pi), 0.0531 at lambda_c = 1
-  // and 0.796 at 15, 1.5 times the sector-area reading lambda_c / (9 pi).
+  // The range-bearing-box kappa of docs/algorithms/models.md section 3.6 for the 3 m disc:
+  // lambda_c / (3 * 2 pi), 0.0531 at lambda_c = 1 and 0.796 at 15, 1.5 times the sector-area
+  // reading lambda_c / (9 pi).
   SensorModel s;
   s.fov_range = 3.0;
   s.fov_half_angle = std::numbers::pi;

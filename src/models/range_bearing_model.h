@@ -1,4 +1,5 @@
-// Range-bearing measurement model, its Jacobians and inverse model (reference notes section 5).
+// Range-bearing measurement model, its Jacobians and inverse model (docs/algorithms/models.md
+// section 3.1-3.2).
 #pragma once
 
 #include <cmath>

@@ -1,5 +1,5 @@
 // Range-bearing sensor: field of view, detection probability, noise and clutter
-// (reference notes sections 9 and 17).
+// (docs/algorithms/models.md section 3.3-3.6 and section 10).
 #pragma once
 
 #include <algorithm>
@@ -20,11 +20,12 @@ enum class DetectionProfile {
 /// The space the clutter density 1 / V of ClutterIntensity() = lambda / V is defined over.
 enum class ClutterSpace {
   /// V = Theta_fov R_fov^2, the Cartesian area of the FOV sector, used as a density in (r, phi)
-  /// (the PHD-SLAM reference code's; reference notes 10.1). Every scenario but glmb-sim.
+  /// (the PHD-SLAM reference code's; docs/algorithms/models.md section 3.6). Every scenario but
+  /// glmb-sim.
   kSectorArea,
   /// V = 2 Theta_fov R_fov, the (r, phi) box [0, R_fov] x [-Theta_fov, Theta_fov]: the exact
   /// intensity of clutter drawn uniform in range and bearing and not thinned (glmb-sim; the
-  /// delta-GLMB reference notes section 1).
+  /// docs/algorithms/models.md section 3.6).
   kRangeBearingBox,
 };
 
@@ -50,8 +51,8 @@ struct SensorModel {
 
   /// lambda_c = lambda / V, lambda at least kMinFilterClutterRate, used by the filters as a
   /// density in (r, phi). V is the Cartesian area of the FOV sector Theta_fov R_fov^2 (reference
-  /// notes 10.1, kept to reproduce the published numbers) or, for ClutterSpace::kRangeBearingBox,
-  /// the (r, phi) box 2 Theta_fov R_fov.
+  /// docs/algorithms/models.md section 3.6, kept to reproduce the published numbers) or, for
+  /// ClutterSpace::kRangeBearingBox, the (r, phi) box 2 Theta_fov R_fov.
   [[nodiscard]] double ClutterIntensity() const {
     const double rate = std::max(clutter_rate, kMinFilterClutterRate);
     if (clutter_space == ClutterSpace::kRangeBearingBox) {
@@ -60,9 +61,11 @@ struct SensorModel {
     return rate / (fov_half_angle * fov_range * fov_range);
   }
 
-  /// pD evaluated at the landmark point m from pose x (a point evaluation, notes section 9).
+  /// pD evaluated at the landmark point m from pose x (a point evaluation,
+  /// docs/algorithms/models.md section 3.3).
   [[nodiscard]] double DetectionProbability(const Pose& x, const Landmark& m) const;
-  /// True when m lies inside the FOV enlarged by the buffers (the active-set test, notes 12.5).
+  /// True when m lies inside the FOV enlarged by the buffers (the active-set test,
+  /// docs/algorithms/phd-slam.md section 3.4).
   [[nodiscard]] bool InEnlargedFov(const Pose& x, const Landmark& m) const;
 };
 

@@ -1,5 +1,5 @@
-// Velocity (unicycle) motion model of the synthetic scenario, reference notes section 4, with the
-// straight-line limit when |omega| < kStraightLineOmega.
+// Velocity (unicycle) motion model of the synthetic scenario, docs/algorithms/models.md section
+// 2.1-2.2, with the straight-line limit when |omega| < kStraightLineOmega.
 #pragma once
 
 #include "src/models/motion_model.h"

@@ -1,5 +1,5 @@
 // Per-particle Gaussian-mixture PHD map with the active/passive split of the PHD-SLAM 3.0
-// reference code (reference notes sections 6, 8, 11, 12, 13).
+// reference code (docs/algorithms/phd-slam.md section 3).
 //
 // Active components are those inside the FOV enlarged by the buffers at the particle's last
 // sampled pose; only they are predicted into the measurement space, updated, pruned and merged.
@@ -57,12 +57,13 @@ class GmPhdMap {
   void AddBirths(const Pose& pose, std::span<const Measurement> measurements, const Mat2& noise_cov,
                  const MapParams& params);
 
-  /// GM-PHD update (notes 11) at the sampled pose. Returns immediately with a zero increment when
-  /// there are no measurements.
+  /// GM-PHD update (docs/algorithms/phd-slam.md section 3.2) at the sampled pose. Returns
+  /// immediately with a zero increment when there are no measurements.
   PhdUpdateResult Update(const Pose& pose, std::span<const Measurement> measurements,
                          const models::SensorModel& sensor, const MapParams& params);
 
-  /// Sort, prune, greedy merge, spread kill and active/passive split (notes 12) at `pose`.
+  /// Sort, prune, greedy merge, spread kill and active/passive split (docs/algorithms/phd-slam.md
+  /// section 3.3-3.4) at `pose`.
   void Reduce(const Pose& pose, const models::SensorModel& sensor, const MapParams& params);
 
   /// Components (active and passive) with log-weight strictly above `log_weight_threshold`.
@@ -110,8 +111,9 @@ class GmPhdMap {
   std::size_t passive_size_ = 0;
 };
 
-/// Sort, prune and greedily merge a component list as the reference code does (notes 12.1-12.4).
-/// Exposed for unit tests and for filters that reduce other mixtures.
+/// Sort, prune and greedily merge a component list as the reference code does
+/// (docs/algorithms/phd-slam.md section 3.3). Exposed for unit tests and for filters that reduce
+/// other mixtures.
 std::vector<GaussianComponent> PruneAndMerge(std::vector<GaussianComponent> components,
                                              const MapParams& params);
 

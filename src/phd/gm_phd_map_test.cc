@@ -18,7 +18,8 @@ models::SensorModel TestSensor() {
   return s;
 }
 
-// Independent re-derivation of one detection term and its posterior (notes 11).
+// Independent re-derivation of one detection term and its posterior (docs/algorithms/phd-slam.md
+// section 3.2).
 struct Expected {
   double log_gain;
   Vec2 mean;

@@ -1,4 +1,4 @@
-// Parameters of the per-particle GM-PHD map (reference notes sections 8, 9, 11, 12, 17).
+// Parameters of the per-particle GM-PHD map (docs/algorithms/phd-slam.md section 3, section 7).
 // Defaults are the paper's synthetic-scenario values. Options named `reference_*` select the
 // behaviour of the authors' code where it departs from the paper's text or from Vo & Ma; each is
 // on by default because the published numbers come from that code.

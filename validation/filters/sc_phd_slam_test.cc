@@ -45,9 +45,9 @@ void ExpectSameComponents(const std::vector<GaussianComponent>& a,
   }
 }
 
-// log N(z; h(m, x), Hm P Hm^T + R) written out with the range-bearing formulas of the notes
-// (section 5), an explicit 2x2 determinant and inverse, and the gate; nullopt-like NaN when the
-// pair does not gate.
+// log N(z; h(m, x), Hm P Hm^T + R) written out with the range-bearing formulas of
+// docs/algorithms/models.md section 3.1, an explicit 2x2 determinant and inverse, and the gate;
+// nullopt-like NaN when the pair does not gate.
 double HandLogGaussian(const Pose& x, const GaussianComponent& c, const Measurement& z,
                        const Mat2& r, double gate) {
   const double dx = c.mean(0) - x(0);

@@ -1,5 +1,5 @@
-// Position error against GPS for real data (Victoria Park, reference notes section 15): each
-// filter step is compared with the GPS fix nearest to it in time.
+// Position error against GPS for real data (Victoria Park, docs/algorithms/metrics.md section 1.3):
+// each filter step is compared with the GPS fix nearest to it in time.
 #pragma once
 
 #include <cstddef>

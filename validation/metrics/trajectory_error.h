@@ -1,4 +1,4 @@
-// Per-step pose errors and the paper's pooled RMSE (reference notes section 15).
+// Per-step pose errors and the paper's pooled RMSE (docs/algorithms/metrics.md section 1).
 #pragma once
 
 #include <cstddef>

@@ -1,4 +1,4 @@
-// Per-run metrics computed from a RunRecord and its Scenario (reference notes section 15), and
+// Per-run metrics computed from a RunRecord and its Scenario (docs/algorithms/metrics.md), and
 // their metrics.json form.
 #pragma once
 

@@ -9,11 +9,11 @@ const std::vector<ScenarioDefaultsRow>& ScenarioDefaultsTable() {
       {"victoria-park",
        {"phd1", "phd2a", "phd2b", "phd3", "rbphd", "scphd"},
        {{"merge_threshold", 10.0}},
-       "reference notes 17: the merge threshold U is 10 on Victoria Park"},
+       "docs/algorithms/models.md section 10.2: the merge threshold U is 10 on Victoria Park"},
       {"victoria-park",
        {"phd2b", "phd3"},
        {{"ess_threshold_kind", "absolute"}, {"ess_threshold", 1.0}},
-       "reference notes 17: resample when ESS <= 1 on Victoria Park"},
+       "docs/algorithms/models.md section 10.2: resample when ESS <= 1 on Victoria Park"},
       // The paper gives the absolute threshold 1 for 2.0b and 3.0 only. For 1.0 and 2.0a it is
       // not stated; 2.5 (half of N = 5, kept absolute) reproduces their published resampling
       // rates: over clutter seeds 1-4, 1.0 resamples at 40.4 % (N = 5) and 24.9 % (N = 10)

@@ -80,10 +80,10 @@ struct ParentWeights {
 
 /// Runs single-cluster PHD SLAM with one parent (the scenario's default parameters) over steps
 /// 0 .. step - 1, predicts its best parent's pose over `step` into a Gaussian (the transition
-/// density, reference notes 4.1), draws `parents` poses from it, and weighs them all with the
-/// same predicted map and the measurements of `step`. Throws std::invalid_argument when step is
-/// 0 or past the scenario, when the step has no measurements, when parents < 2, or when spread
-/// is not positive and finite.
+/// density, docs/algorithms/models.md section 2.4), draws `parents` poses from it, and weighs them
+/// all with the same predicted map and the measurements of `step`. Throws std::invalid_argument
+/// when step is 0 or past the scenario, when the step has no measurements, when parents < 2, or
+/// when spread is not positive and finite.
 ParentWeights CompareParentWeightingAtStep(const datasets::Scenario& scenario,
                                            const ParentWeightsSettings& settings);
 
