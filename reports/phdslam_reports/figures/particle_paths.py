@@ -1,4 +1,4 @@
-"""Fig. 3 analogue: particle trajectories of a run (typically one without resampling)."""
+"""Fig. 3 analogue: particle trajectories of a run (the paper's figure is without resampling)."""
 
 from __future__ import annotations
 
@@ -22,6 +22,13 @@ class ParticlePanel:
     steps: CsvTable | None
 
 
+def particle_weights(table: CsvTable) -> np.ndarray:
+    """The linear weights of particles.csv: exp(log_weight), or the weight column."""
+    if table.has("log_weight"):
+        return np.exp(table.num("log_weight"))
+    return table.num("weight")
+
+
 def plot_particle_paths(panels: list[ParticlePanel]) -> Figure | None:
     """Each particle's path (line colour by its final weight) with the true trajectory."""
     panels = panels[:MAX_PANELS]
@@ -35,7 +42,7 @@ def plot_particle_paths(panels: list[ParticlePanel]) -> Figure | None:
         table = panel.particles
         step = table.num("step")
         ids = table.num("particle")
-        weight = table.num("weight")
+        weight = particle_weights(table)
         last_step = np.nanmax(step) if step.size else 0
         final = {int(p): w for p, s, w in zip(ids, step, weight) if s == last_step}
         top = max(final.values(), default=1.0) or 1.0
