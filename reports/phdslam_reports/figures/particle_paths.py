@@ -51,10 +51,11 @@ def plot_particle_paths(panels: list[ParticlePanel]) -> Figure | None:
             order = np.argsort(step[rows_of])
             shade = 0.25 + 0.75 * float(final.get(int(particle), 0.0)) / top
             ax.plot(table.num("x")[rows_of][order], table.num("y")[rows_of][order],
-                    color=(0.12, 0.35, 0.75, min(max(shade, 0.25), 1.0)), lw=0.8)
+                    color=(0.12, 0.35, 0.75, min(max(shade, 0.25), 1.0)), lw=0.8, zorder=3)
         if panel.steps is not None and np.any(np.isfinite(panel.steps.num("x_true"))):
+            # under the particles: where they follow the truth closely they stay visible
             ax.plot(panel.steps.num("x_true"), panel.steps.num("y_true"), color=TRUTH_COLOUR,
-                    lw=1.4, label="true trajectory")
+                    lw=1.8, label="true trajectory", zorder=2)
         ax.plot([], [], color=(0.12, 0.35, 0.75), lw=0.8,
                 label="particles (darker = larger final weight)")
         ax.set_title(panel.title)
