@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # The main job: installs what is missing, builds the release preset, runs the default experiment
-# (validation/experiments/quick.yaml), the single-cluster parent-weighting figure's data
-# (phdslam parent-weights) and writes their report. Prints the report's path at the end.
+# (validation/experiments/quick.yaml) with the particle traces of the report's Fig. 3
+# (--particles-trace, which changes no other result), the single-cluster parent-weighting
+# figure's data (phdslam parent-weights) and writes their report. Prints the report's path at the
+# end.
 #
 #   ci/run-main.sh [OUT_DIR]     default OUT_DIR: results/quick
 set -euo pipefail
@@ -12,7 +14,8 @@ out="${1:-results/quick}"
 jobs=$(nproc 2>/dev/null || echo 2)
 cmake --preset release >/dev/null
 cmake --build --preset release -j "$jobs" --target phdslam
-build/release/apps/phdslam run --experiment validation/experiments/quick.yaml --out "$out"
+build/release/apps/phdslam run --experiment validation/experiments/quick.yaml --particles-trace \
+  --out "$out"
 build/release/apps/phdslam parent-weights --out "$out"
 python3 reports/make_report.py "$out"
 echo "report: $(cd "$out" && pwd)/report/index.html"

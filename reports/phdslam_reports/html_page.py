@@ -14,7 +14,8 @@ h1 { font-size: 1.7em; margin-bottom: 0.2em; }
 h2 { font-size: 1.3em; border-bottom: 2px solid #d0d0d0; padding-bottom: 4px; margin-top: 1.8em; }
 h3 { font-size: 1.1em; margin-top: 1.4em; }
 .meta { color: #555; font-size: 0.92em; }
-table { border-collapse: collapse; margin: 10px 0 14px; font-size: 0.9em; }
+.table-box { max-width: 100%; overflow-x: auto; margin: 10px 0 14px; }
+table { border-collapse: collapse; font-size: 0.9em; }
 th, td { border: 1px solid #c8c8c8; padding: 3px 7px; text-align: right; vertical-align: top;
          white-space: nowrap; }
 th { background: #eef1f5; text-align: center; }
@@ -30,7 +31,8 @@ figure { margin: 12px 0 20px; }
 figure img { max-width: 100%; height: auto; border: 1px solid #e2e2e2; }
 figcaption { font-size: 0.9em; color: #444; margin-top: 4px; }
 nav ul { columns: 2; font-size: 0.92em; }
-code { background: #f2f2f2; padding: 0 3px; }
+code { background: #f2f2f2; padding: 0 3px; overflow-wrap: anywhere; }
+p, li, figcaption { overflow-wrap: anywhere; }
 """
 
 
@@ -93,11 +95,12 @@ def table_html(
     rows: Sequence[Sequence[Sequence[str]]],
     header_rows: Sequence[Sequence[tuple[str, int]]] = (),
 ) -> str:
-    """A table of (text, css class[, second line]) cells, optional grouped header rows.
+    """A table of (text, css class[, second line]) cells, optional grouped header rows, in a
+    box that scrolls sideways when the table is wider than the page (the page never does).
 
     ``header_rows`` hold (text, colspan) pairs drawn above ``headers``.
     """
-    parts = ["<table>"]
+    parts = ['<div class="table-box"><table>']
     for header_row in header_rows:
         cells = "".join(
             f'<th colspan="{span}">{escape(text)}</th>' if span > 1 else f"<th>{escape(text)}</th>"
@@ -109,7 +112,7 @@ def table_html(
     for row in rows:
         cells = "".join(_cell_html(cell) for cell in row)
         parts.append(f"<tr>{cells}</tr>")
-    parts.append("</table>")
+    parts.append("</table></div>")
     return "\n".join(parts)
 
 

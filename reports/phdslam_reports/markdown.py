@@ -58,7 +58,8 @@ def report_markdown(results: ResultsFolder, paper: PaperValues, comparison: Comp
         "Our values are Monte Carlo means (pooled RMSEs as in the paper) \u00b1 their standard "
         "error: GOSPA std/sqrt(runs); every other metric the spread of its per-run values in "
         "runs.csv / sqrt(runs). \u0394 is (ours \u2212 paper) / paper; "
-        f"{FLAG_MARK} marks cells more than 15 % off.", "",
+        f"{FLAG_MARK} marks cells more than 15 % off (a time per step only when it is slower "
+        "than the paper's).", "",
     ]
     for note in comparison.notes:
         parts += [f"> {note}", ""]

@@ -142,8 +142,7 @@ class ReportBuilder:
             cells = [(self._name(row.group.estimator), "name"), (str(row.group.particles), ""),
                      (str(row.runs), ""), (format_value(row.steps), "")]
             for cell in row.cells:
-                css = "flag" if cell.flagged else ("ok" if cell.paper is not None
-                                                   and math.isfinite(cell.ours) else "")
+                css = "flag" if cell.flagged else ("ok" if cell.agrees else "")
                 flagged += int(cell.flagged)
                 second = ""
                 if cell.paper is not None:
@@ -156,7 +155,10 @@ class ReportBuilder:
             "of every run, as in the paper) \u00b1 their Monte Carlo standard error (GOSPA: "
             "std / \u221aruns; the other metrics: spread of the per-run values in runs.csv / "
             "\u221aruns). Second line: the paper's value and \u0394 = (ours \u2212 paper) / paper. "
-            "Red cells differ from the paper by more than 15 %; green cells are within 15 %.</p>",
+            "Red cells differ from the paper by more than 15 %; green cells are within 15 %. A time "
+            "per step is red only when it is more than 15 % slower than the paper's: a faster time "
+            "is no deviation (the paper's times are MATLAB + C on another machine) and is left "
+            "uncoloured.</p>",
             table_html(headers, rows),
             f"<p class=\"meta\">{flagged} cell(s) flagged.</p>",
         ]
@@ -211,7 +213,7 @@ class ReportBuilder:
                 "(same scenario, 4000 steps, pD and clutter rate of the paper, and the paper's "
                 "filters and particle counts)"))
         parts = ["<p>Each cell: ours \u00b1 SE (paper); \u26a0 marks a difference beyond "
-                 "15 %.</p>"]
+                 "15 % (a time per step only when it is slower than the paper's).</p>"]
         for table in tables:
             headers, rows = paper_table_rows(table, comparison, self.paper)
             parts.append(f"<h3>{escape(table.title)}</h3>")
@@ -290,28 +292,39 @@ class ReportBuilder:
             "5\u201395 % band over runs, per estimator and particle count."))
 
     def particles_section(self, sid: str, prefix: str, folder: ResultsFolder) -> Section:
-        """Fig. 3 analogue: particle trajectories from particles.csv files."""
+        """Fig. 3 analogue: particle trajectories from particles.csv files, one run (the first
+        seed) per estimator and particle count."""
         title = "Fig. 3 analogue: particle trajectories"
-        files = folder.particle_files()
-        if not files:
+        runs = first_run_of_each_group(folder.particle_files())
+        if not runs:
             return Section(sid, title, skipped_note=(
-                "no run folder holds particles.csv (step,particle,x,y,weight); the runner does "
-                "not write particle paths yet"))
+                "no run folder holds particles.csv (step,particle,x,y,log_weight): run "
+                "'phdslam run' with --particles-trace to write it"))
+        shown = runs if len(runs) <= MAX_PANELS else sorted(
+            sorted(runs, key=lambda r: -r[0].particles)[:MAX_PANELS],
+            key=lambda r: (r[0], r[1]))
         panels = []
-        for group, seed, path in files[:MAX_PANELS]:
+        for group, seed, path in shown:
             steps_path = folder.run_folder(group, seed) / "steps.csv"
             panels.append(ParticlePanel(
                 title=f"{self._name(group.estimator)}, N = {group.particles}, seed {seed}",
                 particles=folder.particles(path),
                 steps=folder.steps(group, seed) if steps_path.is_file() else None))
         fig = plot_particle_paths(panels)
+        resampled = any(p.steps is not None and np.nansum(p.steps.num("resampled")) > 0
+                        for p in panels)
         folder.forget_steps()
-        body = self._figure(fig, f"{prefix}fig3-particle-paths.png",
-                            "Paths of every particle (shade: final weight) and the true "
-                            "trajectory.")
-        if len(files) > MAX_PANELS:
-            body += note_html(f"{len(files)} runs hold particles.csv; the first {MAX_PANELS} "
-                              "are shown.")
+        caption = ("Path of every particle (darker: larger final weight) and the true "
+                   "trajectory (black), one run per estimator and particle count.")
+        if resampled:
+            caption += (" These runs resample (the paper's Fig. 3 does not): after a resampling "
+                        "step a particle continues from the state it was copied from, so its "
+                        "line can jump there.")
+        body = self._figure(fig, f"{prefix}fig3-particle-paths.png", caption)
+        if len(runs) > MAX_PANELS:
+            body += note_html(f"{len(runs)} estimator and particle-count pairs hold "
+                              f"particles.csv; the {MAX_PANELS} with the most particles are "
+                              "shown.")
         return Section(sid, title, body=body)
 
     def _nees_series(self, folder: ResultsFolder, column: str) -> list:
@@ -736,9 +749,11 @@ class ReportBuilder:
         """A short description of a results folder from its config.json."""
         config = folder.config or {}
         options = folder.scenario_options
-        shown = ", ".join(f"{k} = {options[k]}" for k in
-                          ("steps", "detection_probability", "detection_probability_nominal",
-                           "clutter_rate") if k in options)
+        shown = ", ".join(
+            ([steps_text(options["steps"], folder)] if "steps" in options else [])
+            + [f"{k} = {options[k]}" for k in
+               ("detection_probability", "detection_probability_nominal", "clutter_rate")
+               if k in options])
         counts = options.get("counts")
         if isinstance(counts, dict):  # real data (mrclam): what the steps are made of
             shown = ", ".join(x for x in (shown, counts_text(counts)) if x)
@@ -789,6 +804,29 @@ class ReportBuilder:
         sections.append(self.sensitivity_section())
         html = render_page(self.options.title, "\n".join(intro), sections)
         return Report(html=html, sections=sections, figure_files=self.figure_files)
+
+
+def first_run_of_each_group(
+        files: list[tuple[Group, int, Path]]) -> list[tuple[Group, int, Path]]:
+    """The run of the smallest seed of each (estimator, N) among sorted particles.csv files."""
+    first: dict[Group, tuple[Group, int, Path]] = {}
+    for group, seed, path in files:
+        first.setdefault(group, (group, seed, path))
+    return list(first.values())
+
+
+def steps_text(limit: object, folder: ResultsFolder) -> str:
+    """The step limit of config.json in words: 0 (or none) is every step of the scenario, given
+    with the steps per run of summary.csv when all its rows agree."""
+    if isinstance(limit, (int, float)) and not isinstance(limit, bool) and limit > 0:
+        return f"first {limit:g} steps"
+    if isinstance(limit, (int, float)) and not isinstance(limit, bool) and limit == 0:
+        summary = folder.summary
+        per_run = set(summary.num("steps").tolist()) if summary is not None else set()
+        if len(per_run) == 1 and math.isfinite(next(iter(per_run))):
+            return f"all {next(iter(per_run)):g} steps"
+        return "all steps"
+    return f"steps = {limit}"
 
 
 def counts_text(counts: dict) -> str:

@@ -47,7 +47,10 @@ STEPS_COLUMNS = (
     "heading_err_deg", "ess", "resampled", "hypotheses", "map_components", "ms",
 )
 MAP_COLUMNS = ("x", "y")
-PARTICLES_COLUMNS = ("step", "particle", "x", "y", "weight")
+PARTICLES_COLUMNS = ("step", "particle", "x", "y")
+PARTICLE_WEIGHT_COLUMNS = ("log_weight", "weight")
+"""particles.csv carries one of these: ``log_weight`` (what ``phdslam run --particles-trace``
+writes, normalised natural-log weights) or ``weight`` (linear weights)."""
 SCALING_COLUMNS = ("estimator", "landmarks_in_fov", "us_per_call")
 MAP_SCALING_COLUMNS = ("landmarks", "particles", "ms_per_step", "map_bytes")
 GPS_COLUMNS = ("t", "x", "y")
@@ -399,5 +402,10 @@ class ResultsFolder:
         return sorted(found, key=lambda item: (item[0], item[1]))
 
     def particles(self, path: Path) -> CsvTable:
-        """A particles.csv file (step, particle, x, y, weight)."""
-        return read_csv(path, PARTICLES_COLUMNS)
+        """A particles.csv file: step, particle, x, y and log_weight (or weight)."""
+        table = read_csv(path, PARTICLES_COLUMNS)
+        if not any(table.has(c) for c in PARTICLE_WEIGHT_COLUMNS):
+            raise ResultsFormatError(
+                f"{path}: required column 'log_weight' (or 'weight') is missing "
+                f"(header: {','.join(table.header)})")
+        return table

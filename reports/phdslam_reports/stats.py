@@ -40,17 +40,21 @@ def relative_difference(ours: float, paper: float) -> float:
     return (ours - paper) / abs(paper)
 
 
-def is_flagged(ours: float, paper: float, tolerance: float = FLAG_TOLERANCE) -> bool:
+def is_flagged(ours: float, paper: float, tolerance: float = FLAG_TOLERANCE,
+               only_above: bool = False) -> bool:
     """True when ours is more than ``tolerance`` (relative) away from the paper's value.
 
-    A paper value of 0 (e.g. 0 % resampling) has no relative scale: any non-zero value of ours
-    is then flagged. Missing values are never flagged.
+    With ``only_above`` only a value above the paper's counts (a time per step: being faster is
+    not a deviation). A paper value of 0 (e.g. 0 % resampling) has no relative scale: any
+    non-zero value of ours (any positive one with ``only_above``) is then flagged. Missing values
+    are never flagged.
     """
     if ours is None or paper is None or not math.isfinite(ours) or not math.isfinite(paper):
         return False
     if paper == 0:
-        return abs(ours) > 1e-12
-    return abs(relative_difference(ours, paper)) > tolerance
+        return ours > 1e-12 if only_above else abs(ours) > 1e-12
+    relative = relative_difference(ours, paper)
+    return relative > tolerance if only_above else abs(relative) > tolerance
 
 
 @dataclass(frozen=True)

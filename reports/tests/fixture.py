@@ -57,6 +57,7 @@ class FixtureSpec:
     clutter_rate: float = 5.0
     nees: bool = False
     particles_file: bool = False
+    particles_weight_column: str = "log_weight"  # as --particles-trace writes; or "weight"
     scaling: bool = False
     resampling: bool = True
     landmarks: int = 24
@@ -220,12 +221,16 @@ def make_results_folder(root: Path, spec: FixtureSpec | None = None) -> Path:
             _write_csv(folder / "map.csv", ["x", "y", "weight", "pxx", "pxy", "pyy"], map_rows)
             if spec.particles_file and particles > 1:
                 prow = []
+                weights = 1.0 / np.arange(1, particles + 1)
+                weights /= np.sum(weights)
                 for i in range(spec.steps):
                     for p in range(particles):
+                        w = float(weights[p])
                         prow.append([i, p, float(x[i] + 2 * p), float(y[i] - p),
-                                     float(1.0 / (p + 1))])
-                _write_csv(folder / "particles.csv", ["step", "particle", "x", "y", "weight"],
-                           prow)
+                                     math.log(w) if spec.particles_weight_column == "log_weight"
+                                     else w])
+                _write_csv(folder / "particles.csv",
+                           ["step", "particle", "x", "y", spec.particles_weight_column], prow)
             (folder / "metrics.json").write_text(json.dumps(
                 {"estimator": estimator, "particles": particles, "seed": seed}), encoding="utf-8")
             gospa = float(30.0 * scale + rng.normal(0, 2.0))

@@ -59,6 +59,19 @@ class RealRunnerTest(unittest.TestCase):
             body = build_report([results], Path(tmp) / "report").section("summary").body
             self.assertIn("paper 0.9829", body)
 
+    def test_particle_traces_are_drawn_as_fig3(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            results = Path(tmp) / "results"
+            done = subprocess.run(
+                [PHDSLAM, "run", "--scenario", "paper-synthetic", "--estimator", "phd3",
+                 "--particles", "5", "--seeds", "1", "--steps", "60", "--particles-trace",
+                 "--out", str(results), "--quiet", "--jobs", "1"],
+                capture_output=True, text=True, timeout=300)
+            self.assertEqual(done.returncode, 0, done.stderr)
+            report = build_report([results], Path(tmp) / "report")
+            self.assertTrue(report.section("fig3").shown, report.section("fig3").skipped_note)
+            self.assertTrue((Path(tmp) / "report" / "fig3-particle-paths.png").is_file())
+
     def test_parent_weights_report(self):
         with tempfile.TemporaryDirectory() as tmp:
             results = Path(tmp) / "pw"
