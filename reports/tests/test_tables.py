@@ -153,7 +153,7 @@ class DataAssociationTest(unittest.TestCase):
         phd1 = next(x for x in self.markdown.splitlines() if x.startswith("| PHD 1.0 | 10 |"))
         self.assertTrue(phd1.endswith("| \u2014 | \u2014 | \u2014 | \u2014 | \u2014 | \u2014 |"))
         self.assertIn("Paper values: Data-association accuracy (synthetic); source: "
-                      "docs/algorithms/metrics.md \u00a77.4", self.markdown)
+                      "Kaltiokallio et al., IEEE T-RO 2024, text beside Table II", self.markdown)
         # shown in the summary, so not repeated under "Other published numbers"
         self.assertNotIn("| Data-association accuracy (synthetic) |", self.markdown)
         self.assertIn("| Authors' 100-seed rerun of PHD 3.0", self.markdown)
