@@ -3,6 +3,8 @@
 // parses, else a string) goes through the scenario's option table as `--scenario-set` would,
 // then the options' Validate(), then the scenario is built with a step cap. Every stage must
 // accept its input or throw std::invalid_argument; nothing may crash, hang or run out of memory.
+// As on the command line and in experiment files, text that is not UTF-8 is refused first
+// (RequireUtf8): the tables' messages quote values as JSON, which holds UTF-8 only.
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
@@ -15,6 +17,7 @@
 #include "datasets/scenario_generator.h"
 #include "datasets/scphd_simulation.h"
 #include "validation/runner/scenario_option_tables.h"
+#include "validation/runner/utf8_text.h"
 
 namespace {
 
@@ -68,6 +71,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   namespace d = phdslam::datasets;
   namespace v = phdslam::validation;
   const std::string_view text(reinterpret_cast<const char*>(data) + 1, size - 1);
+  try {
+    v::RequireUtf8(text, "--scenario-set");
+  } catch (const std::invalid_argument&) {
+    return 0;
+  }
   switch (data[0] % 3) {
     case 0:
       Exercise(v::GeneratedOptionsTable(), text,
