@@ -14,7 +14,8 @@ seconds=${1:-20}
 root=$(pwd)
 data=${PHDSLAM_DATA:-$root/../shared/datasets}
 build=build/fuzz
-targets=(mat_file victoria_park tum_trajectory map_csv experiment_file mrclam)
+targets=(mat_file victoria_park tum_trajectory map_csv experiment_file mrclam scenario_options
+  ingest_readers)
 
 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++-14 \
   -DPHDSLAM_FUZZ=ON -DPHDSLAM_BUILD_TESTS=OFF -DPHDSLAM_BUILD_BENCHMARKS=OFF \
@@ -23,7 +24,8 @@ cmake --build "$build" -j "$(nproc 2>/dev/null || echo 2)" --target "${targets[@
 
 # Seed corpus, rebuilt on every call from the real files.
 corpus=$build/corpus
-rm -rf "$corpus" && mkdir -p "$corpus"/{mat_file,victoria_park,tum_trajectory,map_csv,experiment_file,mrclam}
+rm -rf "$corpus" && mkdir -p "$corpus"/{mat_file,victoria_park,tum_trajectory,map_csv,experiment_file,mrclam} \
+  "$corpus"/{scenario_options,ingest_readers}
 cp "$data/phdslam3-synthetic/Environment_SLAM.mat" "$data/victoria-park/aa3_gpsx.mat" \
   "$corpus/mat_file/"
 { printf '\x00'; head -n 60 "$data/victoria-park/measurements.dat"; } >"$corpus/victoria_park/m"
@@ -38,6 +40,23 @@ mrclam=$data/utias-mrclam/MRCLAM_Dataset6
 { printf '\x03'; head -n 64 "$mrclam/Robot1_Odometry.dat"; } >"$corpus/mrclam/o"
 { printf '\x04'; head -n 64 "$mrclam/Robot1_Measurement.dat"; } >"$corpus/mrclam/m"
 { printf '\x00'; cat "$mrclam/Barcodes.dat"; } >"$corpus/mrclam/b"
+# Scenario options: the first byte picks generated (0), scphd-sim (1) or glmb-sim (2).
+printf '\x00speed=2\nlandmarks=50\nclutter_rate=3\ninitial_pose=[1,2,0.5]\n' \
+  >"$corpus/scenario_options/g"
+printf '\x01circle_radius=30\nmap_inner_radius=5\nmeasurement_noise_cov=[0.1,0.01]\n' \
+  >"$corpus/scenario_options/s"
+printf '\x02data_protocol="single-realisation"\nlandmark_offset=0.5\n' \
+  >"$corpus/scenario_options/l"
+# Ingest readers: the first byte picks trajectory.tum (0), map.csv (1), pose_cov.csv (2),
+# maps.csv (3), association.csv (4) or timing.csv (5).
+printf '\x01x,y,weight,pxx,pxy,pyy\n1,2,0.5,0.1,0,0.1\n' >"$corpus/ingest_readers/m"
+printf '\x02step,pxx,pxy,pxt,pyy,pyt,ptt\n0,1,0,0,1,0,1\n3,2,0.1,0,1,0,0.5\n' \
+  >"$corpus/ingest_readers/p"
+printf '\x03step,x,y\n0,1,1\n5,2,2\n' >"$corpus/ingest_readers/s"
+printf '\x04step,index,x,y\n1,0,1,1\n' >"$corpus/ingest_readers/a"
+printf '\x05step,ms\n0,1\n1,1\n2,1\n3,1\n4,1\n5,1\n' >"$corpus/ingest_readers/t"
+printf '\x00# t x y z qx qy qz qw\n0 0 0 0 0 0 0 1\n1 1 0 0 0 0 0 1\n' \
+  >"$corpus/ingest_readers/j"
 
 mkdir -p "$build/artifacts"
 # The targets write their input to files under $TMPDIR (fuzz/fuzz_input_file.h): keep them here.

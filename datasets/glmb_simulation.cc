@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "datasets/range_bearing_simulator.h"
+#include "datasets/simulation_limits.h"
 #include "src/core/random.h"
 #include "src/models/car_motion_model.h"
 #include "src/models/range_bearing_model.h"
@@ -30,7 +31,7 @@ static_assert(2 * kLongSteps + 2 * kShortSteps + 4 * kCornerSteps == kGlmbSimLoo
 
 void RequirePositive(const std::string& field, double v) {
   if (!(v > 0.0) || !std::isfinite(v))
-    Fail(field, "must be finite and > 0, got " + std::to_string(v));
+    Fail(field, "must be finite and > 0, got " + CompactNumber(v));
 }
 
 // The steering angle whose kCornerSteps Euler steps turn the heading by exactly 90 deg.
@@ -104,6 +105,7 @@ void GlmbSimOptions::Validate() const {
   }
   if (data_seed < 0) Fail("data_seed", "must be >= 0, got " + std::to_string(data_seed));
   SimulationSettings::Of(*this).Validate("GlmbSimOptions");
+  CheckSimulationSize("GlmbSimOptions", steps, landmarks, clutter_rate);
 }
 
 GlmbSimPath GlmbSimTruePath(const GlmbSimOptions& o, int steps) {

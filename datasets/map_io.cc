@@ -17,7 +17,7 @@ constexpr std::array<const char*, kColumnCount> kColumnNames = {"x",   "y",   "w
 
 }  // namespace
 
-std::vector<MapPoint> ReadMapCsv(const std::filesystem::path& path) {
+std::vector<MapPoint> ReadMapCsv(const std::filesystem::path& path, const MapValueLimits& limits) {
   std::ifstream in(path);
   if (!in) throw std::runtime_error("cannot open map CSV '" + path.string() + "'");
   std::vector<MapPoint> points;
@@ -80,18 +80,30 @@ std::vector<MapPoint> ReadMapCsv(const std::filesystem::path& path) {
       value[c] = text::ParseDouble(field);
       if (!value[c]) fail(column + ": '" + text::Printable(field) + "' is not a number");
       if (!std::isfinite(*value[c])) fail(column + " is not finite");
+      if (std::abs(*value[c]) > limits.max_abs_value) {
+        fail(column + ": " + text::FormatDouble(*value[c]) + " is beyond +-" +
+             text::FormatDouble(limits.max_abs_value));
+      }
+    }
+    if (points.size() >= limits.max_points) {
+      fail("more than " + std::to_string(limits.max_points) + " landmarks, the map reader's cap");
     }
     MapPoint p;
     p.position = Landmark(*value[kX], *value[kY]);
     p.weight = value[kWeight].value_or(0.0);
+    if (p.weight < 0.0 || p.weight > limits.max_weight) {
+      fail("column 'weight' (field " + std::to_string(field_of[kWeight] + 1) +
+           "): " + text::FormatDouble(p.weight) + " is outside [0, " +
+           text::FormatDouble(limits.max_weight) + "]");
+    }
     const int cov_values =
         value[kPxx].has_value() + value[kPxy].has_value() + value[kPyy].has_value();
     if (cov_values == 3) {
       const double pxx = *value[kPxx];
       const double pxy = *value[kPxy];
       const double pyy = *value[kPyy];
-      if (pxx < 0.0) fail("column 'pxx': the variance " + std::to_string(pxx) + " is negative");
-      if (pyy < 0.0) fail("column 'pyy': the variance " + std::to_string(pyy) + " is negative");
+      if (pxx < 0.0) fail("column 'pxx': the variance " + text::FormatDouble(pxx) + " is negative");
+      if (pyy < 0.0) fail("column 'pyy': the variance " + text::FormatDouble(pyy) + " is negative");
       if (pxx * pyy - pxy * pxy < -1e-12 * pxx * pyy - 1e-300) {
         fail("column 'pxy': covariance [pxx pxy; pxy pyy] is not positive semi-definite");
       }

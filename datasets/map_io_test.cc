@@ -29,7 +29,7 @@ std::filesystem::path WriteText(const std::string& name, const std::string& cont
 TEST(MapCsv, RoundTripWithAndWithoutCovariances) {
   std::vector<MapPoint> points(3);
   points[0].position = Landmark(1.0 / 3.0, -250.125);
-  points[0].weight = -13.815510557964274;
+  points[0].weight = 1.0000000000000004e-06;
   Mat2 cov;
   cov << 0.64, 1e-4, 1e-4, 2.7416e-5;
   points[0].cov = cov;
@@ -126,6 +126,46 @@ TEST(MapCsv, MalformedInputNamesFileLineAndColumn) {
 
   path = WriteText("empty.csv", "# nothing\n");
   EXPECT_NE(ReadError(path).find("no header line"), std::string::npos);
+}
+
+TEST(MapCsv, LimitsNameTheLineAndColumn) {
+  auto path = WriteText("negative.csv", "x,y,weight\n1,2,0.5\n1,2,-5\n");
+  std::string message = ReadError(path);
+  EXPECT_NE(message.find(":3: column 'weight' (field 3): -5 is outside [0, inf]"),
+            std::string::npos)
+      << message;
+
+  MapValueLimits limits;
+  limits.max_weight = 1.0;
+  limits.max_abs_value = 1e9;
+  limits.max_points = 2;
+  path = WriteText("heavy.csv", "x,y,weight\n1,2,1.5\n");
+  try {
+    (void)ReadMapCsv(path, limits);
+    FAIL() << "a weight of 1.5 was accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find(":2: column 'weight' (field 3): 1.5 is outside [0, 1]"),
+              std::string::npos)
+        << e.what();
+  }
+  path = WriteText("far.csv", "x,y\n1e300,2\n");
+  try {
+    (void)ReadMapCsv(path, limits);
+    FAIL() << "x = 1e300 was accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find(":2: column 'x' (field 1): 1e+300 is beyond +-1e+09"),
+              std::string::npos)
+        << e.what();
+  }
+  path = WriteText("long.csv", "x,y\n1,1\n2,2\n3,3\n");
+  try {
+    (void)ReadMapCsv(path, limits);
+    FAIL() << "a third landmark was accepted beyond the cap of 2";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find(":4: more than 2 landmarks"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_EQ(ReadMapCsv(WriteText("fine.csv", "x,y,weight\n1,2,1\n3,4,0\n"), limits).size(), 2U);
 }
 
 TEST(MapCsv, WriterRejectsNonFiniteValues) {

@@ -99,6 +99,18 @@ int PositiveInteger(double value, const std::filesystem::path& path, std::size_t
   return static_cast<int>(value);
 }
 
+/// A time stamp (s, Unix epoch) must lie in [0, kMrclamMaxTime]: later or negative stamps are
+/// corrupt rows (the data sets were recorded in 2009).
+constexpr double kMrclamMaxTime = 4e9;
+
+void CheckTime(double t, const std::filesystem::path& path, std::size_t line) {
+  if (!(t >= 0.0 && t <= kMrclamMaxTime)) {
+    FailAt(path, line,
+           "time stamp " + text::FormatDouble(t) + " s is out of range (expected 0 to " +
+               text::FormatDouble(kMrclamMaxTime) + " s, Unix time)");
+  }
+}
+
 /// The order that sorts `times` stably, and how many rows were out of order on the way.
 std::vector<std::size_t> StableTimeOrder(const std::vector<double>& times,
                                          std::size_t& out_of_order) {
@@ -151,7 +163,10 @@ void ReadOdometry(const std::filesystem::path& path, MrclamRobotData& data) {
   const auto rows = ReadRows<3>(path, "t [s], v [m/s], w [rad/s]");
   std::vector<double> times;
   times.reserve(rows.size());
-  for (const auto& row : rows) times.push_back(row.values[0]);
+  for (const auto& row : rows) {
+    CheckTime(row.values[0], path, row.line);
+    times.push_back(row.values[0]);
+  }
   const std::vector<std::size_t> order = StableTimeOrder(times, data.odometry_out_of_order);
   for (std::size_t i : order) {
     const Control u(rows[i].values[1], rows[i].values[2]);
@@ -169,7 +184,10 @@ void ReadTruth(const std::filesystem::path& path, MrclamRobotData& data) {
   const auto rows = ReadRows<4>(path, "t [s], x [m], y [m], heading [rad]");
   std::vector<double> times;
   times.reserve(rows.size());
-  for (const auto& row : rows) times.push_back(row.values[0]);
+  for (const auto& row : rows) {
+    CheckTime(row.values[0], path, row.line);
+    times.push_back(row.values[0]);
+  }
   const std::vector<std::size_t> order = StableTimeOrder(times, data.truth_out_of_order);
   for (std::size_t i : order) {
     if (!data.truth_times.empty() && data.truth_times.back() == times[i]) {
@@ -191,13 +209,26 @@ void ReadDetections(const std::filesystem::path& path, MrclamRobotData& data) {
   const auto rows = ReadRows<4>(path, "t [s], barcode, range [m], bearing [rad]");
   std::vector<double> times;
   times.reserve(rows.size());
-  for (const auto& row : rows) times.push_back(row.values[0]);
+  for (const auto& row : rows) {
+    CheckTime(row.values[0], path, row.line);
+    times.push_back(row.values[0]);
+  }
   const std::vector<std::size_t> order = StableTimeOrder(times, data.detections_out_of_order);
   for (std::size_t i : order) {
     const auto& [t, barcode, range, bearing] = rows[i].values;
     MrclamDetection d;
     d.t = t;
     d.barcode = PositiveInteger(barcode, path, rows[i].line, "barcode");
+    if (const auto it = data.barcode_subject.find(d.barcode);
+        it != data.barcode_subject.end() && it->second > kMrclamRobots &&
+        std::find(data.landmark_subjects.begin(), data.landmark_subjects.end(), it->second) ==
+            data.landmark_subjects.end()) {
+      FailAt(path, rows[i].line,
+             "barcode " + std::to_string(d.barcode) + " is that of landmark subject " +
+                 std::to_string(it->second) +
+                 " (Barcodes.dat), which Landmark_Groundtruth.dat does not list: the detection "
+                 "has no true position");
+    }
     if (!(range > 0.0)) {
       FailAt(path, rows[i].line, "range " + text::FormatDouble(range) + " m is not positive");
     }
@@ -431,6 +462,11 @@ Scenario MakeMrclamScenario(const MrclamRobotData& data, std::uint64_t seed,
                              ": no image lies within the commands and the Vicon truth");
   }
   counts.steps = scenario.steps.size();
+  counts.odometry_out_of_order = data.odometry_out_of_order;
+  counts.odometry_repeated_times = data.odometry_repeated_times;
+  counts.truth_out_of_order = data.truth_out_of_order;
+  counts.truth_repeated_times = data.truth_repeated_times;
+  counts.detections_out_of_order = data.detections_out_of_order;
   if (counts_out != nullptr) *counts_out = counts;
   return scenario;
 }

@@ -97,8 +97,10 @@ std::filesystem::path MrclamFolder(int dataset);
 /// Measurement}.dat of <data_dir>/utias-mrclam/MRCLAM_Dataset<dataset>/. Lines starting with '#'
 /// and blank lines are skipped. Throws std::runtime_error naming the file and the line for a
 /// missing file, a line without the expected number of values, a value that is not a finite
-/// number, a subject or barcode that is not a positive integer, a barcode or subject listed
-/// twice, a range that is not positive, and a file without data lines.
+/// number, a time stamp outside [0, 4e9] s (Unix time), a subject or barcode that is not a
+/// positive integer, a barcode or subject listed twice, a detection of a barcode whose landmark
+/// subject has no row in Landmark_Groundtruth.dat, a range that is not positive, and a file
+/// without data lines. Rows out of time order are sorted and counted (MrclamCounts).
 MrclamRobotData LoadMrclamRobot(const std::filesystem::path& data_dir, int dataset, int robot);
 
 /// The files LoadMrclamRobot reads, relative to the data folder.
@@ -140,6 +142,12 @@ struct MrclamCounts {
   /// Images before the first step (before the first command or the first Vicon pose, or without
   /// truth) and after the last command.
   std::size_t images_skipped = 0;
+  /// Rows the reader put back in time order or merged (MrclamRobotData's counts).
+  std::size_t odometry_out_of_order = 0;
+  std::size_t odometry_repeated_times = 0;
+  std::size_t truth_out_of_order = 0;
+  std::size_t truth_repeated_times = 0;
+  std::size_t detections_out_of_order = 0;
 };
 
 /// The scenario of options.robot (data.robot must be that robot). Deterministic: the seed only

@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "datasets/simulation_limits.h"
 #include "src/core/angles.h"
 #include "src/models/range_bearing_model.h"
 
@@ -29,7 +30,7 @@ void CheckCovariance(std::string_view owner, std::string_view field, const Mat2&
 }  // namespace
 
 void SimulationSettings::Validate(std::string_view owner) const {
-  const auto str = [](double v) { return std::to_string(v); };
+  const auto str = [](double v) { return CompactNumber(v); };
   if (!(detection_probability > 0.0 && detection_probability <= 1.0)) {
     Fail(owner, "detection_probability", "must be in (0, 1], got " + str(detection_probability));
   }
@@ -96,6 +97,7 @@ std::vector<ScenarioStep> SimulateRangeBearingSteps(const std::vector<Pose>& tru
   Control previous_odometry = Control::Zero();
   std::vector<Measurement> scan;
   std::vector<int> labels;
+  std::size_t held = 0;  // measurements drawn so far, before pD thinning
   for (std::size_t k = 0; k < truth.size(); ++k) {
     const Pose& x = truth[k];
     scan.clear();
@@ -119,6 +121,13 @@ std::vector<ScenarioStep> SimulateRangeBearingSteps(const std::vector<Pose>& tru
       const double n0 = rng.Normal();
       const double n1 = rng.Normal();
       z += meas_factor * Vec2(n0, n1);
+    }
+    held += scan.size();
+    if (static_cast<double>(held) > kMaxSimulatedMeasurements) {
+      throw std::invalid_argument(
+          "simulated scenario: more than " + CompactNumber(kMaxSimulatedMeasurements) +
+          " measurements (landmarks in view and clutter) by step " + std::to_string(k) +
+          ", the simulator's cap; reduce steps, landmarks, fov_range or clutter_rate");
     }
     ScenarioStep& step = steps[k];
     for (std::size_t j = 0; j < scan.size(); ++j) {

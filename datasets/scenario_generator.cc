@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "datasets/range_bearing_simulator.h"
+#include "datasets/simulation_limits.h"
 #include "src/core/random.h"
 #include "src/models/velocity_motion_model.h"
 
@@ -132,7 +133,7 @@ GeneratorOptions::GeneratorOptions() {
 }
 
 void GeneratorOptions::Validate() const {
-  const auto str = [](double v) { return std::to_string(v); };
+  const auto str = [](double v) { return CompactNumber(v); };
   if (steps < 1) Fail("steps", "must be >= 1, got " + std::to_string(steps));
   if (!(dt > 0.0) || !std::isfinite(dt)) Fail("dt", "must be finite and > 0 (s), got " + str(dt));
   if (!(speed >= 0.0) || !std::isfinite(speed)) {
@@ -147,6 +148,7 @@ void GeneratorOptions::Validate() const {
   }
   if (!initial_pose.allFinite()) Fail("initial_pose", "must be finite");
   SimulationSettings::Of(*this).Validate("GeneratorOptions");
+  CheckSimulationSize("GeneratorOptions", steps, landmarks, clutter_rate);
 }
 
 Scenario GenerateScenario(const GeneratorOptions& options, std::uint64_t seed) {

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "datasets/range_bearing_simulator.h"
+#include "datasets/simulation_limits.h"
 #include "src/core/random.h"
 #include "src/models/car_motion_model.h"
 
@@ -22,7 +23,7 @@ constexpr const char* kMapStreamName = "scphd-sim/map";
 
 void RequirePositive(const std::string& field, double v) {
   if (!(v > 0.0) || !std::isfinite(v))
-    Fail(field, "must be finite and > 0, got " + std::to_string(v));
+    Fail(field, "must be finite and > 0, got " + CompactNumber(v));
 }
 
 // The heading change per step that makes each Euler step of length v dt a chord of the circle.
@@ -50,6 +51,7 @@ void ScPhdSimOptions::Validate() const {
     Fail("map_outer_radius", "must be finite and > map_inner_radius >= 0");
   }
   SimulationSettings::Of(*this).Validate("ScPhdSimOptions");
+  CheckSimulationSize("ScPhdSimOptions", steps, landmarks, clutter_rate);
 }
 
 std::vector<Landmark> ScPhdSimMap(const ScPhdSimOptions& o) {

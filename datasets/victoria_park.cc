@@ -17,6 +17,7 @@
 #include "datasets/covariance_option.h"
 #include "datasets/mat_file.h"
 #include "datasets/range_bearing_simulator.h"
+#include "datasets/simulation_limits.h"
 #include "datasets/text_fields.h"
 #include "src/core/random.h"
 
@@ -278,11 +279,11 @@ VictoriaParkOptions::VictoriaParkOptions() {
 
 void VictoriaParkOptions::Validate() const {
   const auto fail = [](const std::string& field, const std::string& expected, double value) {
-    throw std::invalid_argument("VictoriaParkOptions." + field + " = " + std::to_string(value) +
+    throw std::invalid_argument("VictoriaParkOptions." + field + " = " + CompactNumber(value) +
                                 ": expected " + expected);
   };
   if (!(clutter_rate >= 0.0 && clutter_rate <= kMaxClutterRate)) {
-    fail("clutter_rate", "in [0, " + std::to_string(kMaxClutterRate) + "]", clutter_rate);
+    fail("clutter_rate", "in [0, " + CompactNumber(kMaxClutterRate) + "]", clutter_rate);
   }
   if (!std::isfinite(fov_range) || fov_range <= 0.0) fail("fov_range", "> 0", fov_range);
   if (!(fov_half_angle > 0.0 && fov_half_angle <= std::numbers::pi)) {

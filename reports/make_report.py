@@ -83,6 +83,10 @@ def expand_sweep_roots(dirs: list[Path]) -> list[Path]:
 
 def main(argv: list[str] | None = None) -> int:
     """Builds the report; returns the exit code."""
+    # A path with bytes that are not UTF-8 is printed with escapes instead of failing.
+    for stream in (sys.stdout, sys.stderr):
+        if hasattr(stream, "reconfigure"):
+            stream.reconfigure(errors="backslashreplace")
     args = parse_arguments(argv)
     out = args.out if args.out is not None else args.results_dirs[0] / "report"
     try:
@@ -96,6 +100,12 @@ def main(argv: list[str] | None = None) -> int:
                               ReportOptions(title=args.title, paper_table=args.paper_table))
     except ResultsFormatError as error:
         sys.stderr.write(f"error: {error}\n")
+        return 1
+    except (OSError, ValueError, OverflowError, ArithmeticError) as error:
+        # Whatever else a malformed input makes fail: one line, no traceback; index.html is
+        # written last and atomically, so an older report stays whole.
+        sys.stderr.write(f"error: the report of {', '.join(map(str, args.results_dirs))} could "
+                         f"not be built: {type(error).__name__}: {error}\n")
         return 1
     skipped = [s.title for s in report.sections if not s.shown]
     print(f"report: {(out / 'index.html').resolve()}")

@@ -28,6 +28,7 @@
 
 #include "apps/phdslam/option_without_value.h"
 #include "datasets/map_io.h"
+#include "datasets/simulation_limits.h"
 #include "datasets/trajectory_io.h"
 #include "src/core/random.h"
 #include "validation/runner/evaluation/offline_evaluation.h"
@@ -126,6 +127,7 @@ struct IngestArguments {
   std::string description = "external estimator (phdslam ingest)";
   std::string experiment = "default";
   int particles = 1;
+  bool replace = false;
 };
 
 struct MergeArguments {
@@ -270,7 +272,8 @@ void AddExportCommand(CLI::App& app, ExportArguments& a) {
       "version, scenario and options, seeds) and SHA256SUMS (`sha256sum -c SHA256SUMS`). "
       "Format: validation/EXPORT_FORMAT.md.");
   AddScenarioOptions(command, a.scenario);
-  command->add_option("--out", a.out, "Export folder (created if needed)")->required();
+  command->add_option("--out", a.out, "Export folder (created if needed; must be empty)")
+      ->required();
 }
 
 void AddIngestCommand(CLI::App& app, IngestArguments& a) {
@@ -306,6 +309,10 @@ void AddIngestCommand(CLI::App& app, IngestArguments& a) {
   command->add_option("--particles", a.particles, "Particle count the runs are filed under")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
+  command->add_flag("--replace", a.replace,
+                    "Replace the runs the estimator already has in --out (without it an estimator "
+                    "name that already has runs there is refused); the replaced run folders are "
+                    "listed");
 }
 
 void AddMergeCommand(CLI::App& app, MergeArguments& a) {
@@ -413,17 +420,32 @@ void ApplyAssignments(const std::vector<std::string>& sets, v::Experiment& x) {
 // Applies the --scenario-set arguments (key=value) to the experiment's scenario options.
 void ApplyScenarioAssignments(const std::vector<std::string>& sets, v::Experiment& x) {
   for (const std::string& text : sets) {
-    const v::ParameterAssignment assignment = v::ParseParameterAssignment(text);
+    const v::ParameterAssignment assignment = v::ParseParameterAssignment(text, "--scenario-set");
     if (!assignment.estimator.empty() || assignment.overrides.size() != 1 ||
         assignment.overrides.begin()->is_object()) {
       throw std::invalid_argument("--scenario-set '" + text + "': expected key=value");
     }
     try {
-      v::SetScenarioOption(x, assignment.overrides.begin().key(), *assignment.overrides.begin());
+      const std::string& key = assignment.overrides.begin().key();
+      const nlohmann::json& value = *assignment.overrides.begin();
+      if (!x.scenario.empty()) v::CheckScenarioOption(x.scenario, key, value);
+      v::SetScenarioOption(x, key, value);
     } catch (const std::invalid_argument& e) {
       throw std::invalid_argument("--scenario-set '" + text + "': " + e.what());
     }
   }
+}
+
+// `value` of command-line option `option` (scenario option `key`), checked against the
+// scenario's option table; errors name the option as typed.
+double CheckedScenarioNumber(const v::Experiment& x, const std::string& option,
+                             const std::string& key, double value) {
+  try {
+    if (!x.scenario.empty()) v::CheckScenarioOption(x.scenario, key, value);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(option + " " + datasets::CompactNumber(value) + ": " + e.what());
+  }
+  return value;
 }
 
 // The experiment of a `run` command: the experiment file, if any, with every option given on
@@ -464,8 +486,10 @@ v::Experiment ResolveExperiment(const RunArguments& a) {
   if (given(a.steps_option)) x.steps = a.steps;
   if (given(a.jobs_option)) x.jobs = a.jobs;
   if (given(a.experiment_name_option) || !from_file) x.name = a.experiment;
-  if (given(a.pd_option)) x.pd = a.detection_probability;
-  if (given(a.clutter_option)) x.clutter_rate = a.clutter_rate;
+  if (given(a.pd_option)) x.pd = CheckedScenarioNumber(x, "--pd", "pd", a.detection_probability);
+  if (given(a.clutter_option)) {
+    x.clutter_rate = CheckedScenarioNumber(x, "--clutter-rate", "clutter_rate", a.clutter_rate);
+  }
   if (a.data_dir_option->count() > 0) x.data_dir = a.data_dir;  // a machine setting
   if (!a.assignments.empty()) overridden.push_back("--set");
   ApplyAssignments(a.assignments, x);
@@ -541,8 +565,12 @@ v::Experiment ScenarioExperiment(const ScenarioArguments& a) {
   x.scenario = a.scenario;
   if (a.seeds_option->count() > 0) x.seeds = v::ParseSeedList(a.seeds);
   x.steps = a.steps;
-  if (a.pd_option->count() > 0) x.pd = a.detection_probability;
-  if (a.clutter_option->count() > 0) x.clutter_rate = a.clutter_rate;
+  if (a.pd_option->count() > 0) {
+    x.pd = CheckedScenarioNumber(x, "--pd", "pd", a.detection_probability);
+  }
+  if (a.clutter_option->count() > 0) {
+    x.clutter_rate = CheckedScenarioNumber(x, "--clutter-rate", "clutter_rate", a.clutter_rate);
+  }
   if (a.data_dir_option->count() > 0) x.data_dir = a.data_dir;
   ApplyScenarioAssignments(a.scenario_assignments, x);
   return x;
@@ -556,6 +584,7 @@ int Export(const ExportArguments& a) {
   for (const CLI::Option* o : {a.scenario.scenario_option, a.scenario.seeds_option}) {
     if (o->count() == 0) throw std::invalid_argument("export: " + o->get_name() + " is required");
   }
+  v::RequireEmptyExportFolder(a.out);
   const v::Experiment x = ScenarioExperiment(a.scenario);
   const v::ScenarioSource source = SourceOf(x);
   std::vector<datasets::Scenario> scenarios;
@@ -633,7 +662,11 @@ int Ingest(const IngestArguments& a) {
   request.scenario = SourceOf(x);
   request.seeds = x.seeds;
   if (from_export) request.export_dir = a.export_dir;
+  request.replace = a.replace;
   const v::IngestReport report = v::IngestResults(request, a.out);
+  for (const std::filesystem::path& replaced : report.replaced) {
+    std::cout << "replaced: " << replaced.string() << "\n";
+  }
   std::cout << "ingested " << report.runs << " runs of " << a.estimator << " into " << a.out
             << "\nsummary: " << (std::filesystem::path(a.out) / v::kSummaryFile).string() << "\n";
   return 0;

@@ -5,6 +5,7 @@
 //                         [--estimators nearest-landmark,odometry,phd3] [--particles 1]
 #include <cstring>
 #include <iostream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -48,7 +49,9 @@ int main(int argc, char** argv) {
     const std::string out = Option(argc, argv, "--out", "");
     if (out.empty()) {
       std::cerr << "usage: nearest_landmark_slam --out DIR [--scenario S] [--seeds A-B] "
-                   "[--steps N] [--estimators a,b] [--particles N]\n";
+                   "[--steps N] [--estimators a,b] [--particles N] [--jobs N]\n"
+                   "  --jobs: worker threads (default 0 = one per hardware thread); results do "
+                   "not depend on it\n";
       return 2;
     }
     // The registry: phdslam's estimators plus this one.
@@ -61,6 +64,9 @@ int main(int argc, char** argv) {
     x.seeds = v::ParseSeedList(Option(argc, argv, "--seeds", "1-5"));
     x.steps = std::stoi(Option(argc, argv, "--steps", "500"));
     x.particles = v::ParseParticleList(Option(argc, argv, "--particles", "1"));
+    const int jobs = std::stoi(Option(argc, argv, "--jobs", "0"));
+    if (jobs < 0 || jobs > 1024) throw std::invalid_argument("--jobs must be 0 to 1024");
+    x.jobs = jobs;
     for (const std::string& name : v::ParseNameList(
              Option(argc, argv, "--estimators", "nearest-landmark,odometry"), "estimator")) {
       x.estimators.push_back({name});

@@ -66,6 +66,26 @@ class CsvTable:
         return out
 
 
+#: Largest magnitude of a number in a results file. Beyond it (or infinite) a value is refused
+#: with its file, line and column: the statistics of such a column (squares, sums) would
+#: overflow, and no metric of a run reaches it (phdslam writes empty cells for non-finite values).
+MAX_MAGNITUDE = 1e100
+
+
+def _check_magnitudes(table: CsvTable, allow_infinite: bool) -> None:
+    """Raises ResultsFormatError at the first huge (or, unless allowed, infinite) number."""
+    for name, values in table.numeric.items():
+        with np.errstate(invalid="ignore"):
+            huge = np.abs(values) > MAX_MAGNITUDE
+            bad = np.flatnonzero(huge & np.isfinite(values) if allow_infinite else huge)
+        if bad.size:
+            row = int(bad[0])
+            raise ResultsFormatError(
+                f"{table.path}, line {table.line(row)}, column '{name}': {values[row]:.6g} is "
+                f"infinite or beyond +-{MAX_MAGNITUDE:.0e} (not a plausible metric); "
+                f"{bad.size} such value(s) in the column")
+
+
 _EMPTY_CELL = re.compile(r"(?:(?<=,)|^)(?=,|$)", re.MULTILINE)
 
 
@@ -112,6 +132,7 @@ def read_csv(
     required: Iterable[str] = (),
     text_columns: Iterable[str] = (),
     finite_only: bool = False,
+    allow_infinite: bool = False,
 ) -> CsvTable:
     """Reads ``path``; every column not in ``text_columns`` must hold numbers or be empty.
 
@@ -121,7 +142,8 @@ def read_csv(
 
     Raises ResultsFormatError naming the file (and the line and column) when the file is missing,
     has no header, lacks a column of ``required``, has a row of the wrong length or a cell that is
-    not a number.
+    not a number, or a number beyond +-MAX_MAGNITUDE or (without ``allow_infinite``, for
+    files whose own validation names non-finite cells) infinite.
     """
     path = Path(path)
     lines = _content_lines(path)
@@ -144,6 +166,7 @@ def read_csv(
         if block is not None:
             for j, name in enumerate(header):
                 table.numeric[name] = block[:, j].copy()
+            _check_magnitudes(table, allow_infinite)
             return table
 
     columns: dict[str, list] = {name: [] for name in header}
@@ -173,4 +196,5 @@ def read_csv(
             table.text[name] = columns[name]
     for name in numeric_names:
         table.numeric[name] = np.asarray(columns[name], dtype=float)
+    _check_magnitudes(table, allow_infinite)
     return table

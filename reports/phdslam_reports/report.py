@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import os
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Sequence
@@ -854,5 +855,19 @@ def build_report(results_dirs: Sequence[Path | str], out_dir: Path | str,
     out.mkdir(parents=True, exist_ok=True)
     builder = ReportBuilder(folders, out, paper or PaperValues.load(), options or ReportOptions())
     report = builder.build()
-    (out / "index.html").write_text(report.html, encoding="utf-8")
+    write_text_atomically(out / "index.html", report.html)
     return report
+
+
+def write_text_atomically(path: Path, text: str) -> None:
+    """Writes ``text`` to a temporary file beside ``path`` and renames it over ``path``, so that
+    ``path`` is either the old file or the whole new one. Characters that UTF-8 cannot encode
+    (the undecodable bytes of a non-UTF-8 path, held as surrogates) are written as escapes."""
+    temporary = path.with_name(f".{path.name}.tmp-{os.getpid()}")
+    try:
+        with open(temporary, "w", encoding="utf-8", errors="backslashreplace") as stream:
+            stream.write(text)
+        os.replace(temporary, path)
+    finally:
+        if temporary.exists():
+            temporary.unlink()

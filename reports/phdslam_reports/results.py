@@ -275,7 +275,8 @@ class ResultsFolder:
         path = self.path / PARENT_WEIGHTS_FILE
         if not path.is_file():
             return None
-        return _validate_parent_weights(read_csv(path, PARENT_WEIGHTS_COLUMNS))
+        return _validate_parent_weights(
+            read_csv(path, PARENT_WEIGHTS_COLUMNS, allow_infinite=True))
 
     @cached_property
     def parent_weights_meta(self) -> dict[str, Any] | None:

@@ -11,22 +11,24 @@
 #                 OUT/merged/report/        index.html of the report (reports/make_report.py)
 #                 OUT/slurm/shard.sh, merge.sh  the job scripts (resubmit them to resume)
 #                 OUT/slurm/logs/           the jobs' stdout and stderr
-#   SHARDS      number of array tasks (>= 1)
-#   options     passed to every `phdslam run` (e.g. --steps 200 --seeds 1-20)
+#   SHARDS      number of array tasks (1 to 1000, Slurm's default MaxArraySize)
+#   options     passed to every `phdslam run` (e.g. --steps 200 --seeds 1-20); not --out,
+#               --shard, --experiment nor --jobs, which the script sets itself
 #
 # Environment:
 #   PHDSLAM          the program (default: phdslam on PATH, else build/release/apps/phdslam)
 #   PHDSLAM_PYTHON   Python for the report (default: python3)
-#   PHDSLAM_CPUS     CPUs per array task, also its --jobs (default: 1)
+#   PHDSLAM_CPUS     CPUs per array task, also its --jobs (1 to 1024; default: 1)
 #   SBATCH_EXTRA     further sbatch options for both jobs, split on spaces (e.g.
 #                    "--partition=long --time=02:00:00")
 #
-# Prints "array <job id>" and "merge <job id>". Exit codes: 0 submitted, 2 usage error, else the
-# status of the failing sbatch.
+# Every argument is checked, and sbatch looked for, before anything is written.
+# Prints "array <job id>" and "merge <job id>". Exit codes: 0 submitted, 2 usage error (also:
+# no sbatch on PATH), else the status of the failing sbatch.
 set -euo pipefail
 
 usage() {
-  sed -n '2,27p' "$0" | sed 's/^# \{0,1\}//' >&2
+  sed -n '2,30p' "$0" | sed 's/^# \{0,1\}//' >&2
   exit 2
 }
 [[ $# -ge 3 ]] || usage
@@ -35,7 +37,21 @@ out=$2
 shards=$3
 shift 3
 [[ -f "$experiment" ]] || { echo "submit.sh: no experiment file '$experiment'" >&2; exit 2; }
-[[ "$shards" =~ ^[1-9][0-9]*$ ]] || { echo "submit.sh: SHARDS must be >= 1, got '$shards'" >&2; exit 2; }
+[[ -n "$out" ]] || { echo "submit.sh: OUT is empty" >&2; exit 2; }
+fail() { echo "submit.sh: $*" >&2; exit 2; }
+[[ "$shards" =~ ^[1-9][0-9]{0,3}$ && "$shards" -le 1000 ]] ||
+  fail "SHARDS must be a whole number from 1 to 1000, got '$shards'"
+cpus=${PHDSLAM_CPUS:-1}
+[[ "$cpus" =~ ^[1-9][0-9]{0,3}$ && "$cpus" -le 1024 ]] ||
+  fail "PHDSLAM_CPUS must be a whole number from 1 to 1024, got '$cpus'"
+for option in "$@"; do
+  case "$option" in
+    --out|--out=*|--shard|--shard=*|--experiment|--experiment=*|--jobs|--jobs=*)
+      fail "option '${option%%=*}' is set by the script for every task; remove it" ;;
+  esac
+done
+command -v sbatch >/dev/null ||
+  fail "sbatch not found on PATH (run this on a Slurm login node); nothing was written"
 
 root=$(cd "$(dirname "$0")/../.." && pwd)
 program=${PHDSLAM:-}
@@ -43,10 +59,9 @@ if [[ -z "$program" ]]; then
   program=$(command -v phdslam || true)
   [[ -n "$program" ]] || program="$root/build/release/apps/phdslam"
 fi
-[[ -f "$program" && -x "$program" ]] || { echo "submit.sh: phdslam program '$program' not found (set PHDSLAM)" >&2; exit 2; }
+[[ -f "$program" && -x "$program" ]] || fail "phdslam program '$program' not found (set PHDSLAM)"
 program=$(realpath "$program")
 python=${PHDSLAM_PYTHON:-python3}
-cpus=${PHDSLAM_CPUS:-1}
 experiment=$(realpath "$experiment")
 mkdir -p "$out"
 out=$(realpath "$out")

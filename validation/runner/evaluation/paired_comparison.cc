@@ -1,6 +1,7 @@
 #include "validation/runner/evaluation/paired_comparison.h"
 
 #include <charconv>
+#include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <map>
@@ -31,6 +32,10 @@ std::optional<double> Cell(const std::string& text, const std::string& source,
   if (end != text.c_str() + text.size()) {
     throw std::runtime_error(source + ":" + std::to_string(row + 2) + ": " + column + " '" + text +
                              "' is not a number");
+  }
+  if (!std::isfinite(value)) {
+    throw std::runtime_error(source + ":" + std::to_string(row + 2) + ": column '" + column +
+                             "': '" + text + "' is not a finite number");
   }
   return value;
 }
@@ -107,6 +112,14 @@ std::vector<PairedComparison> ComparePairs(const CsvTable& runs,
           va.push_back(value);
           vb.push_back(other->second);
           differences.push_back(value - other->second);
+          if (!std::isfinite(differences.back())) {
+            throw std::runtime_error(source + ": column '" + metrics[m] + "', seed " +
+                                     std::to_string(seed) + ": " + a->first.first +
+                                     " N=" + std::to_string(a->first.second) + " minus " +
+                                     b->first.first + " N=" + std::to_string(b->first.second) +
+                                     " (" + FormatNumber(value) + " - " +
+                                     FormatNumber(other->second) + ") is not a finite number");
+          }
         }
         if (differences.empty()) continue;
         PairedComparison c;

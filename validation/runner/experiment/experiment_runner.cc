@@ -41,6 +41,44 @@ void RequireSinglePd(const Experiment& experiment) {
   }
 }
 
+// A deterministic estimator listed beside particle estimators, without particle counts of its
+// own, runs at N = 1 only: the experiment's particle list is for the others.
+void RunDeterministicAtOneParticle(const std::string& scenario, MonteCarloPlan& plan) {
+  std::vector<bool> single;
+  bool any_particle_estimator = false;
+  for (const EstimatorSelection& s : plan.estimators) {
+    single.push_back(s.particles.empty() &&
+                     IsSingleParticleEstimator(s.entry, scenario, s.overrides));
+    any_particle_estimator = any_particle_estimator || !single.back();
+  }
+  if (!any_particle_estimator) return;
+  for (std::size_t i = 0; i < plan.estimators.size(); ++i) {
+    if (single[i]) plan.estimators[i].particles = {1};
+  }
+}
+
+// Throws when `runs` exceeds kMaxRuns.
+void CheckRunTotal(double runs) {
+  if (runs > kMaxRuns) {
+    throw std::invalid_argument("the experiment has " + FormatNumber(runs) +
+                                " runs (seeds x estimators x particle counts x sweep points), "
+                                "more than the cap of " +
+                                FormatNumber(kMaxRuns) + "; split it over several results folders");
+  }
+}
+
+// The number of runs of a plan, from its lists (without listing the jobs); throws above kMaxRuns.
+double CheckRunCount(const MonteCarloPlan& plan) {
+  double per_seed = 0.0;
+  for (const EstimatorSelection& s : plan.estimators) {
+    per_seed +=
+        static_cast<double>(s.particles.empty() ? plan.particles.size() : s.particles.size());
+  }
+  const double runs = per_seed * static_cast<double>(plan.seeds.size());
+  CheckRunTotal(runs);
+  return runs;
+}
+
 MonteCarloPlan BuildPlan(const Experiment& experiment, const std::vector<EstimatorEntry>& table) {
   RequireSinglePd(experiment);
   MonteCarloPlan plan;
@@ -50,6 +88,8 @@ MonteCarloPlan BuildPlan(const Experiment& experiment, const std::vector<Estimat
   for (const ExperimentEstimator& e : experiment.estimators) {
     plan.estimators.push_back({FindEstimator(table, e.name), e.overrides, e.particles});
   }
+  RunDeterministicAtOneParticle(experiment.scenario, plan);
+  CheckRunCount(plan);
   plan.scenario = MakeScenarioSource(experiment.scenario, ToScenarioOptions(experiment));
   plan.experiment_file = experiment.source;
   return plan;
@@ -116,10 +156,13 @@ std::vector<ExperimentPart> PlanSweep(const Experiment& experiment,
                         table);
   }
   std::vector<ExperimentPart> parts;
+  double runs = 0.0;
   for (const SweepPoint& point : points) {
     try {
       parts.push_back({point, out / SweepFolderName(experiment.sweep, point),
                        BuildPlan(ApplySweepPoint(experiment, options, point), table)});
+      runs += CheckRunCount(parts.back().plan);
+      CheckRunTotal(runs);
     } catch (const std::invalid_argument& e) {
       throw std::invalid_argument("sweep point " + DescribeSweepPoint(experiment.sweep, point) +
                                   ": " + e.what());

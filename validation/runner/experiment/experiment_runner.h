@@ -19,6 +19,10 @@
 
 namespace phdslam::validation {
 
+/// Largest number of runs of one experiment (seeds x estimators x particle counts, summed over
+/// the sweep points); larger studies are split over several results folders (e.g. by seeds).
+inline constexpr double kMaxRuns = 2'000'000;
+
 /// One Monte Carlo plan of an experiment and where its results go.
 struct ExperimentPart {
   SweepPoint sweep_point;  ///< the swept parameters' values; empty without a sweep
@@ -29,8 +33,10 @@ struct ExperimentPart {
 /// The parts of an experiment, in order (sweep points in the order of SweepPoints). Estimators
 /// are looked up in `table`; scenario options are resolved (and so validated) now. Throws
 /// std::invalid_argument naming the experiment file (when there is one) for unknown estimators
-/// or scenarios, bad options or swept values, an unknown sweep parameter, or a swept parameter
-/// that is also set.
+/// or scenarios, bad options or swept values, an unknown sweep parameter, a swept parameter
+/// that is also set, or more than kMaxRuns runs. A deterministic estimator (one that takes only
+/// --particles 1) listed beside particle estimators, without particle counts of its own, runs at
+/// N = 1 only.
 std::vector<ExperimentPart> PlanExperiment(const Experiment& experiment,
                                            const std::filesystem::path& out,
                                            const std::vector<EstimatorEntry>& table);

@@ -46,6 +46,44 @@ std::string ErrorOf(const Experiment& x, const fs::path& out) {
   return "";
 }
 
+TEST(PlanExperiment, DeterministicEstimatorsRunOnceAtOneParticleBesideParticleFilters) {
+  Experiment x = OdometryExperiment();
+  x.estimators.insert(x.estimators.begin(), {"phd3", nlohmann::json::object(), {}});
+  x.particles = {1, 10};
+  const std::vector<ExperimentPart> parts = PlanExperiment(x, "/r", EstimatorTable());
+  ASSERT_EQ(parts.size(), 1u);
+  ASSERT_EQ(parts[0].plan.estimators.size(), 2u);
+  EXPECT_TRUE(parts[0].plan.estimators[0].particles.empty());  // phd3: the experiment's 1, 10
+  EXPECT_EQ(parts[0].plan.estimators[1].particles, std::vector<int>{1});  // odometry
+  EXPECT_EQ(PlanJobs(parts[0].plan).size(), 2u * 3u);
+  // Alone, a deterministic estimator with another particle count is still refused.
+  Experiment alone = OdometryExperiment();
+  alone.particles = {5};
+  const std::vector<ExperimentPart> planned = PlanExperiment(alone, "/r", EstimatorTable());
+  MonteCarloSettings settings;
+  settings.out = datasets::testing::FreshTestDir() / "alone";
+  EXPECT_THROW(CheckMonteCarlo(planned[0].plan, settings), std::invalid_argument);
+}
+
+TEST(PlanExperiment, GridsAndRunCountsBeyondTheirCapsAreRefused) {
+  Experiment x = OdometryExperiment();
+  std::vector<nlohmann::json> values;
+  for (int i = 1; i <= 1000; ++i) values.emplace_back(i);
+  x.sweep = {ExperimentSweep{"clutter_rate", values}, ExperimentSweep{"speed", values}};
+  std::string e = ErrorOf(x, "/r");
+  EXPECT_NE(e.find("clutter_rate (1000) x speed (1000) has 1000000 points, more than the cap of "
+                   "10000"),
+            std::string::npos)
+      << e;
+  x = OdometryExperiment();
+  x.seeds.clear();
+  for (std::uint64_t s = 1; s <= 1'000'000; ++s) x.seeds.push_back(s);
+  x.particles = {1, 2, 3};
+  x.estimators = {{"phd3", nlohmann::json::object(), {}}};
+  e = ErrorOf(x, "/r");
+  EXPECT_NE(e.find("3000000 runs"), std::string::npos) << e;
+}
+
 TEST(PlanExperiment, OnePartOrOnePerSweepValue) {
   Experiment x = OdometryExperiment();
   std::vector<ExperimentPart> parts = PlanExperiment(x, "/r", EstimatorTable());

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "datasets/simulation_limits.h"
 #include "src/core/parameter_table.h"
 #include "validation/runner/io/results_io.h"
 #include "validation/runner/io/results_layout.h"
@@ -57,7 +58,7 @@ void SetSweptValue(const std::string& parameter, const nlohmann::json& value,
       x.particles = {params::ReadInt(value, parameter, params::AtLeast(1))};
       for (ExperimentEstimator& e : x.estimators) e.particles.clear();
     } else if (parameter == kSweepParameterSteps) {
-      x.steps = params::ReadInt(value, parameter, params::AtLeast(0));
+      x.steps = params::ReadInt(value, parameter, params::Between(0, datasets::kMaxSimulatedSteps));
     } else if (IsScenarioOption(parameter, options)) {
       SetScenarioOption(x, parameter, value);
     } else {
@@ -95,6 +96,18 @@ std::vector<std::string> NonEmptyLines(const std::string& text) {
 }  // namespace
 
 std::vector<SweepPoint> SweepPoints(const std::vector<ExperimentSweep>& sweep) {
+  double grid = 1.0;
+  std::string product;
+  for (const ExperimentSweep& dimension : sweep) {
+    grid *= static_cast<double>(dimension.values.size());
+    product += (product.empty() ? "" : " x ") + dimension.parameter + " (" +
+               std::to_string(dimension.values.size()) + ")";
+  }
+  if (grid > kMaxSweepPoints) {
+    throw std::invalid_argument("sweep: the grid " + product + " has " + FormatNumber(grid) +
+                                " points, more than the cap of " + FormatNumber(kMaxSweepPoints) +
+                                "; split it over several experiments");
+  }
   std::vector<SweepPoint> points = {{}};
   for (const ExperimentSweep& dimension : sweep) {
     std::vector<SweepPoint> longer;

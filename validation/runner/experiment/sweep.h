@@ -15,8 +15,12 @@ namespace phdslam::validation {
 /// One combination of values, one per swept parameter (in the order of the sweep).
 using SweepPoint = std::vector<nlohmann::json>;
 
+/// Largest number of points of a sweep grid (the product of its value counts).
+inline constexpr double kMaxSweepPoints = 10000;
+
 /// Every point of the sweep: the first parameter varies slowest, the last fastest. One point
-/// (empty) without a sweep.
+/// (empty) without a sweep. Throws std::invalid_argument naming the parameters when the grid has
+/// more than kMaxSweepPoints points (checked before any point is built).
 std::vector<SweepPoint> SweepPoints(const std::vector<ExperimentSweep>& sweep);
 
 /// A value as it appears in folder names and sweep.csv: numbers as %.10g, true/false, names as

@@ -13,22 +13,15 @@
 #include <vector>
 
 #include "datasets/scenario.h"
+#include "validation/runner/interchange/external_run_reader.h"
 #include "validation/runner/evaluation/run_metrics.h"
 #include "validation/runner/evaluation/run_record.h"
 #include "validation/runner/registry/scenario_registry.h"
 
 namespace phdslam::validation {
 
-/// Files of one seed's external output folder, <from>/seed-<s>/.
-inline constexpr const char* kExternalTrajectoryFile = "trajectory.tum";    ///< required
-inline constexpr const char* kExternalMapFile = "map.csv";                  ///< required
-inline constexpr const char* kExternalPoseCovFile = "pose_cov.csv";         ///< optional
-inline constexpr const char* kExternalMapsFile = "maps.csv";                ///< optional
-inline constexpr const char* kExternalAssociationFile = "association.csv";  ///< optional
-inline constexpr const char* kExternalTimingFile = "timing.csv";            ///< optional
-/// Optional, at <from>/: the external filter's parameters (a JSON object), stored as the run's
-/// resolved parameters.
-inline constexpr const char* kExternalParametersFile = "parameters.json";
+/// Folder inside the results folder where ingest writes its runs before moving them into place.
+inline constexpr const char* kIngestStagingFolder = ".ingest-staging";
 
 struct IngestRequest {
   std::filesystem::path from;  ///< holds seed-<s>/ per seed
@@ -42,25 +35,24 @@ struct IngestRequest {
   /// match its SHA256SUMS (the scores are computed on the scenario the filter saw).
   std::optional<std::filesystem::path> export_dir;
   MetricSettings metrics;
+  /// Replace the runs the estimator already has in the results folder (otherwise refused).
+  bool replace = false;
 };
 
 struct IngestReport {
   std::size_t runs = 0;
+  std::vector<std::filesystem::path> replaced;  ///< run folders of the estimator found before
   double wall_seconds = 0.0;
 };
 
-/// The RunRecord of one seed's external outputs in `folder` against `scenario`. Throws
-/// std::runtime_error naming the file (and line) for a missing or unreadable file, a value that
-/// is not a finite number, a trajectory whose pose count or time stamps differ from the
-/// scenario's steps, a step index out of range or repeated, and a measurement index out of range.
-RunRecord ReadExternalRun(const std::filesystem::path& folder, const datasets::Scenario& scenario,
-                          const std::string& estimator, int particles);
-
-/// Reads and evaluates every seed first (nothing is written when one fails), then writes the run
-/// folders, truth files, config.json (joined with the folder's own, refused like `run` refuses
-/// other settings), summary.csv, runs.csv and timing.json into `out`. Throws
-/// std::invalid_argument for a bad request or a folder made with other settings,
-/// std::runtime_error for unreadable or inconsistent inputs.
+/// Verifies the export's files on disk against its SHA256SUMS (with `export_dir`), reads and
+/// evaluates every seed (nothing is written when one fails), writes the run folders into
+/// <out>/.ingest-staging and moves them into place when all are written, then writes the truth
+/// files, config.json (joined with the folder's own, refused like `run` refuses other
+/// settings), summary.csv, runs.csv and timing.json. Throws std::invalid_argument for a bad
+/// request, a folder made with other settings, or an estimator that already has runs in `out`
+/// without request.replace (with it, those runs are removed: IngestReport::replaced);
+/// std::runtime_error for unreadable, edited or inconsistent inputs.
 IngestReport IngestResults(const IngestRequest& request, const std::filesystem::path& out);
 
 }  // namespace phdslam::validation

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <map>
 #include <string>
 
 #include "datasets/map_io.h"
@@ -219,12 +220,79 @@ TEST(Ingest, ExportChecksumsMustMatchTheRebuiltScenario) {
   IngestRequest r = Request(dir / "from", {1});
   r.export_dir = dir / "export";
   EXPECT_EQ(IngestResults(r, dir / "r").runs, 1U);
-  std::ofstream(dir / "export/seed-1/measurements.csv", std::ios::app) << "39,99,1,1\n";
-  // The file's checksum is unchanged in SHA256SUMS, so a changed export is not detected here;
-  // a scenario rebuilt with other options is.
+  // A scenario rebuilt with other options differs from the export.
   r.scenario = Source(kSteps - 1);
-  const std::string e = ErrorOf([&] { IngestResults(r, dir / "r2"); });
+  std::string e = ErrorOf([&] { IngestResults(r, dir / "r2"); });
   EXPECT_NE(e.find("differs from the exported one"), std::string::npos) << e;
+  // A file edited after export no longer has its SHA256SUMS checksum.
+  r.scenario = Source();
+  std::ofstream(dir / "export/seed-1/measurements.csv", std::ios::app) << "39,99,1,1\n";
+  e = ErrorOf([&] { IngestResults(r, dir / "r3"); });
+  EXPECT_NE(e.find("measurements.csv: its SHA-256 differs from"), std::string::npos) << e;
+  EXPECT_FALSE(std::filesystem::exists(dir / "r3" / kSummaryFile));
+  // An export is written into a new or empty folder only.
+  e = ErrorOf([&] { WriteExport(dir / "export", d, {source.make(1)}); });
+  EXPECT_NE(e.find("is not empty"), std::string::npos) << e;
+}
+
+// The files of a folder and their contents, to compare a folder before and after a command.
+std::map<std::string, std::string> FolderContents(const std::filesystem::path& folder) {
+  std::map<std::string, std::string> files;
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(folder)) {
+    if (entry.is_regular_file()) {
+      files[entry.path().lexically_relative(folder).string()] = ReadTextFile(entry.path());
+    }
+  }
+  return files;
+}
+
+TEST(Ingest, AnEstimatorWithRunsIsReplacedOnlyWhenAsked) {
+  const std::filesystem::path dir = FreshTestDir();
+  WritePerfectOutputs(dir / "from", 1);
+  WritePerfectOutputs(dir / "from", 2);
+  EXPECT_EQ(IngestResults(Request(dir / "from", {1, 2}), dir / "r").runs, 2U);
+  const auto before = FolderContents(dir / "r");
+  const std::string e = ErrorOf([&] { IngestResults(Request(dir / "from", {1}), dir / "r"); });
+  EXPECT_NE(e.find("already holds 2 runs of estimator 'external-test'"), std::string::npos) << e;
+  EXPECT_NE(e.find("--replace"), std::string::npos) << e;
+  EXPECT_EQ(FolderContents(dir / "r"), before);
+  IngestRequest r = Request(dir / "from", {1});
+  r.replace = true;
+  const IngestReport report = IngestResults(r, dir / "r");
+  ASSERT_EQ(report.replaced.size(), 2U);
+  EXPECT_EQ(report.replaced[0], RunFolder(dir / "r", "external-test", 1, 1));
+  EXPECT_TRUE(std::filesystem::exists(RunFolder(dir / "r", "external-test", 1, 1) / kMetricsFile));
+  EXPECT_FALSE(std::filesystem::exists(RunFolder(dir / "r", "external-test", 1, 2)));
+  EXPECT_FALSE(std::filesystem::exists(dir / "r" / kIngestStagingFolder));
+}
+
+TEST(Ingest, AFailingValueLeavesTheResultsFolderAsItWas) {
+  const std::filesystem::path dir = FreshTestDir();
+  WritePerfectOutputs(dir / "from", 1);
+  EXPECT_EQ(IngestResults(Request(dir / "from", {1}), dir / "r").runs, 1U);
+  const auto before = FolderContents(dir / "r");
+  IngestRequest r = Request(dir / "from", {1});
+  r.estimator = "second";
+  const std::filesystem::path seed = dir / "from" / "seed-1";
+  const auto refused = [&](const std::string& file, const std::string& text,
+                           const std::string& expected) {
+    std::ofstream(seed / file) << text;
+    const std::string e = ErrorOf([&] { IngestResults(r, dir / "r"); });
+    EXPECT_NE(e.find(expected), std::string::npos) << e;
+    EXPECT_EQ(FolderContents(dir / "r"), before) << file;
+  };
+  std::string timing = "step,ms\n";
+  for (int k = 1; k < kSteps; ++k) timing += std::to_string(k) + ",1\n";
+  refused(kExternalTimingFile, timing + "0,1e300\n",
+          "timing.csv:41: column 'ms': 1e+300 is beyond +-1e+09");
+  std::filesystem::remove(seed / kExternalTimingFile);
+  refused(kExternalPoseCovFile, "step,pxx,pxy,pxt,pyy,pyt,ptt\n0,1,0,0,-2,0,1\n",
+          "pose_cov.csv:2: column 'pyy': the variance -2 is negative");
+  refused(kExternalPoseCovFile, "step,pxx,pxy,pxt,pyy,pyt,ptt\n0,1,2,0,1,0,1\n",
+          "pose_cov.csv:2: columns 'pxy', 'pxt', 'pyt': the covariance is not positive");
+  std::filesystem::remove(seed / kExternalPoseCovFile);
+  refused(kExternalMapFile, "x,y,weight\n1,2,-5\n", "map.csv:2: column 'weight' (field 3): -5");
+  refused(kExternalMapFile, "x,y,weight\n1,2,1.5\n", "is outside [0, 1]");
 }
 
 TEST(Ingest, RejectsRegisteredNames) {

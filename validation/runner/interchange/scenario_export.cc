@@ -173,8 +173,21 @@ std::map<std::string, std::string> ExportFiles(const datasets::Scenario& scenari
   return files;
 }
 
+void RequireEmptyExportFolder(const std::filesystem::path& out) {
+  if (!std::filesystem::exists(out)) return;
+  if (!std::filesystem::is_directory(out)) {
+    throw std::invalid_argument("export: --out " + out.string() + " is not a folder");
+  }
+  if (!std::filesystem::is_empty(out)) {
+    throw std::invalid_argument("export: --out " + out.string() +
+                                " is not empty; give a new or empty folder (an export is not "
+                                "written over another)");
+  }
+}
+
 void WriteExport(const std::filesystem::path& out, const ExportDescription& description,
                  const std::vector<datasets::Scenario>& scenarios) {
+  RequireEmptyExportFolder(out);
   std::map<std::string, std::string> checksums;
   nlohmann::json steps = nlohmann::json::object();
   for (const datasets::Scenario& scenario : scenarios) {

@@ -39,11 +39,16 @@ struct ExportDescription {
   std::vector<std::uint64_t> seeds;
 };
 
+/// Throws std::invalid_argument when `out` exists and is not an empty folder: an export is
+/// written into a new or empty folder only, so that SHA256SUMS lists every file in it and no
+/// file of an earlier export is left beside the new one.
+void RequireEmptyExportFolder(const std::filesystem::path& out);
+
 /// Writes the export of every scenario in `scenarios` (one per seed, in the order of
-/// description.seeds) into `out` (created if needed): the files of ExportFiles, export.json and
-/// SHA256SUMS ("<hex>  <relative path>" per file, as `sha256sum -c` reads it; export.json
-/// included). Files are written atomically. Throws std::runtime_error naming a file that cannot
-/// be written.
+/// description.seeds) into `out` (created if needed; RequireEmptyExportFolder): the files of
+/// ExportFiles, export.json and SHA256SUMS ("<hex>  <relative path>" per file, as `sha256sum -c`
+/// reads it; export.json included). Files are written atomically. Throws std::runtime_error naming
+/// a file that cannot be written.
 void WriteExport(const std::filesystem::path& out, const ExportDescription& description,
                  const std::vector<datasets::Scenario>& scenarios);
 

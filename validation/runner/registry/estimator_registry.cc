@@ -23,10 +23,28 @@ const filters::EstimatorContext& RequireContext(const EstimatorRequest& request)
 
 void RequireSingleParticle(const EstimatorRequest& request) {
   if (request.particles != 1) {
-    throw std::invalid_argument("estimator '" + request.name +
-                                "' is deterministic and takes --particles 1, got " +
-                                std::to_string(request.particles));
+    throw SingleParticleOnly("estimator '" + request.name +
+                             "' is deterministic and takes --particles 1, got " +
+                             std::to_string(request.particles));
   }
+}
+
+bool IsSingleParticleEstimator(const EstimatorEntry& entry, const std::string& scenario_name,
+                               const nlohmann::json& overrides) {
+  if (!entry.resolved_parameters) return false;
+  EstimatorRequest probe;
+  probe.name = entry.name;
+  probe.particles = 2;
+  probe.scenario_name = scenario_name;
+  probe.overrides = overrides;
+  try {
+    entry.resolved_parameters(probe);
+  } catch (const SingleParticleOnly&) {
+    return true;
+  } catch (const std::exception&) {
+    return false;  // another error, reported when the plan is checked
+  }
+  return false;
 }
 
 void RequireKnownOrigins(const EstimatorRequest& request) {

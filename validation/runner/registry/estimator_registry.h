@@ -86,8 +86,20 @@ std::uint64_t RunStreamSeed(std::string_view experiment, std::uint64_t seed,
 
 /// The request's public context; throws naming the estimator when it has none.
 const filters::EstimatorContext& RequireContext(const EstimatorRequest& request);
-/// Throws naming the estimator unless the request asks for exactly one particle.
+/// The error of RequireSingleParticle: the estimator is deterministic and runs with one particle.
+class SingleParticleOnly : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
+
+/// Throws SingleParticleOnly naming the estimator unless the request asks for exactly one
+/// particle.
 void RequireSingleParticle(const EstimatorRequest& request);
+
+/// True when `entry` is deterministic (its parameters call RequireSingleParticle): it runs at
+/// N = 1 whatever particle counts the experiment lists for the other estimators.
+bool IsSingleParticleEstimator(const EstimatorEntry& entry, const std::string& scenario_name,
+                               const nlohmann::json& overrides);
 /// Throws naming the estimator when the request's scenario has no known measurement origins
 /// (real data such as Victoria Park), for estimators that read the truth.
 void RequireKnownOrigins(const EstimatorRequest& request);

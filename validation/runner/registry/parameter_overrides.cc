@@ -78,11 +78,12 @@ nlohmann::json ApplyOverrides(const nlohmann::json& defaults, const nlohmann::js
   return resolved;
 }
 
-ParameterAssignment ParseParameterAssignment(std::string_view text) {
-  RequireUtf8(text, "--set");
+ParameterAssignment ParseParameterAssignment(std::string_view text, std::string_view option) {
+  const std::string name(option);
+  RequireUtf8(text, name);
   const std::size_t eq = text.find('=');
   if (eq == std::string_view::npos) {
-    throw std::invalid_argument("--set '" + std::string(text) + "': expected key=value");
+    throw std::invalid_argument(name + " '" + std::string(text) + "': expected key=value");
   }
   std::string_view key = text.substr(0, eq);
   const std::string value_text(text.substr(eq + 1));
@@ -91,7 +92,7 @@ ParameterAssignment ParseParameterAssignment(std::string_view text) {
     out.estimator = std::string(key.substr(0, colon));
     key = key.substr(colon + 1);
     if (out.estimator.empty()) {
-      throw std::invalid_argument("--set '" + std::string(text) + "': empty estimator name");
+      throw std::invalid_argument(name + " '" + std::string(text) + "': empty estimator name");
     }
   }
   std::vector<std::string> segments;
@@ -100,7 +101,7 @@ ParameterAssignment ParseParameterAssignment(std::string_view text) {
     const std::size_t dot = key.find('.', start);
     const std::string_view segment = key.substr(start, dot - start);
     if (segment.empty()) {
-      throw std::invalid_argument("--set '" + std::string(text) +
+      throw std::invalid_argument(name + " '" + std::string(text) +
                                   "': empty key or key segment (expected [estimator:]key=value)");
     }
     segments.emplace_back(segment);

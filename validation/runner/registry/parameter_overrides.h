@@ -25,8 +25,9 @@ struct ParameterAssignment {
 /// Parses `[estimator:]key[.subkey...]=value`. The value is read as JSON when it parses (numbers,
 /// true/false, null, quoted strings, arrays, objects) and is otherwise taken as a plain string.
 /// Throws std::invalid_argument for text that is not UTF-8, a missing '=', an empty key or an
-/// empty key segment.
-ParameterAssignment ParseParameterAssignment(std::string_view text);
+/// empty key segment; the messages name `option`, the command-line option the text came from.
+ParameterAssignment ParseParameterAssignment(std::string_view text,
+                                             std::string_view option = "--set");
 
 /// Merges `b` into `a` key by key (objects recursively; other values of `b` win).
 void MergeJsonObjects(nlohmann::json& a, const nlohmann::json& b);

@@ -3,17 +3,28 @@
 #include <numbers>
 #include <string>
 
+#include "datasets/range_bearing_simulator.h"
+#include "datasets/simulation_limits.h"
+
 namespace phdslam::validation {
 namespace {
 
-using params::Above;
-using params::AtLeast;
 using params::Between;
 using params::EnumField;
 using params::Field;
 using params::IntField;
 using params::NumberField;
-using params::Probability;
+
+using datasets::kMaxDistance;
+constexpr double kPi = std::numbers::pi;
+
+// The nine sub-datasets of the MRCLAM collection.
+constexpr int kMrclamDatasets = 9;
+// m, the largest wheelbase of a simulated vehicle.
+constexpr double kMaxWheelbase = 100.0;
+
+// (0, max]
+params::Bounds PositiveUpTo(double max) { return {0.0, max, true, false}; }
 
 nlohmann::json MatrixJson(const Mat2& m) {
   return nlohmann::json::array(
@@ -27,19 +38,24 @@ Mat2 ReadMatrix(const nlohmann::json& v, const std::string& key) {
   if (!v.is_array() || v.size() != 2) params::Fail(key, form);
   Mat2 m = Mat2::Zero();
   if (v[0].is_number() && v[1].is_number()) {
-    for (int i = 0; i < 2; ++i) m(i, i) = params::ReadNumber(v[i], key, params::AtLeast(0.0));
+    for (int i = 0; i < 2; ++i) {
+      m(i, i) = params::ReadNumber(v[i], key, Between(0.0, datasets::kMaxVariance));
+    }
     return m;
   }
   for (int i = 0; i < 2; ++i) {
     if (!v[i].is_array() || v[i].size() != 2) params::Fail(key, form);
-    for (int j = 0; j < 2; ++j) m(i, j) = params::ReadNumber(v[i][j], key, {});
+    for (int j = 0; j < 2; ++j) {
+      m(i, j) = params::ReadNumber(v[i][j], key,
+                                   Between(-datasets::kMaxVariance, datasets::kMaxVariance));
+    }
   }
   return m;
 }
 
 template <class T, class Access>
 Field<T> CovarianceField(std::string key, Access access) {
-  return {key, "a 2x2 covariance [[a, b], [c, d]] or its diagonal [a, d]",
+  return {key, "a 2x2 covariance [[a, b], [c, d]] or its diagonal [a, d], entries within +-1e6",
           [access](const T& p) { return MatrixJson(access(p)); },
           [access, key](const nlohmann::json& v, T& p) { access(p) = ReadMatrix(v, key); }};
 }
@@ -47,7 +63,7 @@ Field<T> CovarianceField(std::string key, Access access) {
 // A pose [x, y, theta] (m, m, rad).
 template <class T, class Access>
 Field<T> PoseField(std::string key, Access access) {
-  return {key, "an array [x, y, theta] (m, m, rad)",
+  return {key, "an array [x, y, theta] (m, m, rad), |x|, |y| <= 1e7 m, |theta| <= 2 pi",
           [access](const T& p) {
             return nlohmann::json::array({access(p)(0), access(p)(1), access(p)(2)});
           },
@@ -55,7 +71,11 @@ Field<T> PoseField(std::string key, Access access) {
             if (!v.is_array() || v.size() != 3) {
               params::Fail(key, "expected an array [x, y, theta], got " + v.dump());
             }
-            for (int i = 0; i < 3; ++i) access(p)(i) = params::ReadNumber(v[i], key, {});
+            for (int i = 0; i < 2; ++i) {
+              access(p)(i) = params::ReadNumber(
+                  v[i], key, Between(-datasets::kMaxCoordinate, datasets::kMaxCoordinate));
+            }
+            access(p)(2) = params::ReadNumber(v[2], key, Between(-2.0 * kPi, 2.0 * kPi));
           }};
 }
 
@@ -64,13 +84,14 @@ template <class T>
 std::vector<Field<T>> SensorRows() {
   return {
       NumberField<T>(
-          "fov_range", [](auto& o) -> auto& { return o.fov_range; }, Above(0.0)),
-      NumberField<T>("fov_half_angle", [](auto& o) -> auto& { return o.fov_half_angle; },
-                     {0.0, std::numbers::pi, true, false}),
+          "fov_range", [](auto& o) -> auto& { return o.fov_range; }, PositiveUpTo(kMaxDistance)),
       NumberField<T>(
-          "range_buffer", [](auto& o) -> auto& { return o.range_buffer; }, AtLeast(0.0)),
+          "fov_half_angle", [](auto& o) -> auto& { return o.fov_half_angle; }, PositiveUpTo(kPi)),
       NumberField<T>(
-          "angle_buffer", [](auto& o) -> auto& { return o.angle_buffer; }, AtLeast(0.0)),
+          "range_buffer", [](auto& o) -> auto& { return o.range_buffer; },
+          Between(0.0, kMaxDistance)),
+      NumberField<T>(
+          "angle_buffer", [](auto& o) -> auto& { return o.angle_buffer; }, Between(0.0, kPi)),
       CovarianceField<T>(
           "measurement_noise_cov", [](auto& o) -> auto& { return o.measurement_noise_cov; }),
       CovarianceField<T>(
@@ -86,7 +107,8 @@ std::vector<Field<T>> DetectionRows() {
                      [](auto& o) -> auto& { return o.detection_probability; },
                      {0.0, 1.0, true, false}),
       NumberField<T>(
-          "clutter_rate", [](auto& o) -> auto& { return o.clutter_rate; }, AtLeast(0.0)),
+          "clutter_rate", [](auto& o) -> auto& { return o.clutter_rate; },
+          Between(0.0, datasets::kMaxClutterRate)),
   };
 }
 
@@ -110,7 +132,8 @@ const params::ParameterTable<datasets::VictoriaParkOptions>& VictoriaParkOptions
                          [](auto& o) -> auto& { return o.detection_probability_nominal; },
                          {0.0, 1.0, true, true}),
           NumberField<O>(
-              "clutter_rate", [](auto& o) -> auto& { return o.clutter_rate; }, AtLeast(0.0)),
+              "clutter_rate", [](auto& o) -> auto& { return o.clutter_rate; },
+              Between(0.0, datasets::kMaxClutterRate)),
       },
       SensorRows<O>(),
   }));
@@ -122,16 +145,18 @@ const params::ParameterTable<datasets::GeneratorOptions>& GeneratedOptionsTable(
   static const params::ParameterTable<O> table(params::Rows<O>({
       {
           NumberField<O>(
-              "dt", [](auto& o) -> auto& { return o.dt; }, Above(0.0)),
+              "dt", [](auto& o) -> auto& { return o.dt; }, PositiveUpTo(datasets::kMaxTimeStep)),
           NumberField<O>(
-              "speed", [](auto& o) -> auto& { return o.speed; }, AtLeast(0.0)),
+              "speed", [](auto& o) -> auto& { return o.speed; }, Between(0.0, datasets::kMaxSpeed)),
           NumberField<O>(
-              "turn_amplitude", [](auto& o) -> auto& { return o.turn_amplitude; }, AtLeast(0.0)),
+              "turn_amplitude", [](auto& o) -> auto& { return o.turn_amplitude; },
+              Between(0.0, datasets::kMaxTurnRate)),
           IntField<O>(
-              "landmarks", [](auto& o) -> auto& { return o.landmarks; }, AtLeast(0)),
+              "landmarks", [](auto& o) -> auto& { return o.landmarks; },
+              Between(0, datasets::kMaxSimulatedLandmarks)),
           NumberField<O>(
               "corridor_half_width", [](auto& o) -> auto& { return o.corridor_half_width; },
-              Above(0.0)),
+              PositiveUpTo(kMaxDistance)),
       },
       DetectionRows<O>(),
       SensorRows<O>(),
@@ -146,20 +171,24 @@ const params::ParameterTable<datasets::ScPhdSimOptions>& ScPhdSimOptionsTable() 
   static const params::ParameterTable<O> table(params::Rows<O>({
       {
           NumberField<O>(
-              "dt", [](auto& o) -> auto& { return o.dt; }, Above(0.0)),
+              "dt", [](auto& o) -> auto& { return o.dt; }, PositiveUpTo(datasets::kMaxTimeStep)),
           NumberField<O>(
-              "speed", [](auto& o) -> auto& { return o.speed; }, Above(0.0)),
+              "speed", [](auto& o) -> auto& { return o.speed; }, PositiveUpTo(datasets::kMaxSpeed)),
           NumberField<O>(
-              "circle_radius", [](auto& o) -> auto& { return o.circle_radius; }, Above(0.0)),
+              "circle_radius", [](auto& o) -> auto& { return o.circle_radius; },
+              PositiveUpTo(kMaxDistance)),
           NumberField<O>(
-              "wheelbase", [](auto& o) -> auto& { return o.wheelbase; }, Above(0.0)),
+              "wheelbase", [](auto& o) -> auto& { return o.wheelbase; },
+              PositiveUpTo(kMaxWheelbase)),
           IntField<O>(
-              "landmarks", [](auto& o) -> auto& { return o.landmarks; }, AtLeast(0)),
+              "landmarks", [](auto& o) -> auto& { return o.landmarks; },
+              Between(0, datasets::kMaxSimulatedLandmarks)),
           NumberField<O>(
               "map_inner_radius", [](auto& o) -> auto& { return o.map_inner_radius; },
-              AtLeast(0.0)),
+              Between(0.0, kMaxDistance)),
           NumberField<O>(
-              "map_outer_radius", [](auto& o) -> auto& { return o.map_outer_radius; }, Above(0.0)),
+              "map_outer_radius", [](auto& o) -> auto& { return o.map_outer_radius; },
+              PositiveUpTo(kMaxDistance)),
       },
       DetectionRows<O>(),
       SensorRows<O>(),
@@ -172,7 +201,7 @@ const params::ParameterTable<datasets::MrclamOptions>& MrclamOptionsTable() {
   static const params::ParameterTable<O> table(params::Rows<O>({
       {
           IntField<O>(
-              "dataset", [](auto& o) -> auto& { return o.dataset; }, AtLeast(1)),
+              "dataset", [](auto& o) -> auto& { return o.dataset; }, Between(1, kMrclamDatasets)),
           IntField<O>(
               "robot", [](auto& o) -> auto& { return o.robot; },
               Between(1, datasets::kMrclamRobots)),
@@ -191,20 +220,23 @@ const params::ParameterTable<datasets::GlmbSimOptions>& GlmbSimOptionsTable() {
   static const params::ParameterTable<O> table(params::Rows<O>({
       {
           NumberField<O>(
-              "dt", [](auto& o) -> auto& { return o.dt; }, Above(0.0)),
+              "dt", [](auto& o) -> auto& { return o.dt; }, PositiveUpTo(datasets::kMaxTimeStep)),
           NumberField<O>(
-              "speed", [](auto& o) -> auto& { return o.speed; }, Above(0.0)),
+              "speed", [](auto& o) -> auto& { return o.speed; }, PositiveUpTo(datasets::kMaxSpeed)),
           NumberField<O>(
-              "wheelbase", [](auto& o) -> auto& { return o.wheelbase; }, Above(0.0)),
+              "wheelbase", [](auto& o) -> auto& { return o.wheelbase; },
+              PositiveUpTo(kMaxWheelbase)),
           IntField<O>(
-              "landmarks", [](auto& o) -> auto& { return o.landmarks; }, AtLeast(0)),
+              "landmarks", [](auto& o) -> auto& { return o.landmarks; },
+              Between(0, datasets::kMaxSimulatedLandmarks)),
           NumberField<O>(
-              "landmark_offset", [](auto& o) -> auto& { return o.landmark_offset; }, AtLeast(0.0)),
+              "landmark_offset", [](auto& o) -> auto& { return o.landmark_offset; },
+              Between(0.0, kMaxDistance)),
           EnumField<O, P>(
               "data_protocol", [](auto& o) -> auto& { return o.data_protocol; },
               {{P::kPerSeed, "per-seed"}, {P::kSingleRealisation, "single-realisation"}}),
           IntField<O>(
-              "data_seed", [](auto& o) -> auto& { return o.data_seed; }, AtLeast(0)),
+              "data_seed", [](auto& o) -> auto& { return o.data_seed; }, Between(0, 1e9)),
       },
       DetectionRows<O>(),
       SensorRows<O>(),

@@ -74,6 +74,44 @@ TEST(ScenarioOptionTables, BadKeysAndValuesNameTheKey) {
   EXPECT_EQ(ErrorOf({{"landmarks", 0}, {"clutter_rate", 0}}), "");
 }
 
+TEST(ScenarioOptionTables, ValuesBeyondTheirPhysicalRangeAreRefusedCompactly) {
+  EXPECT_NE(ErrorOf({{"speed", 1e20}}).find("'speed': must be >= 0 and <= 100, got 1e+20"),
+            std::string::npos)
+      << ErrorOf({{"speed", 1e20}});
+  EXPECT_NE(ErrorOf({{"landmarks", 1e9}}).find("'landmarks': must be >= 0 and <= 1000000"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf({{"dt", 1e300}}).find("got 1e+300"), std::string::npos);
+  EXPECT_NE(ErrorOf({{"initial_pose", {1e300, 0, 0}}}).find("'initial_pose'"), std::string::npos);
+  EXPECT_NE(ErrorOf({{"measurement_noise_cov", {1e300, 1}}}).find("'measurement_noise_cov'"),
+            std::string::npos);
+  // The caps on what a scenario allocates, beyond the single options' ranges.
+  ScenarioOptions options;
+  options.steps = 1'000'000;
+  options.settings = {{"clutter_rate", 1000}};
+  try {
+    FindScenario("generated").resolved_options(options);
+    FAIL() << "10^9 expected clutter points were accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("steps x clutter_rate = 1000000000 expected clutter "
+                                         "points exceeds the cap of 50000000"),
+              std::string::npos)
+        << e.what();
+  }
+  options.steps = 2'000'000;
+  options.settings = nlohmann::json::object();
+  EXPECT_THROW(FindScenario("generated").resolved_options(options), std::invalid_argument);
+}
+
+TEST(ScenarioOptionTables, OneOptionIsCheckedOnItsOwn) {
+  EXPECT_NO_THROW(CheckScenarioOption("generated", "speed", 2.0));
+  EXPECT_THROW(CheckScenarioOption("generated", "speed", 1e20), std::invalid_argument);
+  EXPECT_THROW(CheckScenarioOption("generated", "warp", 1), std::invalid_argument);
+  EXPECT_THROW(CheckScenarioOption("generated", "pd", 1.5), std::invalid_argument);
+  EXPECT_THROW(CheckScenarioOption("victoria-park", "pd", 0.0), std::invalid_argument);
+  EXPECT_THROW(CheckScenarioOption("mrclam", "dataset", 99), std::invalid_argument);
+  EXPECT_NO_THROW(CheckScenarioOption("mrclam", "dataset", 6));
+}
+
 TEST(ScenarioOptionTables, GlmbSimTakesTheDataProtocolByName) {
   ScenarioOptions options;
   options.steps = 30;

@@ -8,14 +8,16 @@
 #include "datasets/scenario_generator.h"
 #include "datasets/scphd_simulation.h"
 #include "datasets/sha256.h"
+#include "datasets/simulation_limits.h"
 #include "validation/runner/registry/scenario_option_tables.h"
 
 namespace phdslam::validation {
 namespace {
 
 void RequireNonNegativeSteps(const ScenarioOptions& options) {
-  if (options.steps < 0) {
-    throw std::invalid_argument("steps: expected >= 0 (0 = all), got " +
+  if (options.steps < 0 || options.steps > datasets::kMaxSimulatedSteps) {
+    throw std::invalid_argument("steps: expected 0 (all) to " +
+                                std::to_string(datasets::kMaxSimulatedSteps) + ", got " +
                                 std::to_string(options.steps));
   }
 }
@@ -29,6 +31,17 @@ void ApplySettings(const params::ParameterTable<T>& table, const ScenarioOptions
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument("scenario '" + scenario + "' option: " + e.what());
   }
+}
+
+// Reads `value` into a default options struct through the row of `key`: checks its type and
+// range (the struct's cross-field rules are checked when the scenario is resolved).
+template <class T>
+std::function<void(const std::string&, const nlohmann::json&)> OptionCheck(
+    const params::ParameterTable<T>& table) {
+  return [&table](const std::string& key, const nlohmann::json& value) {
+    T o;
+    table.Apply(nlohmann::json::object({{key, value}}), o);
+  };
 }
 
 template <class T>
@@ -91,6 +104,7 @@ ScenarioEntry PaperSyntheticEntry() {
   ScenarioEntry e;
   e.name = "paper-synthetic";
   e.option_keys = OptionKeys(PaperSyntheticOptionsTable());
+  e.check_option = OptionCheck(PaperSyntheticOptionsTable());
   e.description =
       "the paper's synthetic scenario (Environment_SLAM.mat: 160 landmarks, 4000 "
       "steps of 1 s); truth poses and map; measurements drawn per seed";
@@ -115,6 +129,7 @@ ScenarioEntry VictoriaParkEntry() {
   ScenarioEntry e;
   e.name = "victoria-park";
   e.option_keys = OptionKeys(VictoriaParkOptionsTable());
+  e.check_option = OptionCheck(VictoriaParkOptionsTable());
   e.description =
       "ACFR Victoria Park: tree detections, car odometry, GPS as the only truth; "
       "artificial clutter drawn per seed";
@@ -139,6 +154,7 @@ ScenarioEntry GeneratedEntry() {
   ScenarioEntry e;
   e.name = "generated";
   e.option_keys = OptionKeys(GeneratedOptionsTable());
+  e.check_option = OptionCheck(GeneratedOptionsTable());
   e.description =
       "a generated scenario of the paper's kind (100 landmarks along a smooth "
       "1000-step path; map and measurements drawn per seed); no data files";
@@ -170,6 +186,7 @@ ScenarioEntry ScPhdSimEntry() {
   ScenarioEntry e;
   e.name = "scphd-sim";
   e.option_keys = OptionKeys(ScPhdSimOptionsTable());
+  e.check_option = OptionCheck(ScPhdSimOptionsTable());
   e.description =
       "the simulation of single-cluster PHD SLAM's paper (Lee, Clark & Salvi 2012): Ackermann "
       "vehicle, two laps of a 40 m circle among 60 fixed landmarks, 838 steps of 0.2 s; odometry "
@@ -216,7 +233,12 @@ nlohmann::json MrclamCountsJson(const datasets::MrclamCounts& c) {
           {"other_robot_detections", c.other_robot_detections},
           {"unknown_barcode_detections", c.unknown_barcode_detections},
           {"non_landmarks_dropped", c.non_landmarks_dropped},
-          {"images_skipped", c.images_skipped}};
+          {"images_skipped", c.images_skipped},
+          {"odometry_out_of_order", c.odometry_out_of_order},
+          {"odometry_repeated_times", c.odometry_repeated_times},
+          {"truth_out_of_order", c.truth_out_of_order},
+          {"truth_repeated_times", c.truth_repeated_times},
+          {"detections_out_of_order", c.detections_out_of_order}};
 }
 
 ScenarioEntry MrclamEntry() {
@@ -228,6 +250,7 @@ ScenarioEntry MrclamEntry() {
   // wrong cluster counts as missed and false rather than as a localisation error.
   e.gospa_c = 1.0;
   e.option_keys = OptionKeys(MrclamOptionsTable());
+  e.check_option = OptionCheck(MrclamOptionsTable());
   e.description =
       "UTIAS MRCLAM (Leung et al. 2011): one robot of a sub-dataset, a step per camera image, "
       "commanded odometry, Vicon truth for poses and the 15 landmarks, barcodes as the hidden "
@@ -258,6 +281,7 @@ ScenarioEntry GlmbSimEntry() {
   ScenarioEntry e;
   e.name = "glmb-sim";
   e.option_keys = OptionKeys(GlmbSimOptionsTable());
+  e.check_option = OptionCheck(GlmbSimOptionsTable());
   e.description =
       "the simulation of the delta-GLMB-SLAM paper (Moratuwage, Adams & Inostroza 2019): 23 "
       "landmarks around a 24.8 m closed loop driven at 1 m/s and revisited (175 steps of 0.2 s), "
@@ -327,6 +351,30 @@ const ScenarioEntry& FindScenario(const std::string& name) {
     known += known.empty() ? e.name : ", " + e.name;
   }
   throw std::invalid_argument("unknown scenario '" + name + "' (known: " + known + ")");
+}
+
+void CheckScenarioOption(const std::string& name, const std::string& key,
+                         const nlohmann::json& value) {
+  const ScenarioEntry& entry = FindScenario(name);
+  if (!entry.check_option) return;
+  std::string row = key;
+  if (key == "pd" || key == "clutter_rate") {
+    row = key == "pd" ? "detection_probability" : key;
+    const auto has = [&entry](const std::string& k) {
+      for (const ScenarioOptionHelp& h : entry.option_keys) {
+        if (h.key == k) return true;
+      }
+      return false;
+    };
+    if (!has(row) && has(row + "_max")) row += "_max";
+    if (!has(row)) return;
+  }
+  try {
+    entry.check_option(row, value);
+  } catch (const std::invalid_argument& e) {
+    if (row == key) throw;
+    throw std::invalid_argument("scenario option '" + key + "' (" + e.what() + ")");
+  }
 }
 
 datasets::Scenario MakeScenario(const std::string& name, std::uint64_t seed,

@@ -66,6 +66,9 @@ struct ScenarioEntry {
   bool uses_data_dir = true;
   /// The keys of ScenarioOptions::settings, in table order.
   std::vector<ScenarioOptionHelp> option_keys;
+  /// Checks one option's value against its row (type, finiteness, range); throws
+  /// std::invalid_argument naming the key. Unset: no per-key check.
+  std::function<void(const std::string& key, const nlohmann::json& value)> check_option;
   /// Monte Carlo run `seed` of the scenario; deterministic in (seed, options, data).
   std::function<datasets::Scenario(std::uint64_t seed, const ScenarioOptions&, ScenarioCache&)>
       make;
@@ -83,6 +86,13 @@ const std::vector<ScenarioEntry>& ScenarioTable();
 
 /// The entry called `name`; throws std::invalid_argument listing the known names.
 const ScenarioEntry& FindScenario(const std::string& name);
+
+/// Checks scenario option `key` = `value` of scenario `name` on its own (as given by
+/// `--scenario-set` or a sweep value): its type and range; `pd` and `clutter_rate` are checked as
+/// the options they set. Throws std::invalid_argument naming the key for a bad value or unknown
+/// key, and for an unknown scenario name.
+void CheckScenarioOption(const std::string& name, const std::string& key,
+                         const nlohmann::json& value);
 
 /// Monte Carlo run `seed` of scenario `name`, checked with datasets::CheckScenario. Data files
 /// are taken from (and loaded into) `cache`.

@@ -1,0 +1,771 @@
+#!/usr/bin/env python3
+"""Hostile-input test of the newer surfaces: scenario options and sweeps, `export`, `ingest`,
+the MRCLAM reader, `compare`, `merge`, reports/make_report.py and validation/slurm/submit.sh.
+
+Every case of the table has an expected class:
+  error  exit status 1 or 2, and stderr names every culprit listed (option, key, file, column);
+  ok     exit status 0, and the case's check of the result holds.
+A case fails the test when the program crashes (a signal, another exit status, a Python
+traceback, a sanitizer report), when a results folder it guards changes although the command
+failed ("damaged"), when an expected error exits 0 ("silent"), when an error does not name its
+culprit, or when a message prints a number with 25 digits or more.
+
+  hostile_inputs_test.py PHDSLAM REPO_ROOT DATA_DIR SCRATCH_DIR
+
+Prints one line per failing case and the counts: cases, clear errors, correct results, crashes,
+damaged folders, silent results, unclear errors. PHDSLAM_HOSTILE_ONLY=TEXT runs only the cases
+whose name holds TEXT (the test then needs no 100 cases).
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Callable
+
+PHDSLAM, ROOT, DATA, SCRATCH = (Path(a) for a in sys.argv[1:5])
+PYTHON = sys.executable
+LONG_NUMBER = re.compile(r"\d{25,}")
+CRASH_MARKS = ("Traceback (most recent call last)", "AddressSanitizer", "runtime error:",
+               "Segmentation fault", "core dumped", "terminate called")
+
+
+@dataclass
+class Case:
+    name: str
+    argv: Callable[[], list[str]]
+    expect: str  # "error" or "ok"
+    names: list[str] = field(default_factory=list)  # culprits an error message must name
+    guard: Path | None = None  # a folder that must not change when the command fails
+    check: Callable[[], str | None] | None = None  # for "ok": None when the result is right
+    env: dict[str, str] | None = None
+    setup: Callable[[], None] | None = None
+
+
+CASES: list[Case] = []
+
+
+def case(name, argv, expect, names=(), **kw):
+    CASES.append(Case(name, argv if callable(argv) else (lambda a=argv: list(a)), expect,
+                      list(names), **kw))
+
+
+def run_command(argv: list[str], env: dict[str, str] | None = None):
+    full_env = dict(os.environ)
+    full_env["PHDSLAM_DATA"] = str(DATA)
+    if env:
+        full_env.update(env)
+    return subprocess.run([os.fsencode(a) if isinstance(a, str) else a for a in argv],
+                          capture_output=True, env=full_env, timeout=300, check=False)
+
+
+def phdslam(*args: str) -> list[str]:
+    return [str(PHDSLAM), *args]
+
+
+def folder_digest(folder: Path) -> str:
+    digest = hashlib.sha256()
+    if not folder.exists():
+        return "absent"
+    for path in sorted(folder.rglob("*")):
+        digest.update(os.fsencode(path.relative_to(folder)))
+        if path.is_file():
+            digest.update(path.read_bytes())
+    return digest.hexdigest()
+
+
+def must(argv: list[str], env: dict[str, str] | None = None) -> None:
+    result = run_command(argv, env)
+    if result.returncode != 0:
+        sys.exit(f"hostile_inputs_test: setup command failed: {' '.join(argv)}\n"
+                 f"{result.stderr.decode(errors='replace')}")
+
+
+# ---------------------------------------------------------------------------------------------
+# Fixtures: an export, outputs built from its truth, a results folder with one ingested
+# estimator, a results folder of `run`, a copy of MRCLAM dataset 6 robot 1.
+W = SCRATCH
+shutil.rmtree(W, ignore_errors=True)
+W.mkdir(parents=True)
+EXPORT = W / "export"
+OUTPUTS = W / "outputs"
+INGESTED = W / "ingested"
+RUN = W / "run"
+RUN4 = W / "run-4-steps"
+SEEDS = (1, 2)
+GEN = ["--scenario", "generated", "--steps", "5"]
+
+
+def build_fixtures() -> None:
+    must(phdslam("export", *GEN, "--seeds", "1-2", "--out", str(EXPORT)))
+    for seed in SEEDS:
+        folder = OUTPUTS / f"seed-{seed}"
+        folder.mkdir(parents=True)
+        shutil.copy(EXPORT / "truth" / f"seed-{seed}" / "trajectory.tum", folder)
+        shutil.copy(EXPORT / "truth" / f"seed-{seed}" / "map.csv", folder)
+    must(phdslam("ingest", "--from", str(OUTPUTS), "--export", str(EXPORT), "--estimator",
+                  "base", "--out", str(INGESTED)))
+    must(phdslam("run", *GEN, "--seeds", "1-3", "--estimator", "phd3,odometry", "--particles",
+                  "1,3", "--out", str(RUN), "--quiet", "--jobs", "1"))
+    must(phdslam("run", "--scenario", "generated", "--steps", "4", "--seeds", "1",
+                  "--estimator", "odometry", "--out", str(RUN4), "--quiet", "--jobs", "1"))
+
+
+build_fixtures()
+COUNTER = [0]
+
+
+def fresh(name: str) -> Path:
+    COUNTER[0] += 1
+    return W / f"{name}-{COUNTER[0]}"
+
+
+# ---------------------------------------------------------------------------------------------
+# 1. Scenario options (--scenario-set), --pd, --clutter-rate, --steps, --seeds, --particles.
+def run_with(scenario: str, *extra: str) -> Callable[[], list[str]]:
+    return lambda: phdslam("run", "--scenario", scenario, "--seeds", "1", "--steps", "3",
+                           "--estimator", "odometry", "--quiet", "--jobs", "1",
+                           "--out", str(fresh("run")), *extra)
+
+
+BAD_GENERATED = [
+    "speed=1e20", "speed=-1", "speed=nan", "speed=inf", "speed=\"fast\"", "speed=1e400",
+    "landmarks=1e9", "landmarks=-1", "landmarks=1.5", "landmarks=2000000", "dt=0", "dt=1e9",
+    "dt=-0.5", "turn_amplitude=1e10", "corridor_half_width=1e30", "corridor_half_width=0",
+    "clutter_rate=1e6", "clutter_rate=-3", "detection_probability=0",
+    "detection_probability=1.5", "fov_range=0", "fov_range=1e300", "fov_half_angle=4",
+    "fov_half_angle=0", "range_buffer=-1", "range_buffer=1e300", "angle_buffer=10",
+    "measurement_noise_cov=[1e300,1]", "control_noise_cov=[-1,1]",
+    "measurement_noise_cov=[1,2,3]", "initial_pose=[1e300,0,0]", "initial_pose=[0,0,100]",
+    "initial_pose=[0,0]", "measurement_noise_cov=\"big\"",
+]
+for assignment in BAD_GENERATED:
+    key = assignment.split("=")[0]
+    case(f"generated --scenario-set {assignment}",
+         run_with("generated", "--scenario-set", assignment), "error", ["--scenario-set", key])
+case("generated unknown key", run_with("generated", "--scenario-set", "warp=9"), "error",
+     ["--scenario-set", "warp"])
+case("generated no value", run_with("generated", "--scenario-set", "speed"), "error",
+     ["--scenario-set", "key=value"])
+case("generated empty key", run_with("generated", "--scenario-set", "=3"), "error",
+     ["--scenario-set"])
+case("generated asymmetric covariance",
+     run_with("generated", "--scenario-set", "measurement_noise_cov=[[1,2],[3,4]]"), "error",
+     ["measurement_noise_cov"])
+case("generated steps x clutter beyond the cap",
+     lambda: phdslam("run", "--scenario", "generated", "--seeds", "1", "--steps", "1000000",
+                     "--estimator", "odometry", "--quiet", "--out", str(fresh("run")),
+                     "--scenario-set", "clutter_rate=1000"), "error", ["clutter_rate", "cap"])
+for assignment in ["speed=1e20", "circle_radius=0", "wheelbase=1e9", "landmarks=2000000",
+                   "map_inner_radius=1e9", "dt=1e300"]:
+    case(f"scphd-sim --scenario-set {assignment}",
+         run_with("scphd-sim", "--scenario-set", assignment), "error",
+         ["--scenario-set", assignment.split("=")[0]])
+case("scphd-sim inner radius above outer",
+     run_with("scphd-sim", "--scenario-set", "map_inner_radius=90"), "error",
+     ["map_outer_radius"])
+for assignment in ["data_seed=-1", "landmark_offset=1e20", "data_protocol=\"bogus\"",
+                   "speed=0"]:
+    case(f"glmb-sim --scenario-set {assignment}",
+         run_with("glmb-sim", "--scenario-set", assignment), "error",
+         ["--scenario-set", assignment.split("=")[0]])
+for assignment in ["dataset=99", "robot=7", "drop_non_landmarks=3", "fov_range=-1"]:
+    case(f"mrclam --scenario-set {assignment}",
+         run_with("mrclam", "--scenario-set", assignment), "error",
+         ["--scenario-set", assignment.split("=")[0]])
+for assignment in ["clutter_rate=1e9", "fov_half_angle=0"]:
+    case(f"paper-synthetic --scenario-set {assignment}",
+         run_with("paper-synthetic", "--scenario-set", assignment), "error",
+         ["--scenario-set", assignment.split("=")[0]])
+case("--pd 1e300", run_with("generated", "--pd", "1e300"), "error", ["--pd"])
+case("--pd -1", run_with("generated", "--pd", "-1"), "error", ["--pd"])
+case("--clutter-rate 1e300", run_with("generated", "--clutter-rate", "1e300"), "error",
+     ["--clutter-rate"])
+case("--steps beyond the cap",
+     lambda: phdslam("run", "--scenario", "generated", "--seeds", "1", "--steps", "2000000",
+                     "--estimator", "odometry", "--quiet", "--out", str(fresh("run"))),
+     "error", ["steps"])
+case("--seeds beyond the cap",
+     lambda: phdslam("run", *GEN, "--seeds", "1-100000000", "--estimator", "odometry",
+                     "--out", str(fresh("run"))), "error", ["seeds"])
+case("--particles beyond the cap",
+     lambda: phdslam("run", *GEN, "--seeds", "1", "--estimator", "phd3", "--particles",
+                     "100000000", "--out", str(fresh("run"))), "error", ["particle"])
+case("runs beyond the cap",
+     lambda: phdslam("run", *GEN, "--seeds", "1-1000000", "--estimator", "phd3,phd2a,phd1",
+                     "--particles", "1,2,3", "--out", str(fresh("run"))), "error",
+     ["runs", "cap"])
+case("deterministic estimator beside a particle list", lambda: phdslam(
+    "run", *GEN, "--seeds", "1", "--estimator", "phd3,odometry", "--particles", "1,2",
+    "--quiet", "--jobs", "1", "--out", str(W / "mixed")), "ok",
+    check=lambda: (None if (W / "mixed/runs/odometry-N1/seed-1/metrics.json").is_file()
+                   and (W / "mixed/runs/phd3-N2/seed-1/metrics.json").is_file()
+                   and not (W / "mixed/runs/odometry-N2").exists()
+                   else "odometry not run once at N = 1 beside phd3 N = 1, 2"))
+case("deterministic estimator alone at N = 5", lambda: phdslam(
+    "run", *GEN, "--seeds", "1", "--estimator", "odometry", "--particles", "5",
+    "--out", str(fresh("run"))), "error", ["odometry", "particles"])
+case("valid scenario option", run_with("generated", "--scenario-set", "speed=2"), "ok",
+     check=lambda: None)
+
+
+# ---------------------------------------------------------------------------------------------
+# 2. Sweeps in experiment files.
+def experiment(text: str) -> Callable[[], list[str]]:
+    def make() -> list[str]:
+        path = fresh("experiment").with_suffix(".yaml")
+        path.write_text(text, encoding="utf-8")
+        return phdslam("run", "--experiment", str(path), "--out", str(fresh("run")), "--quiet")
+    return make
+
+
+BASE_YAML = ("scenario: generated\nestimators: [odometry]\nseeds: 1\nsteps: 3\n"
+             "jobs: 1\n")
+for parameter, values in [("speed", "[1, 1e20]"), ("landmarks", "[10, 1e9]"),
+                          ("clutter_rate", "[1, -1]"), ("steps", "[3, 1e9]"),
+                          ("dt", "[1, .nan]"), ("fov_half_angle", "[1, 7]"),
+                          ("detection_probability", "[0.5, 2]")]:
+    case(f"sweep {parameter} {values}",
+         experiment(BASE_YAML.replace("steps: 3\n", "" if parameter == "steps" else "steps: 3\n")
+                    + f"sweep: {{parameter: {parameter}, values: {values}}}\n"),
+         "error", [parameter])
+GRID = ", ".join(str(i) for i in range(1, 1001))
+case("sweep grid of 10^9 points", experiment(
+    BASE_YAML + "sweep:\n" + "".join(f"  - {{parameter: {p}, values: [{GRID}]}}\n"
+                                     for p in ("clutter_rate", "speed", "dt"))),
+    "error", ["sweep", "points", "cap"])
+case("sweep of a valid value list", experiment(
+    BASE_YAML + "sweep: {parameter: speed, values: [1, 2]}\n"), "ok", check=lambda: None)
+
+# ---------------------------------------------------------------------------------------------
+# 3. export.
+case("export into a non-empty folder", lambda: phdslam(
+    "export", *GEN, "--seeds", "1", "--out", str(EXPORT)), "error", ["not empty"],
+    guard=EXPORT)
+case("export with a bad scenario option", lambda: phdslam(
+    "export", *GEN, "--seeds", "1", "--scenario-set", "speed=1e20", "--out",
+    str(fresh("export"))), "error", ["--scenario-set", "speed"])
+case("export landmarks=1e9", lambda: phdslam(
+    "export", *GEN, "--seeds", "1", "--scenario-set", "landmarks=1e9", "--out",
+    str(fresh("export"))), "error", ["landmarks"])
+case("export of a valid scenario", lambda: phdslam(
+    "export", *GEN, "--seeds", "3", "--out", str(W / "export-ok")), "ok",
+    check=lambda: None if (W / "export-ok/SHA256SUMS").is_file() else "no SHA256SUMS")
+
+
+# ---------------------------------------------------------------------------------------------
+# 4. ingest: each case edits a copy of the outputs (or of the export) and ingests it into the
+# results folder that already holds estimator "base"; that folder must not change on failure.
+def outputs_with(edit: Callable[[Path], None]) -> Path:
+    folder = fresh("outputs")
+    shutil.copytree(OUTPUTS, folder)
+    edit(folder)
+    return folder
+
+
+def write(relative: str, text: str) -> Callable[[Path], None]:
+    return lambda folder: (folder / relative).write_text(text, encoding="utf-8")
+
+
+def ingest_case(name: str, edit: Callable[[Path], None], names: list[str], *extra: str,
+                export: Callable[[], Path] = lambda: EXPORT) -> None:
+    case(f"ingest {name}", lambda: phdslam(
+        "ingest", "--from", str(outputs_with(edit)), "--export", str(export()), "--estimator",
+        "ext", "--out", str(INGESTED), *extra), "error", names, guard=INGESTED)
+
+
+def timing(rows: str) -> Callable[[Path], None]:
+    return write("seed-1/timing.csv", "step,ms\n" + rows)
+
+
+ALL_STEPS = "".join(f"{k},1\n" for k in range(1, 5))
+ingest_case("timing 1e300", timing("0,1e300\n" + ALL_STEPS), ["timing.csv", "ms"])
+ingest_case("timing nan", timing("0,nan\n" + ALL_STEPS), ["timing.csv", "ms"])
+ingest_case("timing negative", timing("0,-1\n" + ALL_STEPS), ["timing.csv", "negative"])
+ingest_case("timing missing step", timing(ALL_STEPS), ["timing.csv", "step 0"])
+ingest_case("timing repeated step", timing("1,1\n" + ALL_STEPS), ["timing.csv", "repeated"])
+ingest_case("timing step out of range", timing("0,1\n" + ALL_STEPS + "99,1\n"),
+            ["timing.csv", "step"])
+ingest_case("timing without header", write("seed-1/timing.csv", ""), ["timing.csv"])
+
+
+def map_rows(rows: str, header: str = "x,y,weight") -> Callable[[Path], None]:
+    return write("seed-1/map.csv", header + "\n" + rows)
+
+
+ingest_case("map weight -5", map_rows("1,2,-5\n"), ["map.csv", "weight"])
+ingest_case("map weight 2", map_rows("1,2,2\n"), ["map.csv", "weight"])
+ingest_case("map weight nan", map_rows("1,2,nan\n"), ["map.csv", "weight"])
+ingest_case("map x 1e300", map_rows("1e300,2,0.5\n"), ["map.csv", "'x'"])
+ingest_case("map y text", map_rows("1,abc,0.5\n"), ["map.csv", "'y'"])
+ingest_case("map negative variance", map_rows("1,2,0.5,-1,0,1\n", "x,y,weight,pxx,pxy,pyy"),
+            ["map.csv", "pxx"])
+ingest_case("map covariance not PSD", map_rows("1,2,0.5,1,5,1\n", "x,y,weight,pxx,pxy,pyy"),
+            ["map.csv", "pxy"])
+ingest_case("map covariance for some landmarks",
+            map_rows("1,2,0.5,1,0,1\n3,4,0.5,,,\n", "x,y,weight,pxx,pxy,pyy"), ["map.csv"])
+ingest_case("map without x", map_rows("2,0.5\n", "y,weight"), ["map.csv", "x"])
+ingest_case("map short row", map_rows("1\n"), ["map.csv"])
+
+
+def huge_map(folder: Path) -> None:
+    with open(folder / "seed-1/map.csv", "w", encoding="utf-8") as stream:
+        stream.write("x,y\n")
+        stream.write("1,1\n" * 1_000_001)
+
+
+ingest_case("map of 1000001 rows", huge_map, ["map.csv", "cap"])
+
+
+def pose_cov(rows: str) -> Callable[[Path], None]:
+    return write("seed-1/pose_cov.csv", "step,pxx,pxy,pxt,pyy,pyt,ptt\n" + rows)
+
+
+ingest_case("pose_cov negative variance", pose_cov("0,-1,0,0,1,0,1\n"), ["pose_cov.csv", "pxx"])
+ingest_case("pose_cov negative ptt", pose_cov("0,1,0,0,1,0,-0.1\n"), ["pose_cov.csv", "ptt"])
+ingest_case("pose_cov not PSD", pose_cov("0,1,3,0,1,0,1\n"), ["pose_cov.csv", "semi-definite"])
+ingest_case("pose_cov step out of range", pose_cov("77,1,0,0,1,0,1\n"), ["pose_cov.csv", "step"])
+ingest_case("pose_cov repeated step", pose_cov("0,1,0,0,1,0,1\n0,1,0,0,1,0,1\n"),
+            ["pose_cov.csv", "repeated"])
+ingest_case("pose_cov huge", pose_cov("0,1e300,0,0,1,0,1\n"), ["pose_cov.csv", "pxx"])
+ingest_case("pose_cov inf", pose_cov("0,inf,0,0,1,0,1\n"), ["pose_cov.csv", "pxx"])
+
+
+def association(rows: str) -> Callable[[Path], None]:
+    return write("seed-1/association.csv", "step,index,x,y\n" + rows)
+
+
+ingest_case("association index out of range", association("0,999,1,1\n"),
+            ["association.csv", "index"])
+ingest_case("association step out of range", association("99,0,1,1\n"),
+            ["association.csv", "step"])
+ingest_case("association x huge", association("0,0,1e300,1\n"), ["association.csv", "'x'"])
+ingest_case("association negative index", association("0,-1,1,1\n"),
+            ["association.csv", "index"])
+ingest_case("maps step out of range", write("seed-1/maps.csv", "step,x,y\n99,1,1\n"),
+            ["maps.csv", "step"])
+ingest_case("maps y nan", write("seed-1/maps.csv", "step,x,y\n0,1,nan\n"), ["maps.csv", "'y'"])
+
+
+def edit_trajectory(transform: Callable[[list[str]], list[str]]) -> Callable[[Path], None]:
+    def edit(folder: Path) -> None:
+        path = folder / "seed-1/trajectory.tum"
+        path.write_text("\n".join(transform(path.read_text().splitlines())) + "\n")
+    return edit
+
+
+def data_lines(lines: list[str]) -> list[int]:
+    return [i for i, line in enumerate(lines) if line.strip() and not line.startswith("#")]
+
+
+def replace_field(lines: list[str], column: int, value: str) -> list[str]:
+    i = data_lines(lines)[1]
+    fields = lines[i].split()
+    fields[column] = value
+    lines[i] = " ".join(fields)
+    return lines
+
+
+ingest_case("trajectory missing a pose",
+            edit_trajectory(lambda lines: lines[:data_lines(lines)[-1]]), ["trajectory.tum"])
+ingest_case("trajectory x 1e300", edit_trajectory(lambda ls: replace_field(ls, 1, "1e300")),
+            ["trajectory.tum"])
+ingest_case("trajectory time off", edit_trajectory(lambda ls: replace_field(ls, 0, "1234.5")),
+            ["trajectory.tum"])
+ingest_case("trajectory quaternion nan", edit_trajectory(
+    lambda ls: replace_field(ls, 7, "nan")), ["trajectory.tum"])
+ingest_case("trajectory garbage", write("seed-1/trajectory.tum", "\x00\x01 hello\n"),
+            ["trajectory.tum"])
+ingest_case("trajectory missing", lambda f: (f / "seed-1/trajectory.tum").unlink(),
+            ["trajectory.tum"])
+ingest_case("seed folder missing", lambda f: shutil.rmtree(f / "seed-2"), ["seed-2"])
+ingest_case("parameters.json not an object", write("parameters.json", "[1, 2]"),
+            ["parameters.json"])
+ingest_case("parameters.json broken", write("parameters.json", "{"), ["parameters.json"])
+
+
+def export_with(edit: Callable[[Path], None]) -> Callable[[], Path]:
+    def make() -> Path:
+        folder = fresh("export-copy")
+        shutil.copytree(EXPORT, folder)
+        edit(folder)
+        return folder
+    return make
+
+
+def append(relative: str, text: str) -> Callable[[Path], None]:
+    def edit(folder: Path) -> None:
+        with open(folder / relative, "a", encoding="utf-8") as stream:
+            stream.write(text)
+    return edit
+
+
+ingest_case("export measurements.csv edited", lambda f: None,
+            ["measurements.csv", "SHA256SUMS"],
+            export=export_with(append("seed-1/measurements.csv", "4,9,1.0,0.1\n")))
+ingest_case("export SHA256SUMS escaping the folder", lambda f: None, ["SHA256SUMS", ".."],
+            export=export_with(append("SHA256SUMS", "0" * 64 + "  ../../etc/passwd\n")))
+ingest_case("export SHA256SUMS malformed", lambda f: None, ["SHA256SUMS"],
+            export=export_with(append("SHA256SUMS", "not a checksum line\n")))
+ingest_case("export file listed but missing", lambda f: None, ["controls.csv"],
+            export=export_with(lambda f: (f / "seed-2/controls.csv").unlink()))
+ingest_case("export.json format version", lambda f: None, ["export.json"],
+            export=export_with(lambda f: (f / "export.json").write_text(
+                json.dumps({"format_version": 99}))))
+ingest_case("export.json not JSON", lambda f: None, ["export.json"],
+            export=export_with(lambda f: (f / "export.json").write_text("{{{")))
+case("ingest an estimator name that has runs", lambda: phdslam(
+    "ingest", "--from", str(OUTPUTS), "--export", str(EXPORT), "--estimator", "base", "--out",
+    str(INGESTED)), "error", ["base", "--replace"], guard=INGESTED)
+case("ingest a registered estimator name", lambda: phdslam(
+    "ingest", "--from", str(OUTPUTS), "--export", str(EXPORT), "--estimator", "phd3", "--out",
+    str(INGESTED)), "error", ["phd3"], guard=INGESTED)
+case("ingest a name with a slash", lambda: phdslam(
+    "ingest", "--from", str(OUTPUTS), "--export", str(EXPORT), "--estimator", "a/b", "--out",
+    str(INGESTED)), "error", ["a/b"], guard=INGESTED)
+case("ingest into a folder of other scenario options", lambda: phdslam(
+    "ingest", "--from", str(OUTPUTS), "--export", str(EXPORT), "--estimator", "ext", "--out",
+    str(RUN4)), "error", [str(RUN4), "other settings"], guard=RUN4)
+case("ingest with --replace", lambda: phdslam(
+    "ingest", "--from", str(OUTPUTS), "--export", str(EXPORT), "--estimator", "base", "--out",
+    str(INGESTED), "--replace"), "ok",
+    check=lambda: None if (INGESTED / "runs/base-N1/seed-2/metrics.json").is_file()
+    else "replaced runs missing")
+
+
+def ingest_ok_check() -> str | None:
+    summary = (INGESTED / "summary.csv").read_text()
+    return None if "ext2" in summary else "ext2 not in summary.csv"
+
+
+case("ingest of valid outputs", lambda: phdslam(
+    "ingest", "--from", str(OUTPUTS), "--export", str(EXPORT), "--estimator", "ext2", "--out",
+    str(INGESTED)), "ok", check=ingest_ok_check)
+
+# ---------------------------------------------------------------------------------------------
+# 5. MRCLAM: a corrupted copy of dataset 6, robot 1.
+MRCLAM_SOURCE = DATA / "utias-mrclam" / "MRCLAM_Dataset6"
+MRCLAM_FILES = ["Barcodes.dat", "Landmark_Groundtruth.dat", "Robot1_Groundtruth.dat",
+                "Robot1_Odometry.dat", "Robot1_Measurement.dat"]
+
+
+def mrclam_copy(edit: Callable[[Path], None]) -> Path:
+    data = fresh("mrclam-data")
+    folder = data / "utias-mrclam" / "MRCLAM_Dataset6"
+    folder.mkdir(parents=True)
+    for name in MRCLAM_FILES:
+        shutil.copy(MRCLAM_SOURCE / name, folder)
+    edit(folder)
+    return data
+
+
+def edit_lines(name: str, transform: Callable[[list[str]], list[str]]):
+    def edit(folder: Path) -> None:
+        path = folder / name
+        path.write_text("\n".join(transform(path.read_text().splitlines())) + "\n")
+    return edit
+
+
+def first_data(lines: list[str]) -> int:
+    return next(i for i, line in enumerate(lines) if line.strip() and not line.startswith("#"))
+
+
+def set_first_time(value: str):
+    def transform(lines: list[str]) -> list[str]:
+        i = first_data(lines)
+        fields = lines[i].split()
+        fields[0] = value
+        lines[i] = " ".join(fields)
+        return lines
+    return transform
+
+
+def mrclam_case(name: str, edit, expect: str, names=(), check=None) -> None:
+    if not MRCLAM_SOURCE.is_dir():
+        return
+    case(f"mrclam {name}", lambda: phdslam(
+        "run", "--scenario", "mrclam", "--seeds", "1", "--steps", "5", "--estimator",
+        "odometry", "--quiet", "--jobs", "1", "--data-dir", str(mrclam_copy(edit)), "--out",
+        str(W / f"mrclam-{name.replace(' ', '-')}")), expect, list(names), check=check)
+
+
+def drop_landmark(lines: list[str]) -> list[str]:
+    return [line for line in lines if not line.strip().startswith("14 ")]
+
+
+mrclam_case("landmark missing from the ground truth",
+            edit_lines("Landmark_Groundtruth.dat", drop_landmark), "error",
+            ["Robot1_Measurement.dat", "Landmark_Groundtruth.dat"])
+mrclam_case("detection time 1e300", edit_lines("Robot1_Measurement.dat", set_first_time("1e300")),
+            "error", ["Robot1_Measurement.dat", "time"])
+mrclam_case("detection time negative", edit_lines("Robot1_Measurement.dat",
+                                                  set_first_time("-5")),
+            "error", ["Robot1_Measurement.dat", "time"])
+mrclam_case("odometry time 1e20", edit_lines("Robot1_Odometry.dat", set_first_time("1e20")),
+            "error", ["Robot1_Odometry.dat", "time"])
+mrclam_case("truth time nan", edit_lines("Robot1_Groundtruth.dat", set_first_time("nan")),
+            "error", ["Robot1_Groundtruth.dat"])
+mrclam_case("barcode 0", edit_lines("Robot1_Measurement.dat", lambda ls: [
+    " ".join(line.split()[:1] + ["0"] + line.split()[2:]) if i == first_data(ls) else line
+    for i, line in enumerate(ls)]), "error", ["Robot1_Measurement.dat", "barcode"])
+mrclam_case("truncated measurement line", edit_lines("Robot1_Measurement.dat", lambda ls: [
+    line.split()[0] if i == first_data(ls) else line for i, line in enumerate(ls)]),
+    "error", ["Robot1_Measurement.dat"])
+mrclam_case("Barcodes.dat missing", lambda f: (f / "Barcodes.dat").unlink(), "error",
+            ["Barcodes.dat"])
+
+
+def swap_detection_rows(lines: list[str]) -> list[str]:
+    i = first_data(lines)
+    j = i + 1
+    while lines[j].split()[0] == lines[i].split()[0]:
+        j += 1
+    lines[i], lines[j] = lines[j], lines[i]
+    return lines
+
+
+def counted_out_of_order() -> str | None:
+    config = json.loads((W / "mrclam-detections-out-of-order/config.json").read_text())
+    counts = config["scenario"]["options"]["counts"]
+    return None if counts.get("detections_out_of_order", 0) >= 1 else \
+        f"detections_out_of_order not counted: {counts}"
+
+
+mrclam_case("detections out of order", edit_lines("Robot1_Measurement.dat", swap_detection_rows),
+            "ok", check=counted_out_of_order)
+
+# ---------------------------------------------------------------------------------------------
+# 6. compare, merge.
+def run_copy(edit: Callable[[Path], None]) -> Path:
+    folder = fresh("results")
+    shutil.copytree(RUN, folder)
+    edit(folder)
+    return folder
+
+
+def set_runs_cell(column: str, value: str, row: int = 1) -> Callable[[Path], None]:
+    def edit(folder: Path) -> None:
+        path = folder / "runs.csv"
+        lines = path.read_text().splitlines()
+        header = lines[0].split(",")
+        cells = lines[row].split(",")
+        cells[header.index(column)] = value
+        lines[row] = ",".join(cells)
+        path.write_text("\n".join(lines) + "\n")
+    return edit
+
+
+for value in ("inf", "nan", "-inf", "1e999", "abc"):
+    case(f"compare gospa_m {value}", lambda v=value: phdslam(
+        "compare", "--out", str(run_copy(set_runs_cell("gospa_m", v)))), "error",
+        ["runs.csv", "gospa_m"])
+def opposite_extremes(folder: Path) -> None:
+    path = folder / "runs.csv"
+    lines = path.read_text().splitlines()
+    header = lines[0].split(",")
+    for i in range(1, len(lines)):
+        cells = lines[i].split(",")
+        odometry = cells[header.index("estimator")] == "odometry"
+        cells[header.index("gospa_m")] = "1.7e308" if odometry else "-1.7e308"
+        lines[i] = ",".join(cells)
+    path.write_text("\n".join(lines) + "\n")
+
+
+case("compare difference overflows", lambda: phdslam(
+    "compare", "--out", str(run_copy(opposite_extremes))), "error", ["runs.csv", "gospa_m"])
+case("compare unknown metric", lambda: phdslam(
+    "compare", "--out", str(RUN), "--metrics", "nosuch"), "error", ["nosuch"])
+case("compare seed not an integer", lambda: phdslam(
+    "compare", "--out", str(run_copy(set_runs_cell("seed", "x")))), "error", ["runs.csv", "seed"])
+case("compare of a valid folder", lambda: phdslam("compare", "--out", str(run_copy(
+    lambda f: None))), "ok", check=lambda: None)
+MERGED = W / "merged"
+case("merge a missing folder", lambda: phdslam(
+    "merge", "--out", str(fresh("merged")), str(W / "nowhere")), "error", ["nowhere"])
+case("merge a folder with a broken config.json", lambda: phdslam(
+    "merge", "--out", str(fresh("merged")), str(run_copy(
+        lambda f: (f / "config.json").write_text("{")))), "error", ["config.json"])
+case("merge a folder with a broken metrics.json", lambda: phdslam(
+    "merge", "--out", str(fresh("merged")), str(run_copy(
+        lambda f: (f / "runs/odometry-N1/seed-1/metrics.json").write_text("[")))), "error",
+    ["metrics.json"])
+case("merge folders of other scenario options", lambda: phdslam(
+    "merge", "--out", str(fresh("merged")), str(RUN), str(RUN4)), "error", ["merge"])
+case("merge of valid folders", lambda: phdslam("merge", "--out", str(MERGED), str(RUN)), "ok",
+     check=lambda: None if (MERGED / "summary.csv").is_file() else "no summary.csv")
+
+# ---------------------------------------------------------------------------------------------
+# 7. reports/make_report.py.
+REPORT = [PYTHON, str(ROOT / "reports" / "make_report.py")]
+
+
+def report_out_intact(out: Path) -> Callable[[], str | None]:
+    def check() -> str | None:
+        index = out / "index.html"
+        return None if index.is_file() and index.stat().st_size > 0 else "index.html missing"
+    return check
+
+
+def set_step_cell(column: str, value: str) -> Callable[[Path], None]:
+    def edit(folder: Path) -> None:
+        path = folder / "runs/phd3-N3/seed-1/steps.csv"
+        lines = path.read_text().splitlines()
+        header = lines[0].split(",")
+        cells = lines[2].split(",")
+        cells[header.index(column)] = value
+        lines[2] = ",".join(cells)
+        path.write_text("\n".join(lines) + "\n")
+    return edit
+
+
+NON_UTF8 = os.fsdecode(bytes(W) + b"/results-\xff\xfe")
+
+
+def non_utf8_copy() -> list[str]:
+    shutil.rmtree(NON_UTF8, ignore_errors=True)
+    shutil.copytree(RUN, NON_UTF8)
+    return [*REPORT, NON_UTF8]
+
+
+case("report of a non-UTF-8 path", non_utf8_copy, "ok",
+     check=report_out_intact(Path(NON_UTF8) / "report"))
+for value in ("1e300", "-1e300", "inf", "1e101"):
+    case(f"report nees {value}", lambda v=value: [
+        *REPORT, str(run_copy(set_step_cell("nees", v))), "--out", str(fresh("report"))],
+        "error", ["steps.csv", "nees"])
+case("report gospa_m 1e300 in runs.csv", lambda: [
+    *REPORT, str(run_copy(set_runs_cell("gospa_m", "1e300"))), "--out", str(fresh("report"))],
+    "error", ["runs.csv", "gospa_m"])
+# Without summary.csv the report shows the sections the run folders give and says how many it
+# skipped: a correct, partial report.
+SUMMARYLESS_REPORT = W / "summaryless-report"
+case("report summary.csv missing", lambda: [
+    *REPORT, str(run_copy(lambda f: (f / "summary.csv").unlink())), "--out",
+    str(SUMMARYLESS_REPORT)], "ok", check=report_out_intact(SUMMARYLESS_REPORT))
+case("report of a missing folder", lambda: [*REPORT, str(W / "nowhere"), "--out",
+                                            str(fresh("report"))], "error", ["nowhere"])
+case("report summary.csv not UTF-8", lambda: [
+    *REPORT, str(run_copy(lambda f: (f / "summary.csv").write_bytes(b"\xff\xfe\x00"))),
+    "--out", str(fresh("report"))], "error", ["summary.csv"])
+KEPT_REPORT = W / "kept-report"
+
+
+KEPT_REPORT.mkdir(exist_ok=True)
+(KEPT_REPORT / "index.html").write_text("<html>old</html>")
+
+
+def keep_old_report() -> list[str]:
+    return [*REPORT, str(run_copy(set_step_cell("nees", "1e300"))), "--out", str(KEPT_REPORT)]
+
+
+case("report failure keeps the old index.html", keep_old_report, "error", ["nees"],
+     guard=KEPT_REPORT)
+
+# ---------------------------------------------------------------------------------------------
+# 8. validation/slurm/submit.sh.
+SUBMIT = ["/bin/bash", str(ROOT / "validation" / "slurm" / "submit.sh")]
+SMOKE = str(ROOT / "validation" / "slurm" / "smoke.yaml")
+FAKE_BIN = W / "fake-bin"
+FAKE_BIN.mkdir()
+(FAKE_BIN / "sbatch").write_text("#!/bin/sh\necho 4242\n")
+(FAKE_BIN / "sbatch").chmod(0o755)
+NO_SBATCH_BIN = W / "no-sbatch-bin"
+NO_SBATCH_BIN.mkdir()
+for tool in ("sed", "dirname", "realpath", "basename", "mkdir", "cat", "chmod", "env"):
+    if shutil.which(tool):
+        os.symlink(shutil.which(tool), NO_SBATCH_BIN / tool)
+SLURM_ENV = {"PHDSLAM": str(PHDSLAM), "PATH": f"{FAKE_BIN}:{os.environ.get('PATH', '')}"}
+
+
+def slurm_case(name: str, args: list[str], names: list[str], env=None) -> None:
+    out = W / f"slurm-{COUNTER[0]}-{len(CASES)}"
+    case(f"submit.sh {name}", lambda: [*SUBMIT, SMOKE, str(out), *args], "error", names,
+         env=env or SLURM_ENV, check=None, guard=out)
+
+
+slurm_case("SHARDS abc", ["abc"], ["SHARDS"])
+slurm_case("SHARDS 0", ["0"], ["SHARDS"])
+slurm_case("SHARDS -3", ["-3"], ["SHARDS"])
+slurm_case("SHARDS 1e9", ["1e9"], ["SHARDS"])
+slurm_case("SHARDS 5000", ["5000"], ["SHARDS"])
+slurm_case("SHARDS 99999999999999999999", ["99999999999999999999"], ["SHARDS"])
+slurm_case("--out passed", ["2", "--out", "/tmp/x"], ["--out"])
+slurm_case("--out= passed", ["2", "--out=/tmp/x"], ["--out"])
+slurm_case("--shard passed", ["2", "--shard", "1/2"], ["--shard"])
+slurm_case("--jobs passed", ["2", "--jobs", "4"], ["--jobs"])
+slurm_case("--experiment passed", ["2", "--experiment", SMOKE], ["--experiment"])
+slurm_case("PHDSLAM_CPUS abc", ["2"], ["PHDSLAM_CPUS"], env={**SLURM_ENV, "PHDSLAM_CPUS": "abc"})
+slurm_case("PHDSLAM_CPUS 0", ["2"], ["PHDSLAM_CPUS"], env={**SLURM_ENV, "PHDSLAM_CPUS": "0"})
+slurm_case("PHDSLAM_CPUS 100000", ["2"], ["PHDSLAM_CPUS"],
+           env={**SLURM_ENV, "PHDSLAM_CPUS": "100000"})
+slurm_case("no sbatch", ["2"], ["sbatch"], env={"PHDSLAM": str(PHDSLAM),
+                                                "PATH": str(NO_SBATCH_BIN)})
+slurm_case("too few arguments", [], ["EXPERIMENT"])
+case("submit.sh missing experiment file", lambda: [*SUBMIT, str(W / "none.yaml"),
+                                                   str(W / "slurm-none"), "2"],
+     "error", ["none.yaml"], env=SLURM_ENV, guard=W / "slurm-none")
+SLURM_OK = W / "slurm-ok"
+case("submit.sh with a fake sbatch", lambda: [*SUBMIT, SMOKE, str(SLURM_OK), "3", "--steps",
+                                              "5"], "ok", env=SLURM_ENV,
+     check=lambda: None if "--shard" in (SLURM_OK / "slurm/shard.sh").read_text()
+     else "shard.sh without --shard")
+
+
+# ---------------------------------------------------------------------------------------------
+def classify(c: Case) -> tuple[str, str]:
+    """(class, detail): clear, correct, crash, damaged, silent, unclear, wrong."""
+    before = folder_digest(c.guard) if c.guard else None
+    try:
+        result = run_command(c.argv(), c.env)
+    except subprocess.TimeoutExpired:
+        return "crash", "timed out (a hang)"
+    err = result.stderr.decode(errors="replace")
+    out = result.stdout.decode(errors="replace")
+    code = result.returncode
+    if code < 0 or code not in (0, 1, 2) or any(mark in err for mark in CRASH_MARKS):
+        return "crash", f"exit {code}: {err[-600:]}"
+    if LONG_NUMBER.search(err + out):
+        return "unclear", f"a number of 25 digits or more: {err[-300:]}"
+    if c.expect == "error":
+        if code == 0:
+            return "silent", f"exit 0: {out[-300:]}"
+        if c.guard and folder_digest(c.guard) != before:
+            return "damaged", f"{c.guard} changed: {err[-300:]}"
+        missing = [name for name in c.names if name not in err]
+        if missing:
+            return "unclear", f"does not name {missing}: {err[-400:]}"
+        return "clear", ""
+    if code != 0:
+        return "wrong", f"exit {code}: {err[-600:]}"
+    problem = c.check() if c.check else None
+    return ("wrong", problem) if problem else ("correct", "")
+
+
+def main() -> int:
+    counts: dict[str, int] = {}
+    # PHDSLAM_HOSTILE_ONLY=text runs only the cases whose name holds it (to rerun a few).
+    only = os.environ.get("PHDSLAM_HOSTILE_ONLY", "")
+    selected = [c for c in CASES if only in c.name]
+    for c in selected:
+        kind, detail = classify(c)
+        counts[kind] = counts.get(kind, 0) + 1
+        if kind not in ("clear", "correct"):
+            print(f"FAIL [{kind}] {c.name}: {detail}", file=sys.stderr)
+    total = len(selected)
+    print(f"hostile inputs: {total} cases, {counts.get('clear', 0)} clear errors, "
+          f"{counts.get('correct', 0)} correct results, {counts.get('crash', 0)} crashes, "
+          f"{counts.get('damaged', 0)} damaged folders, {counts.get('silent', 0)} silent, "
+          f"{counts.get('unclear', 0)} unclear errors, {counts.get('wrong', 0)} wrong results")
+    good = counts.get("clear", 0) + counts.get("correct", 0)
+    return 0 if good == total and (total >= 100 or only) else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
