@@ -108,7 +108,7 @@ namespace {
 /// One landmark's terms of an arrow-structured update at one linearisation.
 struct PairTerms {
   Mat23 hx;
-  Mat2 d_inv;     ///< D_p^-1
+  Mat2 d_inv;      ///< D_p^-1
   Mat23 d_inv_hx;  ///< D_p^-1 Hx_p
   Vec2 d_inv_nu;   ///< D_p^-1 nu_p
   Mat2 p_hmt;      ///< P_p Hm_p^T
@@ -169,8 +169,8 @@ JointIplResult JointIpl(const Pose& prior_mean, const Mat3& prior_cov,
       PairTerms& t = terms[p];
       t.hx = pj.j.hx;
       // Innovation of the restart from the prior: z - (A x0 + b), b = h(lin) - A lin.
-      t.nu = pair.z - pj.z_hat - pj.j.hx * pose_offset -
-             pj.j.hm * (pair.landmark_mean - lin_landmark);
+      t.nu =
+          pair.z - pj.z_hat - pj.j.hx * pose_offset - pj.j.hm * (pair.landmark_mean - lin_landmark);
       t.nu(1) = WrapAngle(t.nu(1));
       t.p_hmt = pair.landmark_cov * pj.j.hm.transpose();
       Mat2 d = pj.j.hm * t.p_hmt + noise_cov;
@@ -220,9 +220,9 @@ JointIplResult JointIpl(const Pose& prior_mean, const Mat3& prior_cov,
       lin.cholesky_failed = true;
       break;
     }
-    const bool converged = l >= 2 && KlDivergence3(lin.mean.head<3>(), lin.pose_covariance,
-                                                   next_mean.head<3>(), pose_cov) <
-                                         options.kl_tolerance;
+    const bool converged =
+        l >= 2 && KlDivergence3(lin.mean.head<3>(), lin.pose_covariance, next_mean.head<3>(),
+                                pose_cov) < options.kl_tolerance;
     lin.mean.swap(next_mean);
     lin.pose_covariance = pose_cov;
     lin.landmark_pose_coupling.swap(next_coupling);

@@ -100,7 +100,7 @@ struct JointIplOptions {
 struct JointIplResult {
   Eigen::VectorXd mean;  ///< [x; m_1; ...; m_M]
   Mat3 pose_covariance = Mat3::Zero();
-  std::vector<Mat23> landmark_pose_coupling;  ///< F_p = dE[m_p | x] / dx
+  std::vector<Mat23> landmark_pose_coupling;   ///< F_p = dE[m_p | x] / dx
   std::vector<Mat2> landmark_conditional_cov;  ///< C_p = Cov(m_p | x)
   int iterations = 0;                          ///< iterations whose result was accepted
   bool cholesky_failed = false;

@@ -136,18 +136,19 @@ Problem RandomProblem(RandomStream& rng, int num_pairs) {
   const Vec3 scale(1.0, 1.0, 0.1);
   problem.prior_cov = scale.asDiagonal() * RandomSpd<3>(rng, 1e-3, 1.0) * scale.asDiagonal();
   const auto pose_draw = *CholeskyLower(problem.prior_cov);
-  const Pose truth = problem.prior_mean + pose_draw * Vec3(rng.Normal(), rng.Normal(), rng.Normal());
+  const Pose truth =
+      problem.prior_mean + pose_draw * Vec3(rng.Normal(), rng.Normal(), rng.Normal());
   const auto noise = *CholeskyLower(NoiseCov());
   for (int p = 0; p < num_pairs; ++p) {
     const double range = rng.Uniform(3.0, 40.0);
     const double bearing = rng.Uniform(-1.5, 1.5);
-    const Landmark mean = problem.prior_mean.head<2>() +
-                          range * Vec2(std::cos(problem.prior_mean(2) + bearing),
-                                       std::sin(problem.prior_mean(2) + bearing));
+    const Landmark mean =
+        problem.prior_mean.head<2>() + range * Vec2(std::cos(problem.prior_mean(2) + bearing),
+                                                    std::sin(problem.prior_mean(2) + bearing));
     const Mat2 cov = RandomSpd<2>(rng, 0.01, 2.0);
     const Landmark true_landmark = mean + *CholeskyLower(cov) * Vec2(rng.Normal(), rng.Normal());
-    Measurement z = models::PredictMeasurement(truth, true_landmark) +
-                    noise * Vec2(rng.Normal(), rng.Normal());
+    Measurement z =
+        models::PredictMeasurement(truth, true_landmark) + noise * Vec2(rng.Normal(), rng.Normal());
     z(1) = WrapAngle(z(1));
     problem.pairs.push_back({mean, cov, z});
   }
@@ -159,8 +160,8 @@ double RelativeDifference(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
 }
 
 void ExpectAgreement(const Problem& problem, const JointIplOptions& options, int trial) {
-  const DenseResult dense = DenseJointIpl(problem.prior_mean, problem.prior_cov, problem.pairs,
-                                          NoiseCov(), options);
+  const DenseResult dense =
+      DenseJointIpl(problem.prior_mean, problem.prior_cov, problem.pairs, NoiseCov(), options);
   const JointIplResult arrow =
       JointIpl(problem.prior_mean, problem.prior_cov, problem.pairs, NoiseCov(), options);
   SCOPED_TRACE(::testing::Message() << "trial " << trial << ", M = " << problem.pairs.size());
@@ -212,8 +213,8 @@ TEST(JointIplArrow, AgreesWhenTheGuardStopsAndWhenTheLandmarksAreNearlyKnown) {
   for (int trial = 0; trial < 10; ++trial) {
     Problem problem = RandomProblem(rng, 6);
     problem.pairs[2].z(0) += 30.0;  // an inconsistent association: the guard stops iteration 1
-    const DenseResult dense = DenseJointIpl(problem.prior_mean, problem.prior_cov,
-                                            problem.pairs, NoiseCov(), guarded);
+    const DenseResult dense =
+        DenseJointIpl(problem.prior_mean, problem.prior_cov, problem.pairs, NoiseCov(), guarded);
     const JointIplResult arrow =
         JointIpl(problem.prior_mean, problem.prior_cov, problem.pairs, NoiseCov(), guarded);
     EXPECT_TRUE(dense.nis_stopped);
