@@ -196,14 +196,13 @@ JointIplResult JointIpl(const Pose& prior_mean, const Mat3& prior_cov,
     const Mat3 sigma0_w = prior_cov * w;
     Mat3 pose_cov = prior_cov - sigma0_w * (Mat3::Identity() + sigma0_w).inverse() * prior_cov;
     pose_cov = (0.5 * (pose_cov + pose_cov.transpose())).eval();
-    const Vec3 sigma_b = pose_cov * b;
+    const Vec3 pose_step = pose_cov * b;  // x_hat - x0 = Sigma b
     // nu^T S^-1 nu = sum nu_p^T D_p^-1 nu_p - b^T Sigma b.
-    if (nu_d_nu - b.dot(sigma_b) >= nis_limit) {
+    if (nu_d_nu - b.dot(pose_step) >= nis_limit) {
       lin.nis_stopped = true;
       break;
     }
     bool conditional_failed = !LltIsPositiveDefinite(Eigen::LLT<Mat3>(pose_cov));
-    const Vec3 pose_step = sigma_b;  // x_hat - x0
     next_mean.head<3>() = prior_mean + pose_step;
     for (Eigen::Index p = 0; p < num_pairs && !conditional_failed; ++p) {
       const PairTerms& t = terms[p];
