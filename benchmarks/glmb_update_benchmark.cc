@@ -9,13 +9,15 @@
 // detected with probability pD, Poisson clutter), so it holds the hypotheses the filter carries
 // into a step; then every benchmark iteration runs one update of that same prior with one fresh
 // scan (and its previous scan's births). Counters: prior hypotheses, births offered (rows added to
-// every eta matrix), mean posterior hypotheses.
+// every eta matrix), mean posterior hypotheses, and allocations (calls of operator new per update,
+// scan included; benchmarks/allocation_counter.h).
 #include <benchmark/benchmark.h>
 
 #include <cmath>
 #include <numbers>
 #include <vector>
 
+#include "benchmarks/allocation_counter.h"
 #include "src/core/angles.h"
 #include "src/core/random.h"
 #include "src/glmb/birth.h"
@@ -96,6 +98,7 @@ void BenchmarkUpdate(benchmark::State& state) {
     births = glmb::MakeBirths(x, z, s.sensor.noise_cov, r, glmb::BirthSettings{}, k + 1, next_id);
   }
   double posterior = 0.0;
+  const std::uint64_t allocations_before = AllocationCount().load();
   for (auto _ : state) {
     const std::vector<Measurement> z = Scan(s, x, rng);
     std::uint64_t id = next_id;
@@ -107,6 +110,9 @@ void BenchmarkUpdate(benchmark::State& state) {
   state.counters["prior_hypotheses"] = static_cast<double>(prior.size());
   state.counters["births"] = static_cast<double>(births.size());
   state.counters["posterior_hypotheses"] = posterior / static_cast<double>(state.iterations());
+  state.counters["allocations"] =
+      static_cast<double>(AllocationCount().load() - allocations_before) /
+      static_cast<double>(state.iterations());
 }
 
 BENCHMARK(BenchmarkUpdate)

@@ -26,11 +26,6 @@ ProposalOutput PriorProposal(const ProposalInput& input) {
   return out;
 }
 
-/// True when the symmetric matrix p is numerically positive definite (every pivot > 0, finite).
-bool IsPositiveDefinite(const Eigen::MatrixXd& p) {
-  return LltIsPositiveDefinite(Eigen::LLT<Eigen::MatrixXd>(p));
-}
-
 /// log of the chi-square survival function for even dof = 2k:
 /// Q(x) = exp(-x/2) sum_{i<k} (x/2)^i / i!.
 double LogChiSquareSurvivalEvenDof(int k, double x) {
@@ -91,76 +86,146 @@ double EvenDofChiSquareQuantiles::operator()(int dof) {
   return by_half_dof_[half];
 }
 
+Eigen::MatrixXd JointIplResult::JointCovariance() const {
+  const auto num_pairs = static_cast<Eigen::Index>(landmark_conditional_cov.size());
+  Eigen::MatrixXd cov(3 + 2 * num_pairs, 3 + 2 * num_pairs);
+  cov.topLeftCorner<3, 3>() = pose_covariance;
+  for (Eigen::Index p = 0; p < num_pairs; ++p) {
+    const Mat23& fp = landmark_pose_coupling[p];
+    const Mat23 fp_sigma = fp * pose_covariance;
+    cov.block<2, 3>(3 + 2 * p, 0) = fp_sigma;
+    cov.block<3, 2>(0, 3 + 2 * p) = fp_sigma.transpose();
+    for (Eigen::Index q = 0; q < num_pairs; ++q) {
+      cov.block<2, 2>(3 + 2 * p, 3 + 2 * q) = fp_sigma * landmark_pose_coupling[q].transpose();
+    }
+    cov.block<2, 2>(3 + 2 * p, 3 + 2 * p) += landmark_conditional_cov[p];
+  }
+  return cov;
+}
+
+namespace {
+
+/// One landmark's terms of an arrow-structured update at one linearisation.
+struct PairTerms {
+  Mat23 hx;
+  Mat2 d_inv;      ///< D_p^-1
+  Mat23 d_inv_hx;  ///< D_p^-1 Hx_p
+  Vec2 d_inv_nu;   ///< D_p^-1 nu_p
+  Mat2 p_hmt;      ///< P_p Hm_p^T
+  Mat2 gain;       ///< G_p = P_p Hm_p^T D_p^-1
+  Vec2 nu;
+};
+
+/// D_p^-1 for the symmetrised 2x2 D_p, or nothing when D_p is not positive definite.
+std::optional<Mat2> InversePositiveDefinite2(const Mat2& d) {
+  const Eigen::LLT<Mat2> llt(d);
+  if (!LltIsPositiveDefinite(llt)) return std::nullopt;
+  return llt.solve(Mat2::Identity());
+}
+
+}  // namespace
+
 JointIplResult JointIpl(const Pose& prior_mean, const Mat3& prior_cov,
                         std::span<const IplPair> pairs, const Mat2& noise_cov,
                         const JointIplOptions& options) {
-  const int num_pairs = static_cast<int>(pairs.size());
-  const int n = 3 + 2 * num_pairs;
-  const int nz = 2 * num_pairs;
-
-  Eigen::VectorXd x0(n);
-  Eigen::MatrixXd p0 = Eigen::MatrixXd::Zero(n, n);
-  x0.head<3>() = prior_mean;
-  p0.topLeftCorner<3, 3>() = prior_cov;
-  for (int p = 0; p < num_pairs; ++p) {
-    x0.segment<2>(3 + 2 * p) = pairs[p].landmark_mean;
-    p0.block<2, 2>(3 + 2 * p, 3 + 2 * p) = pairs[p].landmark_cov;
+  const auto num_pairs = static_cast<Eigen::Index>(pairs.size());
+  const auto size = static_cast<std::size_t>(num_pairs);
+  JointIplResult lin;
+  lin.mean.resize(3 + 2 * num_pairs);
+  lin.mean.head<3>() = prior_mean;
+  lin.pose_covariance = prior_cov;
+  lin.landmark_pose_coupling.assign(size, Mat23::Zero());
+  lin.landmark_conditional_cov.resize(size);
+  for (Eigen::Index p = 0; p < num_pairs; ++p) {
+    lin.mean.segment<2>(3 + 2 * p) = pairs[p].landmark_mean;
+    lin.landmark_conditional_cov[p] = pairs[p].landmark_cov;
   }
-  JointIplResult lin{x0, p0, 0, false};
   if (num_pairs == 0) return lin;
 
-  Eigen::MatrixXd h = Eigen::MatrixXd::Zero(nz, n);
-  Eigen::VectorXd nu(nz);
-  Eigen::MatrixXd s(nz, nz);
   double nis_limit = std::numeric_limits<double>::infinity();
   if (options.nis_tail_probability > 0.0) {
+    const int nz = static_cast<int>(2 * num_pairs);
     nis_limit = options.nis_quantiles != nullptr
                     ? (*options.nis_quantiles)(nz)
                     : ChiSquareUpperQuantileEvenDof(nz, options.nis_tail_probability);
   }
+  std::vector<PairTerms> terms(size);
+  Eigen::VectorXd next_mean(lin.mean.size());
+  std::vector<Mat23> next_coupling(size);
+  std::vector<Mat2> next_conditional(size);
   for (int l = 1; l <= options.max_iterations; ++l) {
-    // Stacked linearisation at the previous joint iterate: z ~ h(lin) + H (x - lin) + r.
+    // Linearisation at the previous joint iterate: z_p ~ h(lin) + Hx_p (x - lin_x) +
+    // Hm_p (m_p - lin_p) + r, restarted from the joint prior.
     const Pose lin_pose = lin.mean.head<3>();
     const Vec3 pose_offset = prior_mean - lin_pose;
-    for (Eigen::Index p = 0; p < num_pairs; ++p) {
+    Mat3 w = Mat3::Zero();
+    Vec3 b = Vec3::Zero();
+    double nu_d_nu = 0.0;
+    bool d_failed = false;
+    for (Eigen::Index p = 0; p < num_pairs && !d_failed; ++p) {
       const Landmark lin_landmark = lin.mean.segment<2>(3 + 2 * p);
-      const auto j = models::MeasurementJacobians(lin_pose, lin_landmark);
-      h.block<2, 3>(2 * p, 0) = j.hx;
-      h.block<2, 2>(2 * p, 3 + 2 * p) = j.hm;
+      const auto pj = models::PredictWithJacobians(lin_pose, lin_landmark);
+      const IplPair& pair = pairs[p];
+      PairTerms& t = terms[p];
+      t.hx = pj.j.hx;
       // Innovation of the restart from the prior: z - (A x0 + b), b = h(lin) - A lin.
-      Vec2 r = pairs[p].z - models::PredictMeasurement(lin_pose, lin_landmark) -
-               j.hx * pose_offset - j.hm * (pairs[p].landmark_mean - lin_landmark);
-      r(1) = WrapAngle(r(1));
-      nu.segment<2>(2 * p) = r;
+      t.nu =
+          pair.z - pj.z_hat - pj.j.hx * pose_offset - pj.j.hm * (pair.landmark_mean - lin_landmark);
+      t.nu(1) = WrapAngle(t.nu(1));
+      t.p_hmt = pair.landmark_cov * pj.j.hm.transpose();
+      Mat2 d = pj.j.hm * t.p_hmt + noise_cov;
+      d = (0.5 * (d + d.transpose())).eval();
+      const std::optional<Mat2> d_inv = InversePositiveDefinite2(d);
+      if (!d_inv) {
+        d_failed = true;
+        break;
+      }
+      t.d_inv = *d_inv;
+      t.d_inv_hx = t.d_inv * t.hx;
+      t.d_inv_nu = t.d_inv * t.nu;
+      t.gain = t.p_hmt * t.d_inv;
+      w.noalias() += t.hx.transpose() * t.d_inv_hx;
+      b.noalias() += t.hx.transpose() * t.d_inv_nu;
+      nu_d_nu += t.nu.dot(t.d_inv_nu);
     }
-    // One stacked Kalman update of the dense joint prior.
-    const Eigen::MatrixXd pht = p0 * h.transpose();
-    s.noalias() = h * pht;
-    for (Eigen::Index p = 0; p < num_pairs; ++p) s.block<2, 2>(2 * p, 2 * p) += noise_cov;
-    s = (0.5 * (s + s.transpose())).eval();
-    const Eigen::LLT<Eigen::MatrixXd> s_llt(s);
-    if (s_llt.info() != Eigen::Success) {
+    if (d_failed) {
       lin.cholesky_failed = true;
       break;
     }
-    if (nu.dot(s_llt.solve(nu)) >= nis_limit) {
+    // Pose posterior: Sigma = Sigma_0 - Sigma_0 W (I + Sigma_0 W)^-1 Sigma_0, mean x0 + Sigma b.
+    const Mat3 sigma0_w = prior_cov * w;
+    Mat3 pose_cov = prior_cov - sigma0_w * (Mat3::Identity() + sigma0_w).inverse() * prior_cov;
+    pose_cov = (0.5 * (pose_cov + pose_cov.transpose())).eval();
+    const Vec3 pose_step = pose_cov * b;  // x_hat - x0 = Sigma b
+    // nu^T S^-1 nu = sum nu_p^T D_p^-1 nu_p - b^T Sigma b.
+    if (nu_d_nu - b.dot(pose_step) >= nis_limit) {
       lin.nis_stopped = true;
       break;
     }
-    const Eigen::MatrixXd gain = s_llt.solve(pht.transpose()).transpose();  // P H^T S^-1
-    Eigen::VectorXd m = x0 + gain * nu;
-    Eigen::MatrixXd cov = p0;
-    cov.noalias() -= gain * pht.transpose();
-    cov = (0.5 * (cov + cov.transpose())).eval();
-    if (!IsPositiveDefinite(cov)) {
+    bool conditional_failed = !LltIsPositiveDefinite(Eigen::LLT<Mat3>(pose_cov));
+    next_mean.head<3>() = prior_mean + pose_step;
+    for (Eigen::Index p = 0; p < num_pairs && !conditional_failed; ++p) {
+      const PairTerms& t = terms[p];
+      const IplPair& pair = pairs[p];
+      // Given x: m_p = m_p0 + G_p (nu_p - Hx_p (x - x0)), Cov = P_p - G_p Hm_p P_p.
+      next_mean.segment<2>(3 + 2 * p) = pair.landmark_mean + t.gain * (t.nu - t.hx * pose_step);
+      next_coupling[p] = -t.gain * t.hx;
+      Mat2 c = pair.landmark_cov - t.gain * t.p_hmt.transpose();
+      c = (0.5 * (c + c.transpose())).eval();
+      next_conditional[p] = c;
+      conditional_failed = !LltIsPositiveDefinite(Eigen::LLT<Mat2>(c));
+    }
+    if (conditional_failed) {
       lin.cholesky_failed = true;
       break;
     }
     const bool converged =
-        l >= 2 && KlDivergence3(lin.mean.head<3>(), lin.cov.topLeftCorner<3, 3>(), m.head<3>(),
-                                cov.topLeftCorner<3, 3>()) < options.kl_tolerance;
-    lin.mean = std::move(m);
-    lin.cov = std::move(cov);
+        l >= 2 && KlDivergence3(lin.mean.head<3>(), lin.pose_covariance, next_mean.head<3>(),
+                                pose_cov) < options.kl_tolerance;
+    lin.mean.swap(next_mean);
+    lin.pose_covariance = pose_cov;
+    lin.landmark_pose_coupling.swap(next_coupling);
+    lin.landmark_conditional_cov.swap(next_conditional);
     lin.iterations = l;
     if (converged) break;
   }

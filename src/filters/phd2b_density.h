@@ -17,8 +17,18 @@
 //  4. The proposal is the pose marginal of the result, a single Gaussian with log-weight 0, so
 //     the importance weight is (45) with one component, log N(x; mu_0, Sigma_0) - log q(x).
 //
-// The joint covariance is dense, (3 + 2M)^2, and the stacked update costs O(M^3); this is the
-// cost the PHD-SLAM 3.0 paper measures against the partitioned IPL (O(M)), so it is kept.
+// Arrow structure: the prior is blkdiag(Sigma_0, P_1, ..., P_M) and measurement p depends on the
+// pose and landmark p only, so the posterior information matrix is a pose block coupled to
+// independent 2x2 landmark blocks. Each iteration eliminates the landmarks first: given x, z_p
+// has the marginal likelihood N(Hx_p x + ..., D_p), D_p = R + Hm_p P_p Hm_p^T, independent over
+// p; the pose posterior is Sigma = Sigma_0 - Sigma_0 W (I + Sigma_0 W)^-1 Sigma_0 with
+// W = sum Hx_p^T D_p^-1 Hx_p (valid for a singular Sigma_0), mean x0 + Sigma b with
+// b = sum Hx_p^T D_p^-1 nu_p; each landmark is then the Kalman update of m_p given x (gain
+// G_p = P_p Hm_p^T D_p^-1, residual nu_p - Hx_p (x - x0)). The stacked NIS is
+// nu^T S^-1 nu = sum nu_p^T D_p^-1 nu_p - b^T Sigma b (Woodbury). A step costs O(M) instead of
+// the O(M^3) of the stacked dense update, which it equals in real arithmetic (the dense update is
+// the reference computation of validation/filters/phd2_density_test.cc). The PHD-SLAM 3.0 paper
+// times 2.0b with the dense update; this implementation is not that cost model.
 //
 // Choices where the paper leaves room:
 //  * Convergence: KL(previous || new) of the **pose marginals** below epsilon, from iteration 2,
@@ -26,7 +36,8 @@
 //    3-D test is the partitioned IPL's own, so both filters stop on the same criterion.
 //  * Cholesky test: on the **joint** covariance (it is the next linearisation density); when it
 //    is not positive definite the previous joint iterate is kept (the prior after a failure in
-//    iteration 1).
+//    iteration 1). In arrow form the joint covariance is positive definite exactly when the pose
+//    covariance and every C_p are, and the stacked S exactly when every D_p is: those are tested.
 //  * No association (empty map, empty scan, or every component assigned to its misdetection
 //    slot): the proposal is the prior N(mu_0, Sigma_0).
 //  * Innovation guard (on by default in JointIplDensity, off in JointIplOptions): the removed
@@ -85,15 +96,23 @@ struct JointIplOptions {
   EvenDofChiSquareQuantiles* nis_quantiles = nullptr;
 };
 
+/// The joint posterior of the pose x and the landmarks m_1..m_M in arrow form: x ~ N(mean[0:3],
+/// pose_cov) and, given x, independent m_p ~ N(mean_p + landmark_pose_coupling[p] (x - mean[0:3]),
+/// landmark_conditional_cov[p]). O(M) to hold; JointCovariance() assembles the dense matrix.
 struct JointIplResult {
   Eigen::VectorXd mean;  ///< [x; m_1; ...; m_M]
-  Eigen::MatrixXd cov;   ///< (3 + 2M) x (3 + 2M)
-  int iterations = 0;    ///< iterations whose result was accepted
+  Mat3 pose_covariance = Mat3::Zero();
+  std::vector<Mat23> landmark_pose_coupling;   ///< F_p = dE[m_p | x] / dx
+  std::vector<Mat2> landmark_conditional_cov;  ///< C_p = Cov(m_p | x)
+  int iterations = 0;                          ///< iterations whose result was accepted
   bool cholesky_failed = false;
   bool nis_stopped = false;  ///< stopped by the innovation guard
 
   [[nodiscard]] Pose pose_mean() const { return mean.head<3>(); }
-  [[nodiscard]] Mat3 pose_cov() const { return cov.topLeftCorner<3, 3>(); }
+  [[nodiscard]] Mat3 pose_cov() const { return pose_covariance; }
+  /// The dense (3 + 2M)^2 covariance: Cov(x, m_p) = pose_cov F_p^T,
+  /// Cov(m_p, m_q) = F_p pose_cov F_q^T + [p = q] C_p. O(M^2); for tests and diagnostics.
+  [[nodiscard]] Eigen::MatrixXd JointCovariance() const;
 };
 
 /// Joint IPL of the pose and the landmarks of `pairs` (see the file comment) from the pose prior

@@ -20,7 +20,7 @@ double LogEta(const EtaRow& row, int gamma) {
   return kNegInf;
 }
 
-double LogAssociationWeight(std::span<const EtaRow> rows, const Association& gamma) {
+double LogAssociationWeight(EtaRows rows, const Association& gamma) {
   std::vector<char> taken;
   double total = 0.0;
   for (std::size_t i = 0; i < rows.size(); ++i) {
@@ -39,7 +39,7 @@ namespace {
 
 /// Every row at its own best value; nullopt when two rows want one measurement (or a row has no
 /// allowed value). When it exists it is the optimum: each factor is at its maximum.
-std::optional<Association> RowWiseBest(std::span<const EtaRow> rows, int measurements) {
+std::optional<Association> RowWiseBest(EtaRows rows, int measurements) {
   Association gamma(rows.size());
   std::vector<char> taken(measurements, 0);
   for (std::size_t i = 0; i < rows.size(); ++i) {
@@ -63,7 +63,7 @@ std::optional<Association> RowWiseBest(std::span<const EtaRow> rows, int measure
 
 }  // namespace
 
-std::optional<Association> OptimalAssociation(std::span<const EtaRow> rows, int measurements) {
+std::optional<Association> OptimalAssociation(EtaRows rows, int measurements) {
   const int p = static_cast<int>(rows.size());
   if (p == 0) return Association{};
   if (std::optional<Association> fast = RowWiseBest(rows, measurements)) return fast;
@@ -146,7 +146,7 @@ void ResampleRow(const LinearRow& row, int n, Association& gamma, std::vector<in
 
 /// Runs the chain from `start` for samples - 1 sweeps, calling visit(gamma) on every sample.
 template <class Visit>
-void RunChain(std::span<const EtaRow> rows, int measurements, const Association& start, int samples,
+void RunChain(EtaRows rows, int measurements, const Association& start, int samples,
               RandomStream& rng, Visit&& visit) {
   visit(start);
   if (samples <= 1) return;  // the start only: no sweep, no draw
@@ -157,7 +157,7 @@ void RunChain(std::span<const EtaRow> rows, int measurements, const Association&
   }
   std::vector<LinearRow> linear;
   linear.reserve(rows.size());
-  for (const EtaRow& row : rows) linear.push_back(Linearise(row));
+  for (std::size_t i = 0; i < rows.size(); ++i) linear.push_back(Linearise(rows[i]));
   const int n_rows = static_cast<int>(rows.size());
   for (int s = 1; s < samples; ++s) {
     for (int n = 0; n < n_rows; ++n) ResampleRow(linear[n], n, gamma, owner, rng);
@@ -175,8 +175,8 @@ struct AssociationHash {
 
 }  // namespace
 
-std::vector<Association> GibbsSample(std::span<const EtaRow> rows, int measurements,
-                                     const Association& start, int samples, RandomStream& rng) {
+std::vector<Association> GibbsSample(EtaRows rows, int measurements, const Association& start,
+                                     int samples, RandomStream& rng) {
   std::vector<Association> out;
   out.reserve(std::max(1, samples));
   RunChain(rows, measurements, start, samples, rng,
@@ -184,7 +184,7 @@ std::vector<Association> GibbsSample(std::span<const EtaRow> rows, int measureme
   return out;
 }
 
-std::vector<Association> DistinctGibbsSamples(std::span<const EtaRow> rows, int measurements,
+std::vector<Association> DistinctGibbsSamples(EtaRows rows, int measurements,
                                               const Association& start, int samples,
                                               RandomStream& rng) {
   std::unordered_set<Association, AssociationHash> seen;

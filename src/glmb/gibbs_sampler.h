@@ -21,6 +21,29 @@ struct EtaRow {
   std::vector<std::pair<int, double>> detections;
 };
 
+/// The rows of one eta matrix: table[index[i]] (an empty index is a matrix without rows), or
+/// table[i] when built from the table alone. The parents of
+/// a joint problem share the rows of their common entries this way instead of copying them.
+class EtaRows {
+ public:
+  // Implicit: a plain vector or span of rows is an eta matrix.
+  EtaRows(std::span<const EtaRow> table)  // NOLINT(google-explicit-constructor)
+      : table_(table) {}
+  EtaRows(const std::vector<EtaRow>& table)  // NOLINT(google-explicit-constructor)
+      : table_(table) {}
+  EtaRows(std::span<const EtaRow> table, std::span<const int> index)
+      : table_(table), index_(index), indexed_(true) {}
+  [[nodiscard]] std::size_t size() const { return indexed_ ? index_.size() : table_.size(); }
+  [[nodiscard]] const EtaRow& operator[](std::size_t i) const {
+    return indexed_ ? table_[static_cast<std::size_t>(index_[i])] : table_[i];
+  }
+
+ private:
+  std::span<const EtaRow> table_;
+  std::span<const int> index_;
+  bool indexed_ = false;
+};
+
 /// gamma_i in {-1, 0, 1..M}: -1 dead / not born, 0 missed, j >= 1 detected by measurement j - 1.
 using Association = std::vector<int>;
 
@@ -28,25 +51,25 @@ using Association = std::vector<int>;
 double LogEta(const EtaRow& row, int gamma);
 
 /// sum_i log eta_i(gamma_i); -inf when any value is forbidden or two rows share a measurement.
-double LogAssociationWeight(std::span<const EtaRow> rows, const Association& gamma);
+double LogAssociationWeight(EtaRows rows, const Association& gamma);
 
 /// The highest-weight valid association (minimum total cost -log eta), from the linear
 /// assignment of the rows to [one private column each: the better of death and miss | the M
 /// measurements]; nullopt when none is valid (some row has no allowed value left).
-std::optional<Association> OptimalAssociation(std::span<const EtaRow> rows, int measurements);
+std::optional<Association> OptimalAssociation(EtaRows rows, int measurements);
 
 /// `samples` associations (at least 1): `start` (which must be valid) followed by samples - 1
 /// Gibbs sweeps, rows resampled in order from their conditionals given the other rows (a
 /// measurement taken by another row is excluded), conditionals shifted by their maximum before
 /// exponentiation. One uniform draw per row and sweep from `rng`.
-std::vector<Association> GibbsSample(std::span<const EtaRow> rows, int measurements,
-                                     const Association& start, int samples, RandomStream& rng);
+std::vector<Association> GibbsSample(EtaRows rows, int measurements, const Association& start,
+                                     int samples, RandomStream& rng);
 
 /// The distinct associations, in lexicographic order.
 std::vector<Association> DistinctAssociations(std::vector<Association> samples);
 
 /// DistinctAssociations(GibbsSample(...)) with the same draws, without storing repeated samples.
-std::vector<Association> DistinctGibbsSamples(std::span<const EtaRow> rows, int measurements,
+std::vector<Association> DistinctGibbsSamples(EtaRows rows, int measurements,
                                               const Association& start, int samples,
                                               RandomStream& rng);
 

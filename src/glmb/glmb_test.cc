@@ -346,12 +346,12 @@ TEST(GlmbJointUpdate, PermutingTheScanLeavesTheWeightsUnchanged) {
   const auto solve = [&](const std::vector<Measurement>& scan, std::uint64_t seed) {
     const JointProblem p =
         BuildJointProblem(Single({ta, tb}), {}, {}, kPose, scan, f.setup, f.settings);
-    const auto best = OptimalAssociation(p.parents[0].eta, p.measurements);
+    const auto best = OptimalAssociation(p.EtaOf(0), p.measurements);
     RandomStream rng(seed);
     std::uint64_t id = 10;
     const UpdateResult r =
         JointUpdate(Single({ta, tb}), {}, {}, kPose, scan, f.setup, f.settings, rng, id);
-    return std::pair(LogAssociationWeight(p.parents[0].eta, *best), r.log_normaliser);
+    return std::pair(LogAssociationWeight(p.EtaOf(0), *best), r.log_normaliser);
   };
   const auto [best1, z1] = solve(z, 5);
   std::swap(z[0], z[2]);

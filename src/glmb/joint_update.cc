@@ -65,26 +65,21 @@ JointProblem BuildJointProblem(std::span<const Hypothesis> prior, std::span<cons
     p.terms.push_back(ComputeEntryTerms(*b.track, x, measurements, setup));
     entry_existence.push_back(b.existence);
   }
-  std::vector<std::optional<EtaRow>> rows(p.entries.size());
-  auto row_of = [&](int e) -> const EtaRow& {
-    if (!rows[e])
-      rows[e] = MakeEtaRow(entry_existence[e], p.terms[e], settings.log_clutter_intensity);
-    return *rows[e];
-  };
+  p.eta.reserve(p.entries.size());
+  for (std::size_t e = 0; e < p.entries.size(); ++e) {
+    p.eta.push_back(MakeEtaRow(entry_existence[e], p.terms[e], settings.log_clutter_intensity));
+  }
   p.parents.reserve(prior.size());
   for (std::size_t h = 0; h < prior.size(); ++h) {
     JointProblem::Parent parent;
     parent.log_weight = prior[h].log_weight;
     parent.tracks = prior[h].tracks;
-    for (const int e : in_fov[h]) {
-      parent.rows.push_back(e);
-      parent.eta.push_back(row_of(e));
-    }
+    parent.rows.reserve(in_fov[h].size() + p.entries.size() - p.prior_entries);
+    parent.rows.assign(in_fov[h].begin(), in_fov[h].end());
     parent.in_fov_rows = static_cast<int>(parent.rows.size());
+    // A birth outside the FOV cannot be detected: its row still decides born / not born.
     for (int b = p.prior_entries; b < static_cast<int>(p.entries.size()); ++b) {
-      // A birth outside the FOV cannot be detected: its row still decides born / not born.
       parent.rows.push_back(b);
-      parent.eta.push_back(row_of(b));
     }
     p.parents.push_back(std::move(parent));
   }
@@ -101,21 +96,21 @@ std::vector<SampledAssociation> SampleAssociations(const JointProblem& problem,
   std::vector<SampledAssociation> out;
   for (int h = 0; h < static_cast<int>(problem.parents.size()); ++h) {
     const JointProblem::Parent& parent = problem.parents[h];
+    const EtaRows eta = problem.EtaOf(static_cast<std::size_t>(h));
     const double share = std::exp(half_log_w[h] - norm) * settings.samples;
     const int t_h = std::max(1, static_cast<int>(std::lround(share)));
     std::optional<Association> start;
     if (!settings.optimal_start) {
       start = Association(parent.rows.size(), 0);
-      if (LogAssociationWeight(parent.eta, *start) == kNegInf) start.reset();
+      if (LogAssociationWeight(eta, *start) == kNegInf) start.reset();
     }
-    if (!start) start = OptimalAssociation(parent.eta, problem.measurements);
+    if (!start) start = OptimalAssociation(eta, problem.measurements);
     if (!start) continue;
     std::vector<Association> distinct =
         t_h == 1 ? std::vector<Association>{*start}
-                 : DistinctGibbsSamples(parent.eta, problem.measurements, *start, t_h, rng);
+                 : DistinctGibbsSamples(eta, problem.measurements, *start, t_h, rng);
     for (Association& gamma : distinct) {
-      const double lw =
-          parent.log_weight + LogAssociationWeight(parent.eta, gamma) + problem.log_ck;
+      const double lw = parent.log_weight + LogAssociationWeight(eta, gamma) + problem.log_ck;
       out.push_back(SampledAssociation{h, std::move(gamma), lw});
     }
   }

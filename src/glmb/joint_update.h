@@ -37,19 +37,22 @@ struct UpdateSettings {
 struct JointProblem {
   struct Parent {
     double log_weight = 0.0;
-    std::vector<int> rows;    ///< entry indices of the in-FOV entries, then the births
-    std::vector<EtaRow> eta;  ///< aligned with rows
-    int in_fov_rows = 0;      ///< rows[0, in_fov_rows) are prior entries, in id order
+    std::vector<int> rows;  ///< entry indices of the in-FOV entries, then the births
+    int in_fov_rows = 0;    ///< rows[0, in_fov_rows) are prior entries, in id order
     std::shared_ptr<const TrackSet> tracks;  ///< the prior hypothesis' entries
   };
   /// Distinct in-FOV prior entries (first-seen order), then births; the prior's out-of-FOV
   /// entries are not here (they pass through from Parent::tracks).
   std::vector<TrackPtr> entries;
   std::vector<EntryTerms> terms;  ///< aligned with entries
+  std::vector<EtaRow> eta;        ///< aligned with entries: each entry's eta row
   int prior_entries = 0;
   std::vector<Parent> parents;
   int measurements = 0;
   double log_ck = 0.0;  ///< c_k = -Lambda + sum_j log kappa(z_j)
+
+  /// The eta matrix of parent h: the rows of its entries (parents[h].rows), shared, not copied.
+  [[nodiscard]] EtaRows EtaOf(std::size_t h) const { return {eta, parents[h].rows}; }
 };
 
 /// Builds the problem at pose x. `existence`, when not empty, holds per entry of the single

@@ -99,7 +99,7 @@ TEST(JointIpl, PoseMarginalOfOneIterationEqualsThePartitionedIpl) {
   ASSERT_EQ(joint.mean.size(), 3 + 2 * 4);
   EXPECT_LT((joint.pose_mean() - part.mean).norm(), 1e-9);
   EXPECT_LT((joint.pose_cov() - part.cov).norm(), 1e-12);
-  testing::ExpectSymmetricPositiveDefinite(joint.cov);
+  testing::ExpectSymmetricPositiveDefinite(joint.JointCovariance());
 }
 
 TEST(JointIpl, IteratesToTheStationaryPointOfTheJointPosterior) {
