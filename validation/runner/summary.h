@@ -92,6 +92,8 @@ struct GroupSummary {
   ErrorMoments step_ms;
   ErrorMoments run_ms;               ///< total wall time per run
   ErrorMoments solver_iterations;    ///< batch estimators' solver iterations, one value per run
+  std::size_t solver_runs = 0;              ///< runs that report whether their solve converged
+  std::size_t solver_unconverged_runs = 0;  ///< of those, runs whose final solve did not
   std::optional<GroupNees> nees;     ///< nullopt when no step has a NEES in every run
   std::optional<GroupNees> nees_rb;  ///< the same for the Rao-Blackwellised pose NEES
   std::optional<GroupNis> nis;       ///< nullopt when no run reports NIS
