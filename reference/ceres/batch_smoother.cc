@@ -321,36 +321,36 @@ datasets::BatchResult BatchSmoother::Solve(const datasets::Scenario& scenario) {
         io.sensor = scenario.sensor;
         io.measurement_cov = scenario.sensor.noise_cov;
         AssociatedMap map =
-            IncrementalAssociation(scenario, loose_odometry, robust.get(), incremental_settings,
-                                   io, record, &report_.association_seconds);
+            IncrementalAssociation(scenario, loose_odometry, robust.get(), incremental_settings, io,
+                                   record, &report_.association_seconds);
         association_ = std::move(map.association);
         landmarks = std::move(map.landmarks);
         poses = std::move(map.poses);
       } else {
-      // Stage 1: the sequential pass, with a smoothing solve of the steps done so far (confirmed
-      // landmarks only) every initial_pass_solve_steps steps.
-      SequentialAssociator associator(scenario, loose_increments, ao);
-      const std::size_t chunk = options_.initial_pass_solve_steps > 0
-                                    ? static_cast<std::size_t>(options_.initial_pass_solve_steps)
-                                    : scenario.steps.size();
-      for (std::size_t end = chunk; end < scenario.steps.size(); end += chunk) {
-        associator.AdvanceTo(end);
-        std::vector<int> track_ids;
-        AssociatedMap partial = associator.Confirmed(&track_ids);
+        // Stage 1: the sequential pass, with a smoothing solve of the steps done so far (confirmed
+        // landmarks only) every initial_pass_solve_steps steps.
+        SequentialAssociator associator(scenario, loose_increments, ao);
+        const std::size_t chunk = options_.initial_pass_solve_steps > 0
+                                      ? static_cast<std::size_t>(options_.initial_pass_solve_steps)
+                                      : scenario.steps.size();
+        for (std::size_t end = chunk; end < scenario.steps.size(); end += chunk) {
+          associator.AdvanceTo(end);
+          std::vector<int> track_ids;
+          AssociatedMap partial = associator.Confirmed(&track_ids);
+          report_.association_seconds += SecondsSince(t);
+          association_ = std::move(partial.association);
+          poses = std::move(partial.poses);
+          landmarks = std::move(partial.landmarks);
+          optimise(loose_odometry, robust.get(), options_.intermediate_function_tolerance);
+          t = Clock::now();
+          associator.Correct(poses, track_ids, landmarks);
+        }
+        associator.AdvanceTo(scenario.steps.size());
+        AssociatedMap map = associator.Finish();
         report_.association_seconds += SecondsSince(t);
-        association_ = std::move(partial.association);
-        poses = std::move(partial.poses);
-        landmarks = std::move(partial.landmarks);
-        optimise(loose_odometry, robust.get(), options_.intermediate_function_tolerance);
-        t = Clock::now();
-        associator.Correct(poses, track_ids, landmarks);
-      }
-      associator.AdvanceTo(scenario.steps.size());
-      AssociatedMap map = associator.Finish();
-      report_.association_seconds += SecondsSince(t);
-      association_ = std::move(map.association);
-      landmarks = std::move(map.landmarks);
-      poses = std::move(map.poses);
+        association_ = std::move(map.association);
+        landmarks = std::move(map.landmarks);
+        poses = std::move(map.poses);
       }
       for (int round = 0; round < options_.reassociation_rounds; ++round) {
         optimise(loose_odometry, robust.get(), options_.intermediate_function_tolerance);

@@ -75,8 +75,9 @@ struct SmootherOptions {
 
   // Unknown mode (README.md): solve with a robust loss, re-associate, repeat; then a final solve
   // with the squared loss on the last (gated) association.
-  /// Batch initialisation: the initial sequential association pass is interrupted every this many steps by a solve of
-  /// the steps done so far, and continues from the smoothed trajectory and map (0: never).
+  /// Batch initialisation: the initial sequential association pass is interrupted every this many
+  /// steps by a solve of the steps done so far, and continues from the smoothed trajectory and map
+  /// (0: never).
   int initial_pass_solve_steps = 200;
   int reassociation_rounds = 5;  ///< maximum solve/re-associate rounds
   /// Gate for associating a measurement and for merging landmarks: chi2 with 2 dof at 0.999.

@@ -276,7 +276,8 @@ TEST(BatchSmoother, IncrementalSolveReachesTheBatchSolution) {
   for (std::size_t m = 0; m < b.map.means.size(); ++m) {
     EXPECT_LT((i.map.means[m] - b.map.means[m]).norm(), 1e-4) << "landmark " << m;
   }
-  EXPECT_LT(PositionRmse(s, i.poses), 0.5 * PositionRmse(s, DeadReckoning(s, ScenarioOdometry(s, {}))));
+  EXPECT_LT(PositionRmse(s, i.poses),
+            0.5 * PositionRmse(s, DeadReckoning(s, ScenarioOdometry(s, {}))));
 }
 
 // A solve stopped by the iteration limit is reported as not converged.

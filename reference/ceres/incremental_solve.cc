@@ -133,8 +133,7 @@ class AssociationPass {
 
   /// The association of steps [0, end) without the deleted landmarks.
   [[nodiscard]] Association SolveAssociation(std::size_t end) const {
-    Association out(association_.begin(),
-                    association_.begin() + static_cast<std::ptrdiff_t>(end));
+    Association out(association_.begin(), association_.begin() + static_cast<std::ptrdiff_t>(end));
     for (auto& step : out) {
       for (int& a : step) {
         if (a != kUnassociated && Deleted(a)) a = kUnassociated;
@@ -152,9 +151,10 @@ class AssociationPass {
     const ceres::Solver::Summary summary = graph.Optimise(settings.solve);
     std::vector<int> near;
     NearLandmarks(poses_[end - 1], &near);
-    near.erase(std::remove_if(near.begin(), near.end(),
-                              [&](int i) { return !graph.HasLandmark(static_cast<std::size_t>(i)); }),
-               near.end());
+    near.erase(
+        std::remove_if(near.begin(), near.end(),
+                       [&](int i) { return !graph.HasLandmark(static_cast<std::size_t>(i)); }),
+        near.end());
     Mat3 px;
     std::vector<Mat2> covs;
     if (graph.NewestCovariances(near, &px, &covs)) {

@@ -32,10 +32,10 @@ TEST(ScanAssociationTest, TwoCloseLandmarksAndClutter) {
                                      {Landmark(7.52, 6.64), pm},  // 0.8 m from the first
                                      {Landmark(-20.0, 5.0), pm}};
   const std::vector<Measurement> scan{
-      {12.0, 0.1},                                             // clutter between nothing
-      Observe(x, map[1].mean, 0.05, -0.3 * kDeg),              // the second landmark
-      Observe(x, map[0].mean, -0.08, 0.4 * kDeg),              // the first
-      {5.0, -1.2},                                             // clutter
+      {12.0, 0.1},                                              // clutter between nothing
+      Observe(x, map[1].mean, 0.05, -0.3 * kDeg),               // the second landmark
+      Observe(x, map[0].mean, -0.08, 0.4 * kDeg),               // the first
+      {5.0, -1.2},                                              // clutter
       Observe(x, map[0].mean + Landmark(0.35, 0.25), 0.0, 0.0)  // clutter near the first
   };
   const ScanAssociation a = AssociateScan(x, px, map, scan, SensorNoise(), {});
@@ -82,8 +82,7 @@ TEST(ScanAssociationTest, LandmarksBeyondTheDistanceLimitAreSkipped) {
   const std::vector<Measurement> scan{Observe(x, map[0].mean, 0.0, 0.0)};
   ScanAssociationOptions o;
   o.max_landmark_distance = 25.0;
-  EXPECT_EQ(AssociateScan(x, Mat3::Zero(), map, scan, SensorNoise(), o).landmark[0],
-            kUnassociated);
+  EXPECT_EQ(AssociateScan(x, Mat3::Zero(), map, scan, SensorNoise(), o).landmark[0], kUnassociated);
   o.max_landmark_distance = 35.0;
   EXPECT_EQ(AssociateScan(x, Mat3::Zero(), map, scan, SensorNoise(), o).landmark[0], 0);
   o.gate_chi2 = 0.0;

@@ -79,7 +79,7 @@ struct RunMetrics {
   /// Batch estimators: the final solve met its tolerance (false: stopped at the iteration limit
   /// or failed, so the estimate is not a converged solution).
   std::optional<bool> solver_converged;
-  ErrorMoments step_ms;                          ///< wall time per step (online estimators)
+  ErrorMoments step_ms;  ///< wall time per step (online estimators)
   double total_ms = 0.0;
 };
 
