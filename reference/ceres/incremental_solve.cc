@@ -101,7 +101,11 @@ class AssociationPass {
     std::vector<int> ids;
     std::vector<MapLandmark> view;
     NearLandmarks(x, &ids);
-    for (int i : ids) view.push_back({landmarks_[static_cast<std::size_t>(i)], state_[i].cov});
+    view.reserve(ids.size());
+    for (int i : ids) {
+      const auto li = static_cast<std::size_t>(i);
+      view.push_back({landmarks_[li], state_[li].cov});
+    }
     const std::vector<Measurement>& zs = scenario_.steps[k].data.measurements;
     const ScanAssociation a =
         AssociateScan(x, px_, view, zs, options_.measurement_cov, options_.gate);
@@ -148,7 +152,7 @@ class AssociationPass {
     const Association partial = SolveAssociation(end);
     FactorGraph graph(scenario_, odometry, partial, loss, &poses_, &landmarks_,
                       HeldBefore(settings, end));
-    const ceres::Solver::Summary summary = graph.Optimise(settings.solve);
+    ceres::Solver::Summary summary = graph.Optimise(settings.solve);
     std::vector<int> near;
     NearLandmarks(poses_[end - 1], &near);
     near.erase(
