@@ -19,6 +19,9 @@ struct BatchResult {
   std::vector<std::optional<Mat3>> pose_covs;  ///< marginal covariances where computed
   filters::MapEstimate map;
   int iterations = 0;
+  /// Whether the final solve converged (an iterative solver; empty when not applicable). A run
+  /// whose solve did not converge carries solver_converged = false in its metrics.
+  std::optional<bool> converged;
   double solve_seconds = 0.0;
 };
 

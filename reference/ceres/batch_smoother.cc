@@ -11,9 +11,8 @@
 #include <string>
 #include <utility>
 
-#include "reference/ceres/odometry_factor.h"
-#include "reference/ceres/range_bearing_factor.h"
-#include "reference/ceres/velocity_odometry_factor.h"
+#include "reference/ceres/factor_graph.h"
+#include "reference/ceres/incremental_solve.h"
 #include "src/core/gaussian.h"
 #include "src/models/range_bearing_model.h"
 
@@ -26,6 +25,16 @@ double SecondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
+/// Landmarks farther than the sensor range plus this from the pose are not gated (m): a gate a
+/// few metres wide cannot reach them.
+constexpr double kGateDistanceMargin = 20.0;
+
+/// Ceres stopped because a tolerance was met (not the iteration limit, not a failure).
+bool SolveConverged(const ceres::Solver::Summary& summary) {
+  return summary.termination_type == ceres::CONVERGENCE ||
+         summary.termination_type == ceres::USER_SUCCESS;
+}
+
 std::unique_ptr<ceres::LossFunction> MakeLoss(const std::string& name, double scale) {
   if (name == "cauchy") return std::make_unique<ceres::CauchyLoss>(scale);
   if (name == "huber") return std::make_unique<ceres::HuberLoss>(scale);
@@ -34,12 +43,6 @@ std::unique_ptr<ceres::LossFunction> MakeLoss(const std::string& name, double sc
       "SmootherOptions.robust_loss: expected \"cauchy\", \"huber\" or "
       "\"none\", got \"" +
       name + "\"");
-}
-
-ceres::SparseLinearAlgebraLibraryType SparseLibrary() {
-  return ceres::IsSparseLinearAlgebraLibraryTypeAvailable(ceres::SUITE_SPARSE)
-             ? ceres::SUITE_SPARSE
-             : ceres::EIGEN_SPARSE;
 }
 
 /// Turns per-measurement labels (any non-negative id, negative = none) into an association with
@@ -125,158 +128,6 @@ std::vector<Mat2> PoseKnownLandmarkCovariances(const datasets::Scenario& scenari
   return covs;
 }
 
-/// How the odometry of a solve is modelled.
-struct OdometrySpec {
-  const std::vector<OdometryIncrement>* increments;  ///< pose-space increments with the floor
-  OdometryNoiseFloor floor;
-  bool control_space;  ///< VelocityOdometryFactor where it applies
-};
-
-/// The odometry factor of step k (linking pose k-1, or the anchor, to pose k).
-ceres::CostFunction* MakeOdometryCost(const datasets::Scenario& scenario, std::size_t k,
-                                      const OdometrySpec& spec) {
-  const datasets::StepData& step = scenario.steps[k].data;
-  if (spec.control_space && scenario.motion == datasets::MotionKind::kVelocity &&
-      step.controls.size() == 1 && step.times[1] > step.times[0]) {
-    return VelocityOdometryFactor::Create(step.controls[0], step.times[1] - step.times[0],
-                                          WhiteningMatrix<2>(scenario.control_noise_cov),
-                                          spec.floor.position_std);
-  }
-  const OdometryIncrement& inc = (*spec.increments)[k];
-  return OdometryFactor::Create(inc.delta, WhiteningMatrix<3>(inc.covariance));
-}
-
-/// The factor graph of one solve. Parameter blocks point into `poses` and `landmarks`, which must
-/// not be resized while the graph lives.
-class FactorGraph {
- public:
-  /// The graph of the first association.size() steps (all of `poses` when it has that many).
-  FactorGraph(const datasets::Scenario& scenario, const OdometrySpec& odometry,
-              const Association& association, ceres::LossFunction* loss, std::vector<Pose>* poses,
-              std::vector<Landmark>* landmarks)
-      : anchor_(scenario.initial_pose),
-        steps_(association.size()),
-        poses_(poses),
-        landmarks_(landmarks) {
-    ceres::Problem::Options problem_options;
-    problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
-    problem_ = std::make_unique<ceres::Problem>(problem_options);
-    if (steps_ == 0) return;
-    for (std::size_t k = 0; k < steps_; ++k) problem_->AddParameterBlock((*poses)[k].data(), 3);
-    for (Landmark& m : *landmarks) problem_->AddParameterBlock(m.data(), 2);
-
-    // Gauge: the initial pose is known exactly. Without propagation at step 0, pose 0 is that
-    // pose and is held constant; otherwise a constant anchor block holds it and step 0's
-    // odometry links the anchor to pose 0.
-    if ((*odometry.increments)[0].propagated) {
-      problem_->AddParameterBlock(anchor_.data(), 3);
-      problem_->SetParameterBlockConstant(anchor_.data());
-      problem_->AddResidualBlock(MakeOdometryCost(scenario, 0, odometry), nullptr, anchor_.data(),
-                                 (*poses)[0].data());
-    } else {
-      (*poses)[0] = scenario.initial_pose;
-      problem_->SetParameterBlockConstant((*poses)[0].data());
-      pose0_constant_ = true;
-    }
-    for (std::size_t k = 1; k < steps_; ++k) {
-      problem_->AddResidualBlock(MakeOdometryCost(scenario, k, odometry), nullptr,
-                                 (*poses)[k - 1].data(), (*poses)[k].data());
-    }
-    const Mat2 w = WhiteningMatrix<2>(scenario.sensor.noise_cov);
-    for (std::size_t k = 0; k < association.size(); ++k) {
-      for (std::size_t j = 0; j < association[k].size(); ++j) {
-        const int i = association[k][j];
-        if (i == kUnassociated) continue;
-        problem_->AddResidualBlock(
-            RangeBearingFactor::Create(scenario.steps[k].data.measurements[j], w), loss,
-            (*poses)[k].data(), (*landmarks)[static_cast<std::size_t>(i)].data());
-        ++residuals_;
-      }
-    }
-  }
-
-  ceres::Solver::Summary Optimise(const SmootherOptions& options, double function_tolerance) {
-    ceres::Solver::Options o;
-    // Sparse normal Cholesky (CHOLMOD, AMD ordering) by default: the graph is a long pose chain
-    // with ~160 landmarks each seen from hundreds of poses. Eliminating the chain leaves a small
-    // dense landmark front, while the Schur complement on the poses couples every pair of poses
-    // that see a common landmark (a band several hundred poses wide). README.md has timings.
-    o.linear_solver_type = options.linear_solver == SparseLinearSolver::kSparseSchur
-                               ? ceres::SPARSE_SCHUR
-                               : ceres::SPARSE_NORMAL_CHOLESKY;
-    o.sparse_linear_algebra_library_type = SparseLibrary();
-    if (options.linear_solver == SparseLinearSolver::kSparseSchur) {
-      auto ordering = std::make_shared<ceres::ParameterBlockOrdering>();
-      for (Landmark& m : *landmarks_) ordering->AddElementToGroup(m.data(), 0);
-      for (std::size_t k = 0; k < steps_; ++k) ordering->AddElementToGroup((*poses_)[k].data(), 1);
-      if (problem_->HasParameterBlock(anchor_.data())) {
-        ordering->AddElementToGroup(anchor_.data(), 1);
-      }
-      o.linear_solver_ordering = ordering;
-    }
-    o.max_num_iterations = options.max_iterations;
-    o.function_tolerance = function_tolerance;
-    o.num_threads = options.num_threads;
-    o.logging_type = ceres::SILENT;
-    ceres::Solver::Summary summary;
-    ceres::Solve(o, problem_.get(), &summary);
-    return summary;
-  }
-
-  /// Marginal covariances of every pose and landmark block. SPARSE_QR (SuiteSparseQR when
-  /// available) factors the Jacobian once and back-substitutes per column; DENSE_SVD would need
-  /// the dense 12,000 x 12,000 information matrix of the paper scenario.
-  bool Covariances(int num_threads, std::vector<std::optional<Mat3>>* pose_covs,
-                   std::vector<Mat2>* landmark_covs) {
-    ceres::Covariance::Options co;
-    co.algorithm_type = ceres::SPARSE_QR;
-    co.sparse_linear_algebra_library_type = SparseLibrary();
-    co.num_threads = num_threads;
-    ceres::Covariance covariance(co);
-    std::vector<std::pair<const double*, const double*>> blocks;
-    for (std::size_t k = 0; k < steps_; ++k) {
-      if (k == 0 && pose0_constant_) continue;
-      blocks.emplace_back((*poses_)[k].data(), (*poses_)[k].data());
-    }
-    for (const Landmark& m : *landmarks_) blocks.emplace_back(m.data(), m.data());
-    if (!covariance.Compute(blocks, problem_.get())) return false;
-    pose_covs->assign(steps_, std::nullopt);
-    for (std::size_t k = 0; k < steps_; ++k) {
-      if (k == 0 && pose0_constant_) {
-        (*pose_covs)[0] = Mat3::Zero();
-        continue;
-      }
-      Eigen::Matrix<double, 3, 3, Eigen::RowMajor> c;
-      if (!covariance.GetCovarianceBlock((*poses_)[k].data(), (*poses_)[k].data(), c.data())) {
-        return false;
-      }
-      Mat3 p = c;
-      Symmetrize(p);
-      (*pose_covs)[k] = p;
-    }
-    landmark_covs->clear();
-    for (const Landmark& m : *landmarks_) {
-      Eigen::Matrix<double, 2, 2, Eigen::RowMajor> c;
-      if (!covariance.GetCovarianceBlock(m.data(), m.data(), c.data())) return false;
-      Mat2 p = c;
-      Symmetrize(p);
-      landmark_covs->push_back(p);
-    }
-    return true;
-  }
-
-  [[nodiscard]] std::size_t residuals() const { return residuals_; }
-
- private:
-  Pose anchor_;
-  std::size_t steps_;
-  std::vector<Pose>* poses_;
-  std::vector<Landmark>* landmarks_;
-  std::unique_ptr<ceres::Problem> problem_;
-  bool pose0_constant_ = false;
-  std::size_t residuals_ = 0;
-};
-
 }  // namespace
 
 std::vector<OdometryIncrement> ScenarioOdometry(const datasets::Scenario& scenario,
@@ -318,6 +169,8 @@ void SmootherOptions::Validate() const {
   require(num_threads > 0, "num_threads: expected > 0");
   require(reassociation_rounds >= 0, "reassociation_rounds: expected >= 0");
   require(initial_pass_solve_steps >= 0, "initial_pass_solve_steps: expected >= 0");
+  require(incremental_chunk_steps >= 1, "incremental_chunk_steps: expected >= 1");
+  require(incremental_active_steps >= 0, "incremental_active_steps: expected >= 0");
   require(gate_chi2 > 0.0, "gate_chi2: expected > 0");
   require(min_observations >= 1, "min_observations: expected >= 1");
   require(merge_position_std >= 0.0, "merge_position_std: expected >= 0");
@@ -371,20 +224,43 @@ datasets::BatchResult BatchSmoother::Solve(const datasets::Scenario& scenario) {
 
   // Builds the graph on the current association and estimates, optimises it in place and
   // records the solve; returns the graph for the covariance step.
+  const auto settings = [&](double function_tolerance) {
+    SolveSettings st;
+    st.max_iterations = options_.max_iterations;
+    st.function_tolerance = function_tolerance;
+    st.num_threads = options_.num_threads;
+    st.linear_solver = options_.linear_solver;
+    return st;
+  };
+  // Records one solve in the report; a solve that stopped before convergence is counted.
+  const auto record = [&](const ceres::Solver::Summary& summary, double seconds) {
+    report_.optimisation_seconds += seconds;
+    report_.iterations += static_cast<int>(summary.iterations.size()) - 1;
+    ++report_.solves;
+    if (!SolveConverged(summary)) ++report_.unconverged_solves;
+    report_.initial_cost = summary.initial_cost;
+    report_.final_cost = summary.final_cost;
+    report_.converged = SolveConverged(summary);
+    report_.brief_reports.push_back(summary.BriefReport());
+  };
+  // Builds the graph on the current association and estimates, optimises it in place and
+  // records the solve; returns the graph for the covariance step.
   const auto optimise = [&](const OdometrySpec& odometry, ceres::LossFunction* loss,
                             double function_tolerance) {
     const Clock::time_point t = Clock::now();
     auto graph =
         std::make_unique<FactorGraph>(scenario, odometry, association_, loss, &poses, &landmarks);
-    const ceres::Solver::Summary summary = graph->Optimise(options_, function_tolerance);
-    report_.optimisation_seconds += SecondsSince(t);
-    report_.iterations += static_cast<int>(summary.iterations.size()) - 1;
-    ++report_.solves;
-    report_.initial_cost = summary.initial_cost;
-    report_.final_cost = summary.final_cost;
-    report_.brief_reports.push_back(summary.BriefReport());
+    const ceres::Solver::Summary summary = graph->Optimise(settings(function_tolerance));
+    record(summary, SecondsSince(t));
     return graph;
   };
+  // The incremental solve applies unless a start trajectory is given (README.md).
+  const bool incremental = options_.initialisation == SmootherInitialisation::kIncremental &&
+                           options_.initial_poses.empty();
+  IncrementalSettings incremental_settings;
+  incremental_settings.chunk_steps = static_cast<std::size_t>(options_.incremental_chunk_steps);
+  incremental_settings.active_steps = static_cast<std::size_t>(options_.incremental_active_steps);
+  incremental_settings.solve = settings(options_.intermediate_function_tolerance);
 
   ceres::LossFunction* final_loss = nullptr;
   switch (options_.association) {
@@ -393,7 +269,12 @@ datasets::BatchResult BatchSmoother::Solve(const datasets::Scenario& scenario) {
       for (const auto& step : scenario.steps) origins.push_back(step.origin);
       CheckLabelShape(scenario, origins, "known association (scenario.steps[k].origin)");
       CompactLabels(origins, &association_, &labels_);
-      landmarks = InitialLandmarks(scenario, poses, association_, labels_.size());
+      if (incremental) {
+        IncrementalSolve(scenario, loose_odometry, association_, labels_.size(), nullptr,
+                         incremental_settings, record, &poses, &landmarks);
+      } else {
+        landmarks = InitialLandmarks(scenario, poses, association_, labels_.size());
+      }
       break;
     }
     case AssociationMode::kFilter: {
@@ -413,7 +294,12 @@ datasets::BatchResult BatchSmoother::Solve(const datasets::Scenario& scenario) {
         }
       }
       CompactLabels(kept, &association_, &labels_);
-      landmarks = InitialLandmarks(scenario, poses, association_, labels_.size());
+      if (incremental) {
+        IncrementalSolve(scenario, loose_odometry, association_, labels_.size(), robust.get(),
+                         incremental_settings, record, &poses, &landmarks);
+      } else {
+        landmarks = InitialLandmarks(scenario, poses, association_, labels_.size());
+      }
       final_loss = robust.get();
       break;
     }
@@ -425,35 +311,51 @@ datasets::BatchResult BatchSmoother::Solve(const datasets::Scenario& scenario) {
       ao.min_detection_ratio = options_.min_detection_ratio;
       ao.sensor = scenario.sensor;
       ao.measurement_cov = scenario.sensor.noise_cov;
-      // Stage 1: the sequential pass, with a smoothing solve of the steps done so far (confirmed
-      // landmarks only) every initial_pass_solve_steps steps.
       Clock::time_point t = Clock::now();
-      SequentialAssociator associator(scenario, loose_increments, ao);
-      const std::size_t chunk = options_.initial_pass_solve_steps > 0
-                                    ? static_cast<std::size_t>(options_.initial_pass_solve_steps)
-                                    : scenario.steps.size();
-      for (std::size_t end = chunk; end < scenario.steps.size(); end += chunk) {
-        associator.AdvanceTo(end);
-        std::vector<int> track_ids;
-        AssociatedMap partial = associator.Confirmed(&track_ids);
+      if (incremental) {
+        // Stage 1: scan-to-map association along the incremental solve.
+        IncrementalAssociationOptions io;
+        io.gate.gate_chi2 = options_.gate_chi2;
+        io.gate.max_landmark_distance = scenario.sensor.fov_range + kGateDistanceMargin;
+        io.confirmation = {options_.min_observations, options_.min_detection_ratio};
+        io.sensor = scenario.sensor;
+        io.measurement_cov = scenario.sensor.noise_cov;
+        AssociatedMap map =
+            IncrementalAssociation(scenario, loose_odometry, robust.get(), incremental_settings, io,
+                                   record, &report_.association_seconds);
+        association_ = std::move(map.association);
+        landmarks = std::move(map.landmarks);
+        poses = std::move(map.poses);
+      } else {
+        // Stage 1: the sequential pass, with a smoothing solve of the steps done so far (confirmed
+        // landmarks only) every initial_pass_solve_steps steps.
+        SequentialAssociator associator(scenario, loose_increments, ao);
+        const std::size_t chunk = options_.initial_pass_solve_steps > 0
+                                      ? static_cast<std::size_t>(options_.initial_pass_solve_steps)
+                                      : scenario.steps.size();
+        for (std::size_t end = chunk; end < scenario.steps.size(); end += chunk) {
+          associator.AdvanceTo(end);
+          std::vector<int> track_ids;
+          AssociatedMap partial = associator.Confirmed(&track_ids);
+          report_.association_seconds += SecondsSince(t);
+          association_ = std::move(partial.association);
+          poses = std::move(partial.poses);
+          landmarks = std::move(partial.landmarks);
+          optimise(loose_odometry, robust.get(), options_.intermediate_function_tolerance);
+          t = Clock::now();
+          associator.Correct(poses, track_ids, landmarks);
+        }
+        associator.AdvanceTo(scenario.steps.size());
+        AssociatedMap map = associator.Finish();
         report_.association_seconds += SecondsSince(t);
-        association_ = std::move(partial.association);
-        poses = std::move(partial.poses);
-        landmarks = std::move(partial.landmarks);
-        optimise(loose_odometry, robust.get(), options_.intermediate_function_tolerance);
-        t = Clock::now();
-        associator.Correct(poses, track_ids, landmarks);
+        association_ = std::move(map.association);
+        landmarks = std::move(map.landmarks);
+        poses = std::move(map.poses);
       }
-      associator.AdvanceTo(scenario.steps.size());
-      AssociatedMap map = associator.Finish();
-      report_.association_seconds += SecondsSince(t);
-      association_ = std::move(map.association);
-      landmarks = std::move(map.landmarks);
-      poses = std::move(map.poses);
       for (int round = 0; round < options_.reassociation_rounds; ++round) {
         optimise(loose_odometry, robust.get(), options_.intermediate_function_tolerance);
         t = Clock::now();
-        map = Reassociate(scenario, poses, landmarks, association_, ao);
+        AssociatedMap map = Reassociate(scenario, poses, landmarks, association_, ao);
         report_.association_seconds += SecondsSince(t);
         ++report_.reassociation_rounds;
         if (map.association == association_) {
@@ -521,6 +423,7 @@ datasets::BatchResult BatchSmoother::Solve(const datasets::Scenario& scenario) {
   result.map.covs = std::move(landmark_covs);
   result.map.log_weights.assign(landmarks.size(), 0.0);
   result.iterations = report_.iterations;
+  result.converged = report_.converged;
   result.solve_seconds = SecondsSince(start);
   return result;
 }

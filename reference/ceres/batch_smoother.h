@@ -12,6 +12,7 @@
 
 #include "datasets/batch_estimator.h"
 #include "datasets/scenario.h"
+#include "reference/ceres/factor_graph.h"
 #include "reference/ceres/landmark_association.h"
 #include "reference/ceres/odometry_increment.h"
 #include "src/filters/estimator.h"
@@ -24,9 +25,15 @@ enum class AssociationMode {
   kUnknown,  ///< the smoother's own association (README.md, "Unknown association")
 };
 
-enum class SparseLinearSolver {
-  kSparseNormalCholesky,  ///< default: CHOLMOD on J^T J with a fill-reducing ordering
-  kSparseSchur,           ///< landmarks eliminated first, then a sparse Cholesky on the poses
+/// Where the linearisation points of the final solve come from (README.md, "Incremental solve").
+enum class SmootherInitialisation {
+  /// The graph is built in time order and solved as it grows (chunks of incremental_chunk_steps
+  /// steps, the newest incremental_active_steps poses optimised); the own association associates
+  /// each scan with the optimised map. Ignored when initial_poses is given.
+  kIncremental,
+  /// The whole graph from dead reckoning (or initial_poses); the own association from the
+  /// sequential EKF pass with a solve every initial_pass_solve_steps steps.
+  kBatch,
 };
 
 /// How the odometry factor is whitened (README.md, "Odometry factor").
@@ -42,6 +49,12 @@ enum class OdometryResidual {
 
 struct SmootherOptions {
   AssociationMode association = AssociationMode::kKnown;
+  SmootherInitialisation initialisation = SmootherInitialisation::kIncremental;
+  /// Incremental solve: steps added between two solves.
+  int incremental_chunk_steps = 25;
+  /// Incremental solve: the newest poses optimised in each chunk's solve, older ones held as they
+  /// stand (0: every pose). The final solve always optimises every pose.
+  int incremental_active_steps = 500;
   int max_iterations = 100;          ///< Levenberg-Marquardt iterations per solve
   double function_tolerance = 1e-9;  ///< relative cost decrease that ends the final solve
   /// Ends the solves before the final one (warm start, association), which only need to bring
@@ -62,8 +75,9 @@ struct SmootherOptions {
 
   // Unknown mode (README.md): solve with a robust loss, re-associate, repeat; then a final solve
   // with the squared loss on the last (gated) association.
-  /// The initial sequential association pass is interrupted every this many steps by a solve of
-  /// the steps done so far, and continues from the smoothed trajectory and map (0: never).
+  /// Batch initialisation: the initial sequential association pass is interrupted every this many
+  /// steps by a solve of the steps done so far, and continues from the smoothed trajectory and map
+  /// (0: never).
   int initial_pass_solve_steps = 200;
   int reassociation_rounds = 5;  ///< maximum solve/re-associate rounds
   /// Gate for associating a measurement and for merging landmarks: chi2 with 2 dof at 0.999.
@@ -111,6 +125,10 @@ struct SmootherReport {
   bool covariance_ok = false;
   std::size_t landmarks = 0;
   std::size_t associated_measurements = 0;
+  int unconverged_solves = 0;  ///< solves stopped by the iteration limit or a failure
+  /// The final solve met a tolerance (ceres CONVERGENCE); false when it stopped at
+  /// max_iterations or failed, and its estimate is then reported as not converged.
+  bool converged = false;
   double initial_cost = 0.0;               ///< of the last solve
   double final_cost = 0.0;                 ///< of the last solve
   std::vector<std::string> brief_reports;  ///< ceres::Solver::Summary::BriefReport per solve

@@ -199,17 +199,24 @@ TEST(BatchSmoother, UnknownAssociationWithoutNoiseRecoversTheTruth) {
   EXPECT_TRUE(smoother.report().association_converged);
 }
 
-TEST(BatchSmoother, UnknownAssociationWithClutterRecoversTheLandmarkCount) {
+class UnknownAssociationWithClutter : public ::testing::TestWithParam<SmootherInitialisation> {};
+
+TEST_P(UnknownAssociationWithClutter, RecoversTheLandmarkCount) {
   CircleScenarioOptions c;
   c.clutter_rate = 5.0;
   c.seed = 7;
   const datasets::Scenario s = MakeCircleScenario(c);
   SmootherOptions o;
   o.association = AssociationMode::kUnknown;
+  o.initialisation = GetParam();
   o.initial_pass_solve_steps = 25;  // exercise the intermediate solves on this short run
+  o.incremental_chunk_steps = 25;
   BatchSmoother smoother(o);
   const datasets::BatchResult r = smoother.Solve(s);
-  EXPECT_EQ(smoother.report().solves, 3 + smoother.report().reassociation_rounds + 1);
+  // 100 steps: the batch pass solves after steps 25, 50 and 75; the incremental one after every
+  // chunk of 25, the last included.
+  const int pass_solves = GetParam() == SmootherInitialisation::kBatch ? 3 : 4;
+  EXPECT_EQ(smoother.report().solves, pass_solves + smoother.report().reassociation_rounds + 1);
   // Association accuracy against the hidden labels.
   int true_pos = 0;
   int detections = 0;
@@ -236,6 +243,62 @@ TEST(BatchSmoother, UnknownAssociationWithClutterRecoversTheLandmarkCount) {
   EXPECT_LT(clutter_kept, 10);
   const double dr = PositionRmse(s, DeadReckoning(s, ScenarioOdometry(s, {})));
   EXPECT_LT(PositionRmse(s, r.poses), 0.5 * dr);
+}
+
+INSTANTIATE_TEST_SUITE_P(BatchSmoother, UnknownAssociationWithClutter,
+                         ::testing::Values(SmootherInitialisation::kIncremental,
+                                           SmootherInitialisation::kBatch));
+
+// The incremental solve ends where the batch solve from dead reckoning ends: the same graph, the
+// same minimum, whatever the linearisation points on the way.
+TEST(BatchSmoother, IncrementalSolveReachesTheBatchSolution) {
+  CircleScenarioOptions c;
+  c.steps = 120;
+  const datasets::Scenario s = MakeCircleScenario(c);
+  SmootherOptions o;
+  o.function_tolerance = 1e-14;
+  o.compute_covariances = false;
+  o.initialisation = SmootherInitialisation::kBatch;
+  BatchSmoother batch(o);
+  const datasets::BatchResult b = batch.Solve(s);
+  o.initialisation = SmootherInitialisation::kIncremental;
+  o.incremental_chunk_steps = 10;
+  o.incremental_active_steps = 30;  // older poses held during the chunk solves
+  BatchSmoother incremental(o);
+  const datasets::BatchResult i = incremental.Solve(s);
+  EXPECT_GT(incremental.report().solves, batch.report().solves + 10);  // 12 chunk solves
+  EXPECT_TRUE(incremental.report().converged);
+  ASSERT_EQ(i.poses.size(), b.poses.size());
+  for (std::size_t k = 0; k < b.poses.size(); ++k) {
+    EXPECT_LT((i.poses[k] - b.poses[k]).norm(), 1e-4) << "step " << k;
+  }
+  ASSERT_EQ(i.map.means.size(), b.map.means.size());
+  for (std::size_t m = 0; m < b.map.means.size(); ++m) {
+    EXPECT_LT((i.map.means[m] - b.map.means[m]).norm(), 1e-4) << "landmark " << m;
+  }
+  EXPECT_LT(PositionRmse(s, i.poses),
+            0.5 * PositionRmse(s, DeadReckoning(s, ScenarioOdometry(s, {}))));
+}
+
+// A solve stopped by the iteration limit is reported as not converged.
+TEST(BatchSmoother, NonConvergenceIsReported) {
+  const datasets::Scenario s = MakeCircleScenario(CircleScenarioOptions{});
+  SmootherOptions o;
+  o.compute_covariances = false;
+  BatchSmoother converging(o);
+  const datasets::BatchResult ok = converging.Solve(s);
+  ASSERT_TRUE(ok.converged);
+  EXPECT_TRUE(*ok.converged);
+  EXPECT_EQ(converging.report().unconverged_solves, 0);
+  o.initialisation = SmootherInitialisation::kBatch;
+  o.warm_start_floor = o.odometry_floor;  // no warm start: one solve from dead reckoning
+  o.max_iterations = 1;
+  BatchSmoother stopped(o);
+  const datasets::BatchResult r = stopped.Solve(s);
+  ASSERT_TRUE(r.converged);
+  EXPECT_FALSE(*r.converged);
+  EXPECT_FALSE(stopped.report().converged);
+  EXPECT_EQ(stopped.report().unconverged_solves, 1);
 }
 
 }  // namespace

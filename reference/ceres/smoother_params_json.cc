@@ -29,6 +29,16 @@ const params::ParameterTable<SmootherOptions>& SmootherOptionsTable() {
                          {AssociationMode::kUnknown, "unknown"}}),
                     "fixed by the estimator's name (smoother-known, smoother-filter, "
                     "smoother-unknown)"),
+      params::EnumField<O, SmootherInitialisation>(
+          "initialisation", [](auto& o) -> auto& { return o.initialisation; },
+          {{SmootherInitialisation::kIncremental, "incremental"},
+           {SmootherInitialisation::kBatch, "batch"}}),
+      params::IntField<O>(
+          "incremental_chunk_steps", [](auto& o) -> auto& { return o.incremental_chunk_steps; },
+          AtLeast(1)),
+      params::IntField<O>(
+          "incremental_active_steps", [](auto& o) -> auto& { return o.incremental_active_steps; },
+          AtLeast(0)),
       params::IntField<O>(
           "max_iterations", [](auto& o) -> auto& { return o.max_iterations; }, AtLeast(1)),
       params::NumberField<O>(

@@ -54,7 +54,9 @@ TEST(SmootherParamsJson, WritesEveryOptionWithItsType) {
   EXPECT_EQ(ToJson(SmootherOptions{}).dump(),
             nlohmann::json::parse(R"({"association": "known", "compute_covariances": true,
       "filter_label_distance": 2.0, "function_tolerance": 1e-09, "gate_chi2": 13.8,
-      "initial_pass_solve_steps": 200, "intermediate_function_tolerance": 1e-06,
+      "incremental_active_steps": 500, "incremental_chunk_steps": 25,
+      "initial_pass_solve_steps": 200, "initialisation": "incremental",
+      "intermediate_function_tolerance": 1e-06,
       "linear_solver": "sparse_normal_cholesky", "max_iterations": 100,
       "merge_position_std": 1.0, "min_detection_ratio": 0.3, "min_observations": 3,
       "num_threads": 1, "odometry_floor": [0.0001, 1e-05], "odometry_residual": "control_space",
@@ -77,7 +79,7 @@ void ExpectRejected(const std::string& overrides, const std::string& message_par
 
 TEST(SmootherParamsJson, RejectsBadOverridesAndLeavesTheOptionsUnchanged) {
   ExpectRejected(R"({"max_iterations": 50, "gate": 3})",
-                 "unknown parameter 'gate' (known: association, max_iterations, ");
+                 "unknown parameter 'gate' (known: association, initialisation, ");
   ExpectRejected(R"({"association": "unknown"})",
                  "parameter 'association': fixed by the estimator's name (smoother-known, "
                  "smoother-filter, smoother-unknown): expected \"known\", got \"unknown\"");
@@ -91,6 +93,10 @@ TEST(SmootherParamsJson, RejectsBadOverridesAndLeavesTheOptionsUnchanged) {
   ExpectRejected(R"({"linear_solver": "dense_qr"})", "sparse_normal_cholesky");
   ExpectRejected(R"({"robust_loss": "tukey"})", "robust_loss");
   ExpectRejected(R"({"min_observations": 0})", "min_observations");
+  ExpectRejected(R"({"initialisation": "dead_reckoning"})",
+                 "parameter 'initialisation': expected one of");
+  ExpectRejected(R"({"incremental_chunk_steps": 0})", "incremental_chunk_steps");
+  ExpectRejected(R"({"incremental_active_steps": -1})", "incremental_active_steps");
   ExpectRejected(R"({"robust_scale": 0})", "parameter 'robust_scale': must be > 0, got 0");
   ExpectRejected(R"([1, 2])", "expected an object, got [1,2]");
 }

@@ -20,6 +20,11 @@ from .comparison import (
     secondary_references,
 )
 from .csv_table import ResultsFormatError
+from .figures.filter_vs_smoother import (
+    ceiling_comparison,
+    ceiling_sentence,
+    plot_filter_vs_smoothers,
+)
 from .figures.glmb_paper import plot_mean_std_per_rate, plot_rmse_over_time
 from .figures.map_scaling import map_scaling_ratios, plot_map_scaling
 from .figures.metrics_over_time import collect_series, plot_metrics_over_time
@@ -74,8 +79,8 @@ from .tables_shared import matched_paper_tables, ours_with_se, paper_table_rows
 #: reference the particle filters' NEES is read against.
 REFERENCE_SMOOTHER = "smoother-"
 
-FOLDER_SECTIONS = ("summary", "paper-tables", "fig1", "fig2", "fig3", "nees", "scaling",
-                   "map-scaling", "parent-weights")
+FOLDER_SECTIONS = ("summary", "paper-tables", "fig1", "fig2", "fig3", "smoothers", "nees",
+                   "scaling", "map-scaling", "parent-weights")
 """Section ids of each results folder (prefixed by ``d<index>-`` when there are several)."""
 
 
@@ -291,6 +296,24 @@ class ReportBuilder:
             fig, f"{prefix}fig2-metrics-over-time.png",
             "Position error, heading error, ESS/N and map size per step: mean over runs and the "
             "5\u201395 % band over runs, per estimator and particle count."))
+
+    def smoothers_section(self, sid: str, prefix: str, folder: ResultsFolder) -> Section:
+        """A filter against the graph-optimisation smoothers: which one is the ceiling."""
+        title = "Filter against the smoothers: the ceiling"
+        comparison = ceiling_comparison(folder)
+        if comparison is None:
+            return Section(sid, title, skipped_note=(
+                "the folder needs a filter and a smoother (smoother-*, window*) with a finite "
+                "pooled position RMSE and a seed with steps.csv in common"))
+        fig = plot_filter_vs_smoothers(folder, comparison, self._name)
+        body = f"<p>{escape(ceiling_sentence(comparison, self._name))}</p>"
+        body += self._figure(
+            fig, f"{prefix}smoothers.png",
+            f"Seed {comparison.seed}: position error per step (left) and the trajectories "
+            "(right; truth in black, or the GPS fixes in grey) of the filter with the lowest "
+            "pooled position RMSE (solid) and of every smoother (dashed). The pooled RMSE over "
+            "all runs decides the ceiling.")
+        return Section(sid, title, body=body)
 
     def particles_section(self, sid: str, prefix: str, folder: ResultsFolder) -> Section:
         """Fig. 3 analogue: particle trajectories from particles.csv files, one run (the first
@@ -791,6 +814,7 @@ class ReportBuilder:
                 self.trajectory_section(f"{prefix}fig1", prefix, folder),
                 self.metrics_over_time_section(f"{prefix}fig2", prefix, folder),
                 self.particles_section(f"{prefix}fig3", prefix, folder),
+                self.smoothers_section(f"{prefix}smoothers", prefix, folder),
                 self.nees_section(f"{prefix}nees", prefix, folder),
                 self.scaling_section(f"{prefix}scaling", prefix, folder),
                 self.map_scaling_section(f"{prefix}map-scaling", prefix, folder),

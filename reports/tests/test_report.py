@@ -31,7 +31,9 @@ class FullReportTest(unittest.TestCase):
         root = Path(cls.tmp.name)
         cls.results = make_results_folder(root / "results", FixtureSpec(
             nees=True, particles_file=True, scaling=True, parent_weights=True, steps=40,
-            steps_option=4000))
+            steps_option=4000,
+            groups=(("phd3", 1), ("phd3", 10), ("odometry", 1), ("smoother-known", 1)),
+            error_scale={"odometry": 4.0, "smoother-known": 0.2}))
         cls.out = root / "report"
         cls.report = build_report([cls.results], cls.out)
         cls.html = (cls.out / "index.html").read_text(encoding="utf-8")
@@ -52,11 +54,12 @@ class FullReportTest(unittest.TestCase):
         names = sorted(p.name for p in self.report.figure_files)
         self.assertEqual(names, ["fig1-trajectory-map.png", "fig2-metrics-over-time.png",
                                  "fig3-particle-paths.png", "map-scaling.png", "nees.png",
-                                 "nis.png", "parent-weights.png", "scaling.png"])
+                                 "nis.png", "parent-weights.png", "scaling.png",
+                                 "smoothers.png"])
         for path in self.report.figure_files:
             self.assertTrue(path.read_bytes().startswith(PNG_MAGIC), path)
         embedded = re.findall(r'<img src="data:image/png;base64,([A-Za-z0-9+/=]+)"', self.html)
-        self.assertEqual(len(embedded), 8)
+        self.assertEqual(len(embedded), 9)
         for data in embedded:
             self.assertTrue(base64.b64decode(data).startswith(PNG_MAGIC))
         png_files = {p.read_bytes() for p in self.report.figure_files}
@@ -141,7 +144,7 @@ class MinimalReportTest(unittest.TestCase):
         self.assertIn("<title>Minimal</title>", self.html)
 
     def test_sections_without_data_are_skipped_with_notes(self):
-        for section_id in ("paper-tables", "fig3", "nees", "scaling", "map-scaling",
+        for section_id in ("paper-tables", "fig3", "smoothers", "nees", "scaling", "map-scaling",
                            "parent-weights", "sensitivity"):
             self.assertEqual(section_status(self.html, section_id), "skipped", section_id)
         for section_id in ("summary", "fig1", "fig2"):

@@ -219,6 +219,7 @@ RunEvaluation EvaluateRun(const RunRecord& record, const datasets::Scenario& sce
   if (record.solver_iterations) {
     ev.metrics.solver_iterations = static_cast<std::size_t>(std::max(*record.solver_iterations, 0));
   }
+  ev.metrics.solver_converged = record.solver_converged;
   return ev;
 }
 

@@ -76,7 +76,10 @@ struct RunMetrics {
   std::optional<AssociationCounts> association;
   std::optional<std::size_t> gps_matched_steps;  ///< data with GPS only
   std::optional<std::size_t> solver_iterations;  ///< batch estimators: solver iterations
-  ErrorMoments step_ms;                          ///< wall time per step (online estimators)
+  /// Batch estimators: the final solve met its tolerance (false: stopped at the iteration limit
+  /// or failed, so the estimate is not a converged solution).
+  std::optional<bool> solver_converged;
+  ErrorMoments step_ms;  ///< wall time per step (online estimators)
   double total_ms = 0.0;
 };
 

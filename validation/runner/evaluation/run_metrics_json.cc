@@ -176,6 +176,8 @@ nlohmann::json ToJson(const RunMetrics& m) {
   j["da_tnr"] = OrNull(da ? std::optional<double>(da->tnr()) : std::nullopt);
   j["gps_matched_steps"] = OrNull(m.gps_matched_steps);
   j["solver_iterations"] = OrNull(m.solver_iterations);
+  j["solver_converged"] =
+      m.solver_converged ? nlohmann::json(*m.solver_converged) : nlohmann::json(nullptr);
   j["ms_per_step_mean"] = OrNull(m.step_ms.Mean());
   j["ms_per_step_std"] = OrNull(m.step_ms.Std());
   j["ms_count"] = m.step_ms.count;
@@ -241,6 +243,14 @@ RunMetrics RunMetricsFromJson(const nlohmann::json& j, const std::string& source
   m.gps_matched_steps = r.OptionalCount("gps_matched_steps");
   // Absent in folders written before it existed.
   if (j.contains("solver_iterations")) m.solver_iterations = r.OptionalCount("solver_iterations");
+  if (j.contains("solver_converged") && !j.at("solver_converged").is_null()) {
+    if (!j.at("solver_converged").is_boolean()) {
+      throw std::runtime_error(source +
+                               ": field 'solver_converged' must be true, false or null, got " +
+                               j.at("solver_converged").dump());
+    }
+    m.solver_converged = j.at("solver_converged").get<bool>();
+  }
   m.step_ms.count = r.Count("ms_count");
   m.step_ms.sum = r.Number("ms_sum");
   m.step_ms.sum_sq = r.Number("ms_sq_sum");

@@ -37,6 +37,8 @@ struct RunRecord {
   std::vector<double> step_ms;
   /// Batch estimators: the solver's iterations (BatchResult::iterations); nullopt for online ones.
   std::optional<int> solver_iterations;
+  /// Batch estimators: whether the final solve converged (BatchResult::converged).
+  std::optional<bool> solver_converged;
   /// Wall time of the whole estimation (ms): the sum of step_ms, or the batch solve.
   double total_ms = 0.0;
   /// The map estimate after the last step.

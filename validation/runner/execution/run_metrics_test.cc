@@ -280,6 +280,9 @@ TEST(RunMetricsJson, RoundTripsTheSufficientStatistics) {
   EXPECT_TRUE(j.at("solver_iterations").is_null());
   old.erase("solver_iterations");
   EXPECT_FALSE(RunMetricsFromJson(old, "test").solver_iterations);
+  EXPECT_TRUE(j.at("solver_converged").is_null());
+  old.erase("solver_converged");
+  EXPECT_FALSE(RunMetricsFromJson(old, "test").solver_converged);
 
   nlohmann::json missing = j;
   missing.erase("pos_err_count");
@@ -298,6 +301,7 @@ class FixedBatch final : public datasets::BatchEstimator {
     r.poses.assign(poses_, Pose(1.0, 2.0, 3.0));
     r.map.means = {Landmark(5.0, 5.0)};
     r.iterations = 17;
+    r.converged = false;
     return r;
   }
 
@@ -329,6 +333,14 @@ TEST(RunEstimator, RecordsBatchResultsAndChecksTheirLength) {
   const nlohmann::json j = ToJson(ev.metrics);
   EXPECT_EQ(j.at("solver_iterations").get<int>(), 17);
   EXPECT_EQ(*RunMetricsFromJson(j, "test").solver_iterations, 17u);
+  // A solve that did not converge is reported, not silently used.
+  ASSERT_TRUE(ev.metrics.solver_converged);
+  EXPECT_FALSE(*ev.metrics.solver_converged);
+  EXPECT_FALSE(j.at("solver_converged").get<bool>());
+  EXPECT_EQ(RunMetricsFromJson(j, "test").solver_converged, std::optional<bool>(false));
+  nlohmann::json mistyped = j;
+  mistyped["solver_converged"] = "yes";
+  EXPECT_THROW(RunMetricsFromJson(mistyped, "test"), std::runtime_error);
   poses = 2;
   EXPECT_THROW(RunEstimator(entry, request, s), std::runtime_error);
 }

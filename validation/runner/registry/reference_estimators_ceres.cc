@@ -64,13 +64,19 @@ EstimatorEntry SmootherEntry(const std::string& name, reference::AssociationMode
 std::vector<EstimatorEntry> CeresEstimators() {
   return {SmootherEntry("smoother-known", reference::AssociationMode::kKnown,
                         "Ceres batch smoother (full SLAM graph) with the known association "
-                        "(reads the hidden origin labels): the graph-optimisation lower bound"),
+                        "(reads the hidden origin labels): the graph-optimisation lower bound. "
+                        "Graph built in time order and solved as it grows "
+                        "(initialisation=incremental, default) or from dead reckoning "
+                        "(initialisation=batch)"),
           SmootherEntry("smoother-filter", reference::AssociationMode::kFilter,
                         "Ceres batch smoother on the data association of a PHD-SLAM 3.0 run "
-                        "(N = 1, same seed)"),
+                        "(N = 1, same seed); initialisation=incremental|batch as smoother-known"),
           SmootherEntry("smoother-unknown", reference::AssociationMode::kUnknown,
-                        "Ceres batch smoother with its own association: robust loss and "
-                        "re-association between solves (reference/ceres/README.md)")};
+                        "Ceres batch smoother with its own association: each scan associated "
+                        "with the optimised map on marginal covariances as the graph grows "
+                        "(initialisation=incremental, default; initialisation=batch: the "
+                        "sequential EKF pass from dead reckoning), robust loss, re-association "
+                        "in a final full solve (reference/ceres/README.md)")};
 }
 
 }  // namespace phdslam::validation

@@ -207,6 +207,10 @@ const std::vector<Column<GroupSummary>>& SummaryColumns() {
                     : std::string();
        }},
       {"solver_iterations_mean", [](const G& g) { return Num(g.solver_iterations.Mean()); }},
+      {"solver_unconverged_runs",
+       [](const G& g) {
+         return g.solver_runs > 0 ? Count(g.solver_unconverged_runs) : std::string();
+       }},
       {"nees_median", [](const G& g) { return g.nees ? Num(g.nees->median) : std::string(); }},
       {"coverage", [](const G& g) { return Num(g.coverage); }},
       {"nees_rb_mean", [](const G& g) { return g.nees_rb ? Num(g.nees_rb->mean) : std::string(); }},
@@ -282,6 +286,11 @@ const std::vector<Column<RunResult>>& RunColumns() {
       {"solver_iterations",
        [](const R& r) {
          return r.metrics.solver_iterations ? Count(*r.metrics.solver_iterations) : std::string();
+       }},
+      {"solver_converged",
+       [](const R& r) {
+         if (!r.metrics.solver_converged) return std::string();
+         return std::string(*r.metrics.solver_converged ? "1" : "0");
        }},
       {"coverage",
        [](const R& r) {
@@ -497,6 +506,10 @@ std::vector<GroupSummary> SummariseGroups(const ResultsInventory& inventory) {
       g.step_ms.Merge(m.step_ms);
       g.run_ms.Add(m.total_ms);
       if (m.solver_iterations) g.solver_iterations.Add(static_cast<double>(*m.solver_iterations));
+      if (m.solver_converged) {
+        ++g.solver_runs;
+        if (!*m.solver_converged) ++g.solver_unconverged_runs;
+      }
     }
     g.steps = steps.Mean();
     g.ess_pct = StepWeightedMean(runs, &RunMetrics::ess_pct);

@@ -90,11 +90,13 @@ struct GroupSummary {
   /// Association counts summed over the runs that were scored; nullopt when none was.
   std::optional<AssociationCounts> association;
   ErrorMoments step_ms;
-  ErrorMoments run_ms;               ///< total wall time per run
-  ErrorMoments solver_iterations;    ///< batch estimators' solver iterations, one value per run
-  std::optional<GroupNees> nees;     ///< nullopt when no step has a NEES in every run
-  std::optional<GroupNees> nees_rb;  ///< the same for the Rao-Blackwellised pose NEES
-  std::optional<GroupNis> nis;       ///< nullopt when no run reports NIS
+  ErrorMoments run_ms;             ///< total wall time per run
+  ErrorMoments solver_iterations;  ///< batch estimators' solver iterations, one value per run
+  std::size_t solver_runs = 0;     ///< runs that report whether their solve converged
+  std::size_t solver_unconverged_runs = 0;  ///< of those, runs whose final solve did not
+  std::optional<GroupNees> nees;            ///< nullopt when no step has a NEES in every run
+  std::optional<GroupNees> nees_rb;         ///< the same for the Rao-Blackwellised pose NEES
+  std::optional<GroupNis> nis;              ///< nullopt when no run reports NIS
   /// Fraction of steps (pooled over the runs) whose true pose lies inside the 95 % ellipsoid of
   /// the particle-spread / Rao-Blackwellised covariance, and of GPS fixes inside the RB (x, y)
   /// ellipse; nullopt without such steps.

@@ -77,6 +77,7 @@ RunMetrics SecondRun() {
   da.fp = 1;
   m.association = da;
   m.solver_iterations = 12;
+  m.solver_converged = false;
   return m;
 }
 
@@ -205,7 +206,10 @@ TEST_F(SummaryTest, WritesSummaryAndRunsCsv) {
   EXPECT_EQ(a["da_negatives"], "4");
   // Solver iterations: the one run that has them.
   EXPECT_EQ(a["solver_iterations_mean"], "12");
+  // ... and its final solve did not converge: counted, not hidden.
+  EXPECT_EQ(a["solver_unconverged_runs"], "1");
   auto b = Row(summary, 1);
+  EXPECT_EQ(b["solver_unconverged_runs"], "");
   EXPECT_EQ(b["da_tpr"], "");
   EXPECT_EQ(b["da_positives"], "");
   EXPECT_EQ(b["estimator"], "b");
@@ -228,6 +232,8 @@ TEST_F(SummaryTest, WritesSummaryAndRunsCsv) {
   EXPECT_EQ(Row(runs, 1)["da_tnr"], "0.75");
   EXPECT_EQ(Row(runs, 1)["solver_iterations"], "12");
   EXPECT_EQ(r1["solver_iterations"], "");
+  EXPECT_EQ(Row(runs, 1)["solver_converged"], "0");
+  EXPECT_EQ(r1["solver_converged"], "");
   auto r3 = Row(runs, 2);
   EXPECT_EQ(r3["estimator"], "b");
   EXPECT_EQ(r3["gospa_m"], "");

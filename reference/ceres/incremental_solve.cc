@@ -1,0 +1,277 @@
+#include "reference/ceres/incremental_solve.h"
+
+#include <Eigen/LU>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <utility>
+
+#include "src/core/gaussian.h"
+#include "src/models/range_bearing_model.h"
+
+namespace phdslam::reference {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double SecondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+/// Pose k predicted from pose k-1 (or the initial pose) by step k's odometry.
+Pose PredictPose(const datasets::Scenario& scenario, const std::vector<OdometryIncrement>& inc,
+                 const std::vector<Pose>& poses, std::size_t k) {
+  const Pose base = k == 0 ? scenario.initial_pose : poses[k - 1];
+  return inc[k].propagated ? ComposeRelative(base, inc[k].delta) : base;
+}
+
+/// Covariance of x (+) d given that of x (px) and d's (in the frame of x).
+Mat3 PropagatePoseCovariance(const Pose& x, const OdometryIncrement& inc, const Mat3& px) {
+  if (!inc.propagated) return px;
+  const double c = std::cos(x(2));
+  const double s = std::sin(x(2));
+  Mat3 jx = Mat3::Identity();
+  jx(0, 2) = -s * inc.delta(0) - c * inc.delta(1);
+  jx(1, 2) = c * inc.delta(0) - s * inc.delta(1);
+  Mat3 jd = Mat3::Identity();
+  jd.topLeftCorner<2, 2>() << c, -s, s, c;
+  Mat3 p = jx * px * jx.transpose() + jd * inc.covariance * jd.transpose();
+  Symmetrize(p);
+  return p;
+}
+
+/// The steps [0, end) of the graph, chunk by chunk: held_before for the chunk ending at `end`.
+std::size_t HeldBefore(const IncrementalSettings& settings, std::size_t end) {
+  return settings.active_steps > 0 && end > settings.active_steps ? end - settings.active_steps : 0;
+}
+
+void Validate(const IncrementalSettings& settings) {
+  if (settings.chunk_steps == 0) {
+    throw std::invalid_argument("IncrementalSettings.chunk_steps: expected >= 1");
+  }
+}
+
+/// A landmark of the own-association pass.
+struct PassLandmark {
+  Mat2 cov;
+  LandmarkSupport support;
+  LandmarkStatus status = LandmarkStatus::kTentative;
+};
+
+/// Landmark started at the inverse model of z from (x, px): covariance from R and the pose.
+Mat2 StartCovariance(const Pose& x, const Mat3& px, const Measurement& z, const Mat2& r) {
+  const double a = x(2) + z(1);
+  Eigen::Matrix<double, 2, 3> jx;
+  jx << 1.0, 0.0, -z(0) * std::sin(a), 0.0, 1.0, z(0) * std::cos(a);
+  Mat2 p = models::BirthCovariance(x, z, r) + jx * px * jx.transpose();
+  Symmetrize(p);
+  return p;
+}
+
+/// EKF update of a tentative landmark (m, p) by z taken at (x, px), the pose not updated.
+void UpdateTentative(const Pose& x, const Mat3& px, const Measurement& z, const Mat2& r,
+                     Landmark* m, Mat2* p) {
+  if ((*m - x.head<2>()).squaredNorm() < 1e-18) return;
+  const models::PredictionWithJacobians h = models::PredictWithJacobians(x, *m);
+  const Mat2 s = h.j.hm * (*p) * h.j.hm.transpose() + h.j.hx * px * h.j.hx.transpose() + r;
+  const Mat2 k = (*p) * h.j.hm.transpose() * s.inverse();
+  *m += k * Vec2(z(0) - h.z_hat(0), WrapAngle(z(1) - h.z_hat(1)));
+  *p = (Mat2::Identity() - k * h.j.hm) * (*p);
+  Symmetrize(*p);
+}
+
+/// State of the own-association pass.
+class AssociationPass {
+ public:
+  AssociationPass(const datasets::Scenario& scenario, const OdometrySpec& odometry,
+                  const IncrementalAssociationOptions& options)
+      : scenario_(scenario), increments_(*odometry.increments), options_(options) {
+    poses_.assign(scenario.steps.size(), Pose::Zero());
+    for (const auto& step : scenario.steps) {
+      association_.emplace_back(step.data.measurements.size(), kUnassociated);
+    }
+  }
+
+  /// Predicts, associates and starts landmarks for step k.
+  void Step(std::size_t k) {
+    px_ = PropagatePoseCovariance(k == 0 ? scenario_.initial_pose : poses_[k - 1], increments_[k],
+                                  px_);
+    poses_[k] = PredictPose(scenario_, increments_, poses_, k);
+    const Pose& x = poses_[k];
+    std::vector<int> ids;
+    std::vector<MapLandmark> view;
+    NearLandmarks(x, &ids);
+    view.reserve(ids.size());
+    for (int i : ids) {
+      const auto li = static_cast<std::size_t>(i);
+      view.push_back({landmarks_[li], state_[li].cov});
+    }
+    const std::vector<Measurement>& zs = scenario_.steps[k].data.measurements;
+    const ScanAssociation a =
+        AssociateScan(x, px_, view, zs, options_.measurement_cov, options_.gate);
+    const Mat2& r = options_.measurement_cov;
+    for (std::size_t j = 0; j < zs.size(); ++j) {
+      if (a.landmark[j] != kUnassociated) {
+        const int id = ids[static_cast<std::size_t>(a.landmark[j])];
+        PassLandmark& l = state_[static_cast<std::size_t>(id)];
+        ++l.support.detections;
+        if (l.status == LandmarkStatus::kTentative) {
+          UpdateTentative(x, px_, zs[j], r, &landmarks_[static_cast<std::size_t>(id)], &l.cov);
+        }
+        association_[k][j] = id;
+      } else {
+        association_[k][j] = static_cast<int>(landmarks_.size());
+        ids.push_back(association_[k][j]);
+        landmarks_.push_back(models::InverseMeasurement(x, zs[j]));
+        state_.push_back({StartCovariance(x, px_, zs[j], r), {1, 0.0}});
+        ++born_;
+      }
+    }
+    for (int i : ids) {
+      PassLandmark& l = state_[static_cast<std::size_t>(i)];
+      l.support.expected +=
+          options_.sensor.DetectionProbability(x, landmarks_[static_cast<std::size_t>(i)]);
+      l.status = ClassifyLandmark(l.support, options_.confirmation);
+    }
+  }
+
+  /// The association of steps [0, end) without the deleted landmarks.
+  [[nodiscard]] Association SolveAssociation(std::size_t end) const {
+    Association out(association_.begin(), association_.begin() + static_cast<std::ptrdiff_t>(end));
+    for (auto& step : out) {
+      for (int& a : step) {
+        if (a != kUnassociated && Deleted(a)) a = kUnassociated;
+      }
+    }
+    return out;
+  }
+
+  /// Solves steps [0, end) and refreshes the marginals used by the gate.
+  ceres::Solver::Summary Solve(std::size_t end, const OdometrySpec& odometry,
+                               ceres::LossFunction* loss, const IncrementalSettings& settings) {
+    const Association partial = SolveAssociation(end);
+    FactorGraph graph(scenario_, odometry, partial, loss, &poses_, &landmarks_,
+                      HeldBefore(settings, end));
+    ceres::Solver::Summary summary = graph.Optimise(settings.solve);
+    std::vector<int> near;
+    NearLandmarks(poses_[end - 1], &near);
+    near.erase(
+        std::remove_if(near.begin(), near.end(),
+                       [&](int i) { return !graph.HasLandmark(static_cast<std::size_t>(i)); }),
+        near.end());
+    Mat3 px;
+    std::vector<Mat2> covs;
+    if (graph.NewestCovariances(near, &px, &covs)) {
+      px_ = px;
+      for (std::size_t n = 0; n < near.size(); ++n) {
+        state_[static_cast<std::size_t>(near[n])].cov = covs[n];
+      }
+    }
+    return summary;
+  }
+
+  /// The confirmed landmarks, renumbered in order of creation.
+  [[nodiscard]] AssociatedMap Confirmed() const {
+    AssociatedMap out;
+    std::vector<int> index(landmarks_.size(), kUnassociated);
+    for (std::size_t i = 0; i < landmarks_.size(); ++i) {
+      if (state_[i].status != LandmarkStatus::kConfirmed) continue;
+      index[i] = static_cast<int>(out.landmarks.size());
+      out.landmarks.push_back(landmarks_[i]);
+    }
+    out.association = association_;
+    for (auto& step : out.association) {
+      for (int& a : step) {
+        if (a != kUnassociated) a = index[static_cast<std::size_t>(a)];
+      }
+    }
+    out.poses = poses_;
+    out.born = born_;
+    out.dropped = static_cast<int>(landmarks_.size() - out.landmarks.size());
+    return out;
+  }
+
+ private:
+  [[nodiscard]] bool Deleted(int i) const {
+    return state_[static_cast<std::size_t>(i)].status == LandmarkStatus::kDeleted;
+  }
+
+  /// Live landmarks within the gate's distance limit of x (all live ones when it is 0).
+  void NearLandmarks(const Pose& x, std::vector<int>* out) const {
+    out->clear();
+    const double limit = options_.gate.max_landmark_distance;
+    for (std::size_t i = 0; i < landmarks_.size(); ++i) {
+      if (state_[i].status == LandmarkStatus::kDeleted) continue;
+      if (limit > 0.0 && (landmarks_[i] - x.head<2>()).squaredNorm() > limit * limit) continue;
+      out->push_back(static_cast<int>(i));
+    }
+  }
+
+  const datasets::Scenario& scenario_;
+  const std::vector<OdometryIncrement>& increments_;
+  IncrementalAssociationOptions options_;
+  std::vector<Pose> poses_;
+  std::vector<Landmark> landmarks_;
+  std::vector<PassLandmark> state_;
+  Association association_;
+  Mat3 px_ = Mat3::Zero();
+  int born_ = 0;
+};
+
+}  // namespace
+
+void IncrementalSolve(const datasets::Scenario& scenario, const OdometrySpec& odometry,
+                      const Association& association, std::size_t landmark_count,
+                      ceres::LossFunction* loss, const IncrementalSettings& settings,
+                      const SolveObserver& observer, std::vector<Pose>* poses,
+                      std::vector<Landmark>* landmarks) {
+  Validate(settings);
+  const std::size_t steps = association.size();
+  poses->assign(steps, Pose::Zero());
+  landmarks->assign(landmark_count, Landmark::Zero());
+  std::vector<bool> started(landmark_count, false);
+  for (std::size_t done = 0; done < steps;) {
+    const std::size_t end = std::min(steps, done + settings.chunk_steps);
+    for (std::size_t k = done; k < end; ++k) {
+      (*poses)[k] = PredictPose(scenario, *odometry.increments, *poses, k);
+      for (std::size_t j = 0; j < association[k].size(); ++j) {
+        const int i = association[k][j];
+        if (i == kUnassociated || started[static_cast<std::size_t>(i)]) continue;
+        (*landmarks)[static_cast<std::size_t>(i)] =
+            models::InverseMeasurement((*poses)[k], scenario.steps[k].data.measurements[j]);
+        started[static_cast<std::size_t>(i)] = true;
+      }
+    }
+    const Association partial(association.begin(),
+                              association.begin() + static_cast<std::ptrdiff_t>(end));
+    const Clock::time_point t = Clock::now();
+    FactorGraph graph(scenario, odometry, partial, loss, poses, landmarks,
+                      HeldBefore(settings, end));
+    const ceres::Solver::Summary summary = graph.Optimise(settings.solve);
+    if (observer) observer(summary, SecondsSince(t));
+    done = end;
+  }
+}
+
+AssociatedMap IncrementalAssociation(const datasets::Scenario& scenario,
+                                     const OdometrySpec& odometry, ceres::LossFunction* loss,
+                                     const IncrementalSettings& settings,
+                                     const IncrementalAssociationOptions& options,
+                                     const SolveObserver& observer, double* association_seconds) {
+  Validate(settings);
+  AssociationPass pass(scenario, odometry, options);
+  const std::size_t steps = scenario.steps.size();
+  for (std::size_t done = 0; done < steps;) {
+    const std::size_t end = std::min(steps, done + settings.chunk_steps);
+    Clock::time_point t = Clock::now();
+    for (std::size_t k = done; k < end; ++k) pass.Step(k);
+    if (association_seconds != nullptr) *association_seconds += SecondsSince(t);
+    t = Clock::now();
+    const ceres::Solver::Summary summary = pass.Solve(end, odometry, loss, settings);
+    if (observer) observer(summary, SecondsSince(t));
+    done = end;
+  }
+  return pass.Confirmed();
+}
+
+}  // namespace phdslam::reference

@@ -1,0 +1,61 @@
+// The incremental solve (README.md, "Incremental solve"): the graph is built in time order and
+// optimised as it grows, so that every linearisation point comes from an optimised past rather
+// than from dead reckoning. Every chunk_steps steps the new poses are predicted from the newest
+// optimised pose by the odometry, new landmarks are started from those poses, and the newest
+// active_steps poses (all when 0) are optimised with the older ones held as they stand.
+//
+// With the smoother's own association each scan is first associated with the current optimised
+// map (scan_association.h), gated on the marginal covariances of the newest optimised pose
+// (propagated by the odometry since) and of the landmarks, both from the last chunk's solve and
+// conditional on the held poses; landmarks are confirmed by repeated association and deleted when
+// they fall below the detection ratio.
+#pragma once
+
+#include <ceres/ceres.h>
+
+#include <functional>
+#include <vector>
+
+#include "datasets/scenario.h"
+#include "reference/ceres/factor_graph.h"
+#include "reference/ceres/landmark_association.h"
+#include "reference/ceres/scan_association.h"
+
+namespace phdslam::reference {
+
+struct IncrementalSettings {
+  std::size_t chunk_steps = 25;    ///< steps added between two solves (>= 1)
+  std::size_t active_steps = 500;  ///< newest poses optimised per solve; 0: all
+  SolveSettings solve;             ///< settings of each chunk's solve
+};
+
+/// Called after every chunk solve with its summary and wall time.
+using SolveObserver = std::function<void(const ceres::Solver::Summary&, double seconds)>;
+
+/// Known or filter association: the poses and the `landmark_count` landmarks of `association`
+/// estimated chunk by chunk. `odometry.increments` give the predictions. `poses` and `landmarks`
+/// are resized to one per step and one per landmark (a landmark never observed stays at zero).
+void IncrementalSolve(const datasets::Scenario& scenario, const OdometrySpec& odometry,
+                      const Association& association, std::size_t landmark_count,
+                      ceres::LossFunction* loss, const IncrementalSettings& settings,
+                      const SolveObserver& observer, std::vector<Pose>* poses,
+                      std::vector<Landmark>* landmarks);
+
+struct IncrementalAssociationOptions {
+  ScanAssociationOptions gate;
+  ConfirmationOptions confirmation;
+  models::SensorModel sensor;               ///< FOV and pD for the expected detections
+  Mat2 measurement_cov = Mat2::Identity();  ///< R
+};
+
+/// Own association: scan-to-map association, confirmation and deletion along the incremental
+/// solve (robust `loss` in every chunk solve). Returns the confirmed landmarks (renumbered
+/// 0..n-1 in order of creation) with the association and the poses of the last chunk solve.
+/// `association_seconds` accumulates the time spent outside the solves.
+AssociatedMap IncrementalAssociation(const datasets::Scenario& scenario,
+                                     const OdometrySpec& odometry, ceres::LossFunction* loss,
+                                     const IncrementalSettings& settings,
+                                     const IncrementalAssociationOptions& options,
+                                     const SolveObserver& observer, double* association_seconds);
+
+}  // namespace phdslam::reference

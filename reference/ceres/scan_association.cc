@@ -1,0 +1,85 @@
+#include "reference/ceres/scan_association.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "src/core/angles.h"
+#include "src/core/gaussian.h"
+#include "src/models/range_bearing_model.h"
+
+namespace phdslam::reference {
+namespace {
+
+struct Pair {
+  int measurement;
+  int landmark;
+  double d2;
+};
+
+/// Candidate (measurement, landmark) pairs inside the gate.
+std::vector<Pair> GatedPairs(const Pose& pose, const Mat3& pose_cov,
+                             const std::vector<MapLandmark>& map,
+                             const std::vector<Measurement>& scan, const Mat2& r,
+                             const ScanAssociationOptions& options) {
+  std::vector<Pair> pairs;
+  const double max_d2 = options.max_landmark_distance * options.max_landmark_distance;
+  for (std::size_t i = 0; i < map.size(); ++i) {
+    const Landmark& m = map[i].mean;
+    const double q = (m - pose.head<2>()).squaredNorm();
+    if (q < 1e-18) continue;  // bearing undefined
+    if (options.max_landmark_distance > 0.0 && q > max_d2) continue;
+    const models::PredictionWithJacobians p = models::PredictWithJacobians(pose, m);
+    Mat2 s = p.j.hm * map[i].cov * p.j.hm.transpose() + p.j.hx * pose_cov * p.j.hx.transpose() + r;
+    Symmetrize(s);
+    for (std::size_t j = 0; j < scan.size(); ++j) {
+      const Vec2 nu(scan[j](0) - p.z_hat(0), WrapAngle(scan[j](1) - p.z_hat(1)));
+      const double d2 = EvalGaussian2(nu, s).mahalanobis2;
+      if (std::isfinite(d2) && d2 >= 0.0 && d2 < options.gate_chi2) {
+        pairs.push_back({static_cast<int>(j), static_cast<int>(i), d2});
+      }
+    }
+  }
+  return pairs;
+}
+
+}  // namespace
+
+ScanAssociation AssociateScan(const Pose& pose, const Mat3& pose_cov,
+                              const std::vector<MapLandmark>& map,
+                              const std::vector<Measurement>& scan, const Mat2& measurement_cov,
+                              const ScanAssociationOptions& options) {
+  if (!(options.gate_chi2 > 0.0)) {
+    throw std::invalid_argument("ScanAssociationOptions.gate_chi2: expected > 0");
+  }
+  std::vector<Pair> pairs = GatedPairs(pose, pose_cov, map, scan, measurement_cov, options);
+  std::sort(pairs.begin(), pairs.end(), [](const Pair& a, const Pair& b) {
+    if (a.d2 != b.d2) return a.d2 < b.d2;
+    if (a.measurement != b.measurement) return a.measurement < b.measurement;
+    return a.landmark < b.landmark;
+  });
+  ScanAssociation out;
+  out.landmark.assign(scan.size(), kUnassociated);
+  out.mahalanobis2.assign(scan.size(), 0.0);
+  std::vector<bool> used(map.size(), false);
+  for (const Pair& p : pairs) {
+    const auto j = static_cast<std::size_t>(p.measurement);
+    const auto i = static_cast<std::size_t>(p.landmark);
+    if (out.landmark[j] != kUnassociated || used[i]) continue;
+    out.landmark[j] = p.landmark;
+    out.mahalanobis2[j] = p.d2;
+    used[i] = true;
+  }
+  return out;
+}
+
+LandmarkStatus ClassifyLandmark(const LandmarkSupport& support,
+                                const ConfirmationOptions& options) {
+  if (static_cast<double>(support.detections) < options.min_detection_ratio * support.expected) {
+    return LandmarkStatus::kDeleted;
+  }
+  return support.detections >= options.min_observations ? LandmarkStatus::kConfirmed
+                                                        : LandmarkStatus::kTentative;
+}
+
+}  // namespace phdslam::reference

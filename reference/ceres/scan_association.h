@@ -1,0 +1,71 @@
+// Scan-to-map data association for graph optimisation run in time order (the incremental batch
+// smoother, README.md "Incremental solve"; usable by any smoother that keeps an optimised map).
+//
+// * Gating: measurement z at the pose (x, Px) against a map landmark (m, Pm), both with their
+//   marginal covariances: nu = [z_r - h_r; wrap(z_phi - h_phi)],
+//   S = Hx Px Hx^T + Hm Pm Hm^T + R, accepted when nu^T S^-1 nu < gate_chi2 (strict). The
+//   pose-landmark cross-covariance is left out, which makes S larger (more conservative) for a
+//   landmark seen recently from a pose correlated with the current one.
+// * Assignment: gated nearest neighbour over the whole scan (greedy global nearest neighbour):
+//   candidate pairs in increasing Mahalanobis distance, ties broken by measurement then landmark
+//   index, each measurement and each landmark used at most once. The solver then applies a robust
+//   loss to the associated measurements, which absorbs the occasional wrong pair.
+// * Confirmation: a landmark started from an unassociated measurement is tentative until it has
+//   been associated at least min_observations times and in at least min_detection_ratio of the
+//   scans the sensor model expects it in (sum of pD along the poses so far); it is deleted as soon
+//   as its detections fall below that fraction of the expected ones.
+#pragma once
+
+#include <vector>
+
+#include "reference/ceres/landmark_association.h"
+#include "src/core/types.h"
+
+namespace phdslam::reference {
+
+/// A map landmark as the association sees it: its mean and marginal covariance.
+struct MapLandmark {
+  Landmark mean = Landmark::Zero();
+  Mat2 cov = Mat2::Identity();
+};
+
+struct ScanAssociationOptions {
+  double gate_chi2 = 13.8;  ///< squared Mahalanobis gate (2 dof; 13.8 = 0.999)
+  /// Landmarks farther than this from the pose are skipped before gating (m); <= 0: none
+  /// skipped. Set it to the sensor range plus a few gate widths.
+  double max_landmark_distance = 0.0;
+};
+
+/// Per measurement of the scan: the map index (kUnassociated when no landmark passed the gate or
+/// the nearest one went to a closer measurement) and the squared Mahalanobis distance (0 when
+/// unassociated).
+struct ScanAssociation {
+  std::vector<int> landmark;
+  std::vector<double> mahalanobis2;
+};
+
+/// Associates one scan with the map. Throws std::invalid_argument when gate_chi2 <= 0.
+ScanAssociation AssociateScan(const Pose& pose, const Mat3& pose_cov,
+                              const std::vector<MapLandmark>& map,
+                              const std::vector<Measurement>& scan, const Mat2& measurement_cov,
+                              const ScanAssociationOptions& options);
+
+/// Rule that confirms and deletes landmarks started from unassociated measurements.
+struct ConfirmationOptions {
+  int min_observations = 3;
+  double min_detection_ratio = 0.3;
+};
+
+enum class LandmarkStatus { kTentative, kConfirmed, kDeleted };
+
+/// A landmark's support so far: the scans it was associated in and the detections expected.
+struct LandmarkSupport {
+  int detections = 0;
+  double expected = 0.0;  ///< sum of pD over the scans since its start (its own first included)
+};
+
+/// kDeleted when detections < min_detection_ratio * expected; otherwise kConfirmed when
+/// detections >= min_observations, else kTentative.
+LandmarkStatus ClassifyLandmark(const LandmarkSupport& support, const ConfirmationOptions& options);
+
+}  // namespace phdslam::reference

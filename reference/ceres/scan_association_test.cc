@@ -1,0 +1,103 @@
+#include "reference/ceres/scan_association.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <vector>
+
+#include "src/models/range_bearing_model.h"
+
+namespace phdslam::reference {
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+
+Mat2 SensorNoise() { return Vec2(0.1 * 0.1, (0.5 * kDeg) * (0.5 * kDeg)).asDiagonal(); }
+
+/// A measurement of `m` from `x` shifted by (dr, dphi).
+Measurement Observe(const Pose& x, const Landmark& m, double dr, double dphi) {
+  const Measurement z = models::PredictMeasurement(x, m);
+  return {z(0) + dr, z(1) + dphi};
+}
+
+/// Two landmarks 0.8 m apart at 10 m (about 4.6 bearing standard deviations), a third far away,
+/// and clutter: each detection goes to its own landmark, the clutter to none.
+TEST(ScanAssociationTest, TwoCloseLandmarksAndClutter) {
+  const Pose x(0.0, 0.0, 0.3);
+  const Mat3 px = Vec3(1e-4, 1e-4, 1e-6).asDiagonal();
+  const Mat2 pm = 0.01 * 0.01 * Mat2::Identity();
+  const std::vector<MapLandmark> map{{Landmark(8.0, 6.0), pm},
+                                     {Landmark(7.52, 6.64), pm},  // 0.8 m from the first
+                                     {Landmark(-20.0, 5.0), pm}};
+  const std::vector<Measurement> scan{
+      {12.0, 0.1},                                              // clutter between nothing
+      Observe(x, map[1].mean, 0.05, -0.3 * kDeg),               // the second landmark
+      Observe(x, map[0].mean, -0.08, 0.4 * kDeg),               // the first
+      {5.0, -1.2},                                              // clutter
+      Observe(x, map[0].mean + Landmark(0.35, 0.25), 0.0, 0.0)  // clutter near the first
+  };
+  const ScanAssociation a = AssociateScan(x, px, map, scan, SensorNoise(), {});
+  ASSERT_EQ(a.landmark.size(), scan.size());
+  EXPECT_EQ(a.landmark[0], kUnassociated);
+  EXPECT_EQ(a.landmark[1], 1);
+  EXPECT_EQ(a.landmark[2], 0);
+  EXPECT_EQ(a.landmark[3], kUnassociated);
+  EXPECT_EQ(a.landmark[4], kUnassociated);
+  EXPECT_GT(a.mahalanobis2[1], 0.0);
+  EXPECT_LT(a.mahalanobis2[1], 13.8);
+  EXPECT_EQ(a.mahalanobis2[0], 0.0);
+}
+
+/// Two detections inside one landmark's gate: the nearer one gets it, the other none.
+TEST(ScanAssociationTest, EachLandmarkAtMostOncePerScan) {
+  const Pose x(1.0, 2.0, -0.4);
+  const std::vector<MapLandmark> map{{Landmark(11.0, 2.0), 0.01 * Mat2::Identity()}};
+  const std::vector<Measurement> scan{Observe(x, map[0].mean, 0.2, 0.0),
+                                      Observe(x, map[0].mean, 0.05, 0.0)};
+  const ScanAssociation a = AssociateScan(x, Mat3::Zero(), map, scan, SensorNoise(), {});
+  EXPECT_EQ(a.landmark[0], kUnassociated);
+  EXPECT_EQ(a.landmark[1], 0);
+}
+
+/// The gate widens with the marginal pose covariance: a detection 2 m off in range fails it for a
+/// well-known pose and passes it for a pose known to +-2 m.
+TEST(ScanAssociationTest, GateUsesThePoseCovariance) {
+  const Pose x(0.0, 0.0, 0.0);
+  const std::vector<MapLandmark> map{{Landmark(20.0, 0.0), 1e-4 * Mat2::Identity()}};
+  const std::vector<Measurement> scan{Observe(x, map[0].mean, 2.0, 0.0)};
+  const Mat3 tight = Vec3(1e-4, 1e-4, 1e-6).asDiagonal();
+  const Mat3 loose = Vec3(4.0, 4.0, 1e-6).asDiagonal();
+  EXPECT_EQ(AssociateScan(x, tight, map, scan, SensorNoise(), {}).landmark[0], kUnassociated);
+  EXPECT_EQ(AssociateScan(x, loose, map, scan, SensorNoise(), {}).landmark[0], 0);
+  // ... and with the landmark's: the same detection against a landmark known to +-2 m.
+  const std::vector<MapLandmark> vague{{Landmark(20.0, 0.0), 4.0 * Mat2::Identity()}};
+  EXPECT_EQ(AssociateScan(x, tight, vague, scan, SensorNoise(), {}).landmark[0], 0);
+}
+
+TEST(ScanAssociationTest, LandmarksBeyondTheDistanceLimitAreSkipped) {
+  const Pose x(0.0, 0.0, 0.0);
+  const std::vector<MapLandmark> map{{Landmark(30.0, 0.0), 1e-4 * Mat2::Identity()}};
+  const std::vector<Measurement> scan{Observe(x, map[0].mean, 0.0, 0.0)};
+  ScanAssociationOptions o;
+  o.max_landmark_distance = 25.0;
+  EXPECT_EQ(AssociateScan(x, Mat3::Zero(), map, scan, SensorNoise(), o).landmark[0], kUnassociated);
+  o.max_landmark_distance = 35.0;
+  EXPECT_EQ(AssociateScan(x, Mat3::Zero(), map, scan, SensorNoise(), o).landmark[0], 0);
+  o.gate_chi2 = 0.0;
+  EXPECT_THROW(AssociateScan(x, Mat3::Zero(), map, scan, SensorNoise(), o), std::invalid_argument);
+}
+
+TEST(ScanAssociationTest, ConfirmationByRepeatedAssociation) {
+  const ConfirmationOptions o{3, 0.3};
+  EXPECT_EQ(ClassifyLandmark({1, 0.9}, o), LandmarkStatus::kTentative);
+  EXPECT_EQ(ClassifyLandmark({2, 2.7}, o), LandmarkStatus::kTentative);
+  EXPECT_EQ(ClassifyLandmark({3, 3.0}, o), LandmarkStatus::kConfirmed);
+  // Clutter that fell into a gate twice in the ten scans expected to see it.
+  EXPECT_EQ(ClassifyLandmark({2, 9.0}, o), LandmarkStatus::kDeleted);
+  EXPECT_EQ(ClassifyLandmark({3, 10.1}, o), LandmarkStatus::kDeleted);
+}
+
+}  // namespace
+}  // namespace phdslam::reference
