@@ -49,7 +49,7 @@ enum class OdometryResidual {
 
 struct SmootherOptions {
   AssociationMode association = AssociationMode::kKnown;
-  SmootherInitialisation initialisation = SmootherInitialisation::kIncremental;
+  SmootherInitialisation initialisation = SmootherInitialisation::kBatch;
   /// Incremental solve: steps added between two solves.
   int incremental_chunk_steps = 25;
   /// Incremental solve: the newest poses optimised in each chunk's solve, older ones held as they

@@ -55,7 +55,7 @@ TEST(SmootherParamsJson, WritesEveryOptionWithItsType) {
             nlohmann::json::parse(R"({"association": "known", "compute_covariances": true,
       "filter_label_distance": 2.0, "function_tolerance": 1e-09, "gate_chi2": 13.8,
       "incremental_active_steps": 500, "incremental_chunk_steps": 25,
-      "initial_pass_solve_steps": 200, "initialisation": "incremental",
+      "initial_pass_solve_steps": 200, "initialisation": "batch",
       "intermediate_function_tolerance": 1e-06,
       "linear_solver": "sparse_normal_cholesky", "max_iterations": 100,
       "merge_position_std": 1.0, "min_detection_ratio": 0.3, "min_observations": 3,

@@ -65,17 +65,17 @@ std::vector<EstimatorEntry> CeresEstimators() {
   return {SmootherEntry("smoother-known", reference::AssociationMode::kKnown,
                         "Ceres batch smoother (full SLAM graph) with the known association "
                         "(reads the hidden origin labels): the graph-optimisation lower bound. "
-                        "Graph built in time order and solved as it grows "
-                        "(initialisation=incremental, default) or from dead reckoning "
-                        "(initialisation=batch)"),
+                        "Graph solved from dead reckoning (initialisation=batch, default) or "
+                        "built in time order and solved as it grows "
+                        "(initialisation=incremental)"),
           SmootherEntry("smoother-filter", reference::AssociationMode::kFilter,
                         "Ceres batch smoother on the data association of a PHD-SLAM 3.0 run "
-                        "(N = 1, same seed); initialisation=incremental|batch as smoother-known"),
+                        "(N = 1, same seed); initialisation=batch|incremental as smoother-known"),
           SmootherEntry("smoother-unknown", reference::AssociationMode::kUnknown,
                         "Ceres batch smoother with its own association: each scan associated "
-                        "with the optimised map on marginal covariances as the graph grows "
-                        "(initialisation=incremental, default; initialisation=batch: the "
-                        "sequential EKF pass from dead reckoning), robust loss, re-association "
+                        "in a sequential EKF pass from dead reckoning (initialisation=batch, "
+                        "default) or with the optimised map on marginal covariances as the "
+                        "graph grows (initialisation=incremental), robust loss, re-association "
                         "in a final full solve (reference/ceres/README.md)")};
 }
 
