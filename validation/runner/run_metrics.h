@@ -76,6 +76,11 @@ struct RunMetrics {
   std::optional<AssociationCounts> association;
   std::optional<std::size_t> gps_matched_steps;  ///< data with GPS only
   std::optional<std::size_t> solver_iterations;  ///< batch estimators: solver iterations
+  /// Online graph optimisers (filters::SolveCounter): solves run, and those that ended without
+  /// convergence (reference/ceres/README.md says what is kept of them); nullopt for other
+  /// estimators.
+  std::optional<std::size_t> solves;
+  std::optional<std::size_t> unconverged_solves;
   ErrorMoments step_ms;                          ///< wall time per step (online estimators)
   double total_ms = 0.0;
 };

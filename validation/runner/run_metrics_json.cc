@@ -176,6 +176,8 @@ nlohmann::json ToJson(const RunMetrics& m) {
   j["da_tnr"] = OrNull(da ? std::optional<double>(da->tnr()) : std::nullopt);
   j["gps_matched_steps"] = OrNull(m.gps_matched_steps);
   j["solver_iterations"] = OrNull(m.solver_iterations);
+  j["solves"] = OrNull(m.solves);
+  j["unconverged_solves"] = OrNull(m.unconverged_solves);
   j["ms_per_step_mean"] = OrNull(m.step_ms.Mean());
   j["ms_per_step_std"] = OrNull(m.step_ms.Std());
   j["ms_count"] = m.step_ms.count;
@@ -241,6 +243,8 @@ RunMetrics RunMetricsFromJson(const nlohmann::json& j, const std::string& source
   m.gps_matched_steps = r.OptionalCount("gps_matched_steps");
   // Absent in folders written before it existed.
   if (j.contains("solver_iterations")) m.solver_iterations = r.OptionalCount("solver_iterations");
+  if (j.contains("solves")) m.solves = r.OptionalCount("solves");
+  if (j.contains("unconverged_solves")) m.unconverged_solves = r.OptionalCount("unconverged_solves");
   m.step_ms.count = r.Count("ms_count");
   m.step_ms.sum = r.Number("ms_sum");
   m.step_ms.sum_sq = r.Number("ms_sq_sum");

@@ -9,6 +9,7 @@
 
 #include "src/core/types.h"
 #include "src/filters/estimator.h"
+#include "src/filters/solve_counter.h"
 
 namespace phdslam::validation {
 
@@ -37,6 +38,8 @@ struct RunRecord {
   std::vector<double> step_ms;
   /// Batch estimators: the solver's iterations (BatchResult::iterations); nullopt for online ones.
   std::optional<int> solver_iterations;
+  /// Online estimators that solve (filters::SolveCounter): their solves after the last step.
+  std::optional<filters::SolveCounts> solves;
   /// Wall time of the whole estimation (ms): the sum of step_ms, or the batch solve.
   double total_ms = 0.0;
   /// The map estimate after the last step.
