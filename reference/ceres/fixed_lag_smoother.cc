@@ -80,9 +80,8 @@ FixedLagSmoother::FixedLagSmoother(filters::EstimatorContext context, WindowPara
 }
 
 void FixedLagSmoother::AddPose(const StepData& step) {
-  const OdometryIncrement inc = ComposeStepOdometry(*context_.motion, step,
-                                                    context_.control_noise_cov,
-                                                    params_.odometry_floor);
+  const OdometryIncrement inc = ComposeStepOdometry(
+      *context_.motion, step, context_.control_noise_cov, params_.odometry_floor);
   WindowPose p;
   p.step = step_index_;
   if (step_index_ == 0 && !inc.propagated) {
@@ -104,9 +103,8 @@ void FixedLagSmoother::AddPose(const StepData& step) {
     cost = OdometryFactor::Create(inc.delta, WhiteningMatrix<3>(inc.covariance));
   }
   poses_.push_back(std::move(p));
-  poses_.back().odometry =
-      GraphFactor{std::shared_ptr<ceres::CostFunction>(cost), nullptr,
-                  {previous, poses_.back().x.data()}};
+  poses_.back().odometry = GraphFactor{
+      std::shared_ptr<ceres::CostFunction>(cost), nullptr, {previous, poses_.back().x.data()}};
 }
 
 void FixedLagSmoother::Observe(WindowPose& pose, int label, std::size_t j, const Measurement& z) {
@@ -129,9 +127,10 @@ void FixedLagSmoother::Observe(WindowPose& pose, int label, std::size_t j, const
     } catch (const std::invalid_argument&) {
       prior = GaussianPrior(lm.mean.data(), lm.mean, cov + 1e-9 * Mat2::Identity());
     }
-    lm.reentry_prior = GraphFactor{
-        std::shared_ptr<ceres::CostFunction>(LinearPriorFactor::Create(prior)), nullptr,
-        {lm.mean.data()}};
+    lm.reentry_prior =
+        GraphFactor{std::shared_ptr<ceres::CostFunction>(LinearPriorFactor::Create(prior)),
+                    nullptr,
+                    {lm.mean.data()}};
   }
   WindowLandmark& lm = it->second;
   ++lm.detections;
@@ -175,9 +174,8 @@ std::vector<int> FixedLagSmoother::OwnAssociation(const StepData& step) {
     }
     candidates.push_back(c);
   }
-  std::vector<int> labels =
-      GatedNearestNeighbour(newest.x, pose_cov, step.measurements, candidates,
-                            context_.sensor.noise_cov, params_.gate_chi2);
+  std::vector<int> labels = GatedNearestNeighbour(newest.x, pose_cov, step.measurements, candidates,
+                                                  context_.sensor.noise_cov, params_.gate_chi2);
   for (int& l : labels) {
     if (l < 0) l = next_label_++;
   }
@@ -187,7 +185,8 @@ std::vector<int> FixedLagSmoother::OwnAssociation(const StepData& step) {
 void FixedLagSmoother::AddObservations(const StepData& step, filters::StepOutput& out) {
   std::vector<int> labels;
   if (params_.known_association) {
-    if (step_index_ >= origins_.size() || origins_[step_index_].size() != step.measurements.size()) {
+    if (step_index_ >= origins_.size() ||
+        origins_[step_index_].size() != step.measurements.size()) {
       throw std::invalid_argument("FixedLagSmoother: step " + std::to_string(step_index_) +
                                   " has no origin label for every measurement");
     }
@@ -307,6 +306,7 @@ void FixedLagSmoother::MarginaliseOldest() {
   }
   const std::set<const double*> constant = ConstantBlocks();
   std::vector<double*> leaving_blocks;
+  leaving_blocks.reserve(leaving.size());
   for (int label : leaving) leaving_blocks.push_back(landmarks_.at(label).mean.data());
   std::vector<Eigen::MatrixXd> covs;
   if (!leaving_blocks.empty()) {

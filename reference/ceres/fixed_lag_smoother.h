@@ -34,8 +34,8 @@ struct WindowParams {
   bool known_association = true;
   /// Poses kept in the window after each solve (>= 1, at most the run's length).
   int window_length = 20;
-  int solve_every = 1;  ///< steps between solves (>= 1); the window holds up to
-                        ///< window_length + solve_every - 1 poses before a solve
+  int solve_every = 1;               ///< steps between solves (>= 1); the window holds up to
+                                     ///< window_length + solve_every - 1 poses before a solve
   int max_iterations = 10;           ///< Levenberg-Marquardt iterations per solve
   double function_tolerance = 1e-6;  ///< relative cost decrease that ends a solve
   OdometryResidual odometry_residual = OdometryResidual::kControlSpace;

@@ -31,11 +31,12 @@ struct WindowRun {
 };
 
 WindowRun RunWindow(const datasets::Scenario& s, const WindowParams& p) {
-  FixedLagSmoother smoother(s.PublicContext(), p, p.known_association ? Origins(s)
-                                                                      : std::vector<std::vector<int>>{},
+  FixedLagSmoother smoother(s.PublicContext(), p,
+                            p.known_association ? Origins(s) : std::vector<std::vector<int>>{},
                             s.steps.size());
   WindowRun r;
-  for (const datasets::ScenarioStep& step : s.steps) r.filtered.push_back(smoother.Step(step.data).pose);
+  for (const datasets::ScenarioStep& step : s.steps)
+    r.filtered.push_back(smoother.Step(step.data).pose);
   r.window = smoother.WindowPoses();
   r.map = smoother.Map();
   r.report = smoother.report();

@@ -22,8 +22,7 @@ LinearPrior GaussianPrior(double* block, const Eigen::VectorXd& mean, const Eige
   p.blocks = {block};
   p.linearization_points = {mean};
   const Eigen::MatrixXd l = llt.matrixL();
-  p.a = l.triangularView<Eigen::Lower>().solve(
-      Eigen::MatrixXd::Identity(mean.size(), mean.size()));
+  p.a = l.triangularView<Eigen::Lower>().solve(Eigen::MatrixXd::Identity(mean.size(), mean.size()));
   p.b = Eigen::VectorXd::Zero(mean.size());
   return p;
 }

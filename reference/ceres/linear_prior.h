@@ -17,10 +17,10 @@
 namespace phdslam::reference {
 
 struct LinearPrior {
-  std::vector<double*> blocks;                          ///< the parameter blocks it constrains
-  std::vector<Eigen::VectorXd> linearization_points;    ///< xbar_i, one per block
-  Eigen::MatrixXd a;                                    ///< rows x sum of the block sizes
-  Eigen::VectorXd b;                                    ///< rows
+  std::vector<double*> blocks;                        ///< the parameter blocks it constrains
+  std::vector<Eigen::VectorXd> linearization_points;  ///< xbar_i, one per block
+  Eigen::MatrixXd a;                                  ///< rows x sum of the block sizes
+  Eigen::VectorXd b;                                  ///< rows
 
   [[nodiscard]] int Dimension() const { return static_cast<int>(a.cols()); }
   [[nodiscard]] bool Empty() const { return a.rows() == 0; }

@@ -117,12 +117,12 @@ LinearPrior Marginalize(const std::vector<const GraphFactor*>& factors,
     if (gone.count(block) == 0 && constant.count(block) == 0) order.push_back(block);
   }
   const DenseSystem s = Linearize(factors, order, fixed_points);
-  const int nm = first_kept == order.size() ? static_cast<int>(s.g.size())
-                                            : s.offsets[first_kept];
+  const int nm = first_kept == order.size() ? static_cast<int>(s.g.size()) : s.offsets[first_kept];
   const int nk = static_cast<int>(s.g.size()) - nm;
   LinearPrior prior;
   if (nk == 0) return prior;
-  const Eigen::MatrixXd hmm_inv = PseudoInverse(s.h.topLeftCorner(nm, nm), kRelativeEigenvalueFloor);
+  const Eigen::MatrixXd hmm_inv =
+      PseudoInverse(s.h.topLeftCorner(nm, nm), kRelativeEigenvalueFloor);
   const Eigen::MatrixXd hkm = s.h.bottomLeftCorner(nk, nm);
   Eigen::MatrixXd hs = s.h.bottomRightCorner(nk, nk) - hkm * hmm_inv * hkm.transpose();
   hs = 0.5 * (hs + hs.transpose()).eval();

@@ -123,18 +123,20 @@ TEST_F(LinearChain, MarginalisedPriorGivesTheBatchSolutionAndMarginal) {
   EXPECT_GE(prior.IndexOf(x_[2].data()), 0);
   EXPECT_GE(prior.IndexOf(x_[4].data()), 0);
   EXPECT_EQ(prior.IndexOf(x_[0].data()), -1);
-  EXPECT_TRUE(prior.linearization_points[static_cast<std::size_t>(prior.IndexOf(x_[4].data()))]
-                  .isApprox(Eigen::Vector2d(7.0, -3.0)));
+  EXPECT_TRUE(
+      prior.linearization_points[static_cast<std::size_t>(prior.IndexOf(x_[4].data()))].isApprox(
+          Eigen::Vector2d(7.0, -3.0)));
 
   GraphFactor prior_factor{std::shared_ptr<ceres::CostFunction>(LinearPriorFactor::Create(prior)),
                            nullptr, prior.blocks};
   std::vector<const GraphFactor*> reduced = Touching(gone, false);
   reduced.push_back(&prior_factor);
   const Solution window = SolveLinear(reduced, kept);
-  EXPECT_TRUE(window.x.isApprox(batch.x.tail(8), 1e-10))
-      << window.x.transpose() << "\n" << batch.x.tail(8).transpose();
+  EXPECT_TRUE(window.x.isApprox(batch.x.tail(8), 1e-10)) << window.x.transpose() << "\n"
+                                                         << batch.x.tail(8).transpose();
   EXPECT_TRUE(window.cov.isApprox(batch.cov.bottomRightCorner(8, 8), 1e-10))
-      << window.cov << "\n\n" << batch.cov.bottomRightCorner(8, 8);
+      << window.cov << "\n\n"
+      << batch.cov.bottomRightCorner(8, 8);
 }
 
 TEST_F(LinearChain, MarginalCovariancesAreTheBlocksOfTheInverse) {
@@ -149,7 +151,8 @@ TEST_F(LinearChain, MarginalCovariancesAreTheBlocksOfTheInverse) {
   EXPECT_TRUE(covs[0].isApprox(batch.cov.block(2, 2, 2, 2), 1e-10));
   EXPECT_TRUE(covs[1].isApprox(batch.cov.block(8, 8, 2, 2), 1e-10));
   // A constant block is not estimated: holding x_0 removes its uncertainty from x_1's.
-  const std::vector<Eigen::MatrixXd> fixed0 = MarginalCovariances(all, {x_[0].data()}, {x_[1].data()});
+  const std::vector<Eigen::MatrixXd> fixed0 =
+      MarginalCovariances(all, {x_[0].data()}, {x_[1].data()});
   ASSERT_EQ(fixed0.size(), 1u);
   EXPECT_LT(fixed0[0].trace(), covs[0].trace());
 }

@@ -12,9 +12,9 @@ const params::ParameterTable<WindowParams>& WindowParamsTable() {
   using P = WindowParams;
   using F = OdometryNoiseFloor;
   static const params::ParameterTable<P> table({
-      params::Fixed(params::EnumField<P, bool>(
-                        "association", [](auto& p) -> auto& { return p.known_association; },
-                        {{true, "known"}, {false, "unknown"}}),
+      params::Fixed(params::EnumField<P, bool>("association",
+                                               [](auto& p) -> auto& { return p.known_association; },
+                                               {{true, "known"}, {false, "unknown"}}),
                     "fixed by the estimator's name (window-known, window)"),
       // Bounded below here; the run's length bounds it above when the run is built.
       params::IntField<P>(
@@ -24,8 +24,7 @@ const params::ParameterTable<WindowParams>& WindowParamsTable() {
       params::IntField<P>(
           "max_iterations", [](auto& p) -> auto& { return p.max_iterations; }, AtLeast(1)),
       params::NumberField<P>(
-          "function_tolerance", [](auto& p) -> auto& { return p.function_tolerance; },
-          Above(0.0)),
+          "function_tolerance", [](auto& p) -> auto& { return p.function_tolerance; }, Above(0.0)),
       params::EnumField<P, OdometryResidual>("odometry_residual",
                                              [](auto& p) -> auto& { return p.odometry_residual; },
                                              {{OdometryResidual::kControlSpace, "control_space"},
@@ -36,8 +35,7 @@ const params::ParameterTable<WindowParams>& WindowParamsTable() {
       params::NumberField<P>(
           "gate_chi2", [](auto& p) -> auto& { return p.gate_chi2; }, Above(0.0)),
       params::IntField<P>(
-          "confirm_detections", [](auto& p) -> auto& { return p.confirm_detections; },
-          AtLeast(1)),
+          "confirm_detections", [](auto& p) -> auto& { return p.confirm_detections; }, AtLeast(1)),
       // "cauchy", "huber" or "none": checked by WindowParams::Validate().
       params::StringField<P>(
           "robust_loss", [](auto& p) -> auto& { return p.robust_loss; }),

@@ -5,8 +5,8 @@
 
 #include "oracle/oracle_rbpf.h"
 #include "reference/ceres/batch_smoother.h"
-#include "reference/ceres/fixed_lag_smoother.h"
 #include "reference/ceres/filter_association.h"
+#include "reference/ceres/fixed_lag_smoother.h"
 #include "reference/ceres/smoother_params_json.h"
 #include "reference/ceres/window_params_json.h"
 #include "src/filters/phd_slam_family.h"
@@ -98,16 +98,16 @@ EstimatorEntry WindowEntry(const std::string& name, bool known, const std::strin
         [](const EstimatorRequest& r,
            const datasets::Scenario& with_truth) -> std::unique_ptr<filters::OnlineEstimator> {
       const reference::WindowParams p = ResolveWindow(r, true, with_truth.steps.size());
-      return std::make_unique<reference::FixedLagSmoother>(
-          with_truth.PublicContext(), p, oracle::ScenarioOrigins(with_truth),
-          with_truth.steps.size());
+      return std::make_unique<reference::FixedLagSmoother>(with_truth.PublicContext(), p,
+                                                           oracle::ScenarioOrigins(with_truth),
+                                                           with_truth.steps.size());
     };
   } else {
     e.make_online = [](const EstimatorRequest& r) -> std::unique_ptr<filters::OnlineEstimator> {
       const reference::WindowParams p = ResolveWindow(r, false, r.steps);
       const filters::EstimatorContext& context = RequireContext(r);
-      return std::make_unique<reference::FixedLagSmoother>(context, p,
-                                                           std::vector<std::vector<int>>{}, r.steps);
+      return std::make_unique<reference::FixedLagSmoother>(
+          context, p, std::vector<std::vector<int>>{}, r.steps);
     };
   }
   return e;

@@ -218,7 +218,8 @@ RunEvaluation EvaluateRun(const RunRecord& record, const datasets::Scenario& sce
   ev.metrics.total_ms = record.total_ms;
   if (record.solves) {
     ev.metrics.solves = static_cast<std::size_t>(std::max(record.solves->solves, 0));
-    ev.metrics.unconverged_solves = static_cast<std::size_t>(std::max(record.solves->unconverged, 0));
+    ev.metrics.unconverged_solves =
+        static_cast<std::size_t>(std::max(record.solves->unconverged, 0));
   }
   if (record.solver_iterations) {
     ev.metrics.solver_iterations = static_cast<std::size_t>(std::max(*record.solver_iterations, 0));

@@ -81,7 +81,7 @@ struct RunMetrics {
   /// estimators.
   std::optional<std::size_t> solves;
   std::optional<std::size_t> unconverged_solves;
-  ErrorMoments step_ms;                          ///< wall time per step (online estimators)
+  ErrorMoments step_ms;  ///< wall time per step (online estimators)
   double total_ms = 0.0;
 };
 

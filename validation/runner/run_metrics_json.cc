@@ -244,7 +244,8 @@ RunMetrics RunMetricsFromJson(const nlohmann::json& j, const std::string& source
   // Absent in folders written before it existed.
   if (j.contains("solver_iterations")) m.solver_iterations = r.OptionalCount("solver_iterations");
   if (j.contains("solves")) m.solves = r.OptionalCount("solves");
-  if (j.contains("unconverged_solves")) m.unconverged_solves = r.OptionalCount("unconverged_solves");
+  if (j.contains("unconverged_solves"))
+    m.unconverged_solves = r.OptionalCount("unconverged_solves");
   m.step_ms.count = r.Count("ms_count");
   m.step_ms.sum = r.Number("ms_sum");
   m.step_ms.sum_sq = r.Number("ms_sq_sum");

@@ -306,8 +306,7 @@ const std::vector<Column<RunResult>>& RunColumns() {
        }},
       {"unconverged_solves",
        [](const R& r) {
-         return r.metrics.unconverged_solves ? Count(*r.metrics.unconverged_solves)
-                                             : std::string();
+         return r.metrics.unconverged_solves ? Count(*r.metrics.unconverged_solves) : std::string();
        }},
   };
   return columns;
