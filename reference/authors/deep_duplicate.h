@@ -13,41 +13,43 @@
 
 #include "mex.h"
 
-static mxArray *phdslam_deep_duplicate(const mxArray *in) {
+static mxArray* phdslam_deep_duplicate(const mxArray* in) {
   if (in == NULL) return NULL;
   const mwSize ndim = mxGetNumberOfDimensions(in);
-  const mwSize *dims = mxGetDimensions(in);
+  const mwSize* dims = mxGetDimensions(in);
   const size_t count = mxGetNumberOfElements(in);
   if (mxIsStruct(in)) {
     const int nfields = mxGetNumberOfFields(in);
-    const char **names = (const char **)mxMalloc((size_t)(nfields > 0 ? nfields : 1) * sizeof(char *));
+    const char** names =
+        (const char**)mxMalloc((size_t)(nfields > 0 ? nfields : 1) * sizeof(char*));
     for (int f = 0; f < nfields; ++f) names[f] = mxGetFieldNameByNumber(in, f);
-    mxArray *out = mxCreateStructArray(ndim, dims, nfields, names);
-    mxFree((void *)names);
+    mxArray* out = mxCreateStructArray(ndim, dims, nfields, names);
+    mxFree((void*)names);
     for (size_t i = 0; i < count; ++i) {
       for (int f = 0; f < nfields; ++f) {
-        const mxArray *field = mxGetFieldByNumber(in, (mwIndex)i, f);
+        const mxArray* field = mxGetFieldByNumber(in, (mwIndex)i, f);
         if (field != NULL) mxSetFieldByNumber(out, (mwIndex)i, f, phdslam_deep_duplicate(field));
       }
     }
     return out;
   }
   if (mxIsCell(in)) {
-    mxArray *out = mxCreateCellArray(ndim, dims);
+    mxArray* out = mxCreateCellArray(ndim, dims);
     for (size_t i = 0; i < count; ++i) {
-      const mxArray *cell = mxGetCell(in, (mwIndex)i);
+      const mxArray* cell = mxGetCell(in, (mwIndex)i);
       if (cell != NULL) mxSetCell(out, (mwIndex)i, phdslam_deep_duplicate(cell));
     }
     return out;
   }
   if (mxIsNumeric(in) || mxIsLogical(in) || mxIsChar(in)) {
-    mxArray *out = NULL;
+    mxArray* out = NULL;
     if (mxIsLogical(in)) {
       out = mxCreateLogicalArray(ndim, dims);
     } else if (mxIsChar(in)) {
       out = mxCreateCharArray(ndim, dims);
     } else {
-      out = mxCreateNumericArray(ndim, dims, mxGetClassID(in), mxIsComplex(in) ? mxCOMPLEX : mxREAL);
+      out =
+          mxCreateNumericArray(ndim, dims, mxGetClassID(in), mxIsComplex(in) ? mxCOMPLEX : mxREAL);
     }
     const size_t bytes = count * mxGetElementSize(in) * (mxIsComplex(in) ? 2 : 1);
     if (bytes > 0) memcpy(mxGetData(out), mxGetData(in), bytes);
