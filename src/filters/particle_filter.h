@@ -34,7 +34,10 @@
 //     their EKF/IPL conditional, for PHD-SLAM 1.0 (the prior as proposal) the predicted Gaussian;
 //   - NIS of the estimate's particle (StepDiagnostics::nis_sum / nis_count) when Model::Update
 //     takes a filters::InnovationStats& as fifth argument.
-// Every random number comes from the one stream seeded by the constructor.
+// Every random number comes from the one stream seeded by the constructor, or, when draws are
+// replayed (ReplayDraws, src/core/draw_replay.h), from a recording tagged by step, particle and
+// purpose. A StepObserver (SetObserver) sees each particle's prediction, proposal and sample, its
+// state after the update and the resampling sources, for step-by-step comparisons.
 #pragma once
 
 #include <cmath>
@@ -45,6 +48,7 @@
 #include <utility>
 #include <vector>
 
+#include "src/core/draw_replay.h"
 #include "src/core/gaussian.h"
 #include "src/core/random.h"
 #include "src/core/step_data.h"
@@ -75,6 +79,22 @@ template <class Model>
 concept ReportsInnovations = requires(const Model& m, typename Model::Map& map, const Pose& x,
                                       const StepData& step, double& w, InnovationStats& nis) {
   m.Update(map, x, step, w, nis);
+};
+
+/// Sees the inside of every step (ParticleFilter::SetObserver); no effect on the filter.
+template <class ParticleType>
+class StepObserver {
+ public:
+  virtual ~StepObserver() = default;
+  /// After particle `idx` is sampled, before its update: the predicted Gaussian (mu0, sigma0),
+  /// the proposal it sampled from (normalised weights) and the particle with its new pose and
+  /// log-weight.
+  virtual void Sampled(int step, int idx, const Pose& mu0, const Mat3& sigma0,
+                       const PreparedProposal& proposal, const ParticleType& p) = 0;
+  /// After every particle's update and map reduction, before resampling.
+  virtual void Updated(int step, int idx, const ParticleType& p) = 0;
+  /// When the step resampled: the source index of each new particle.
+  virtual void Resampled(int step, const std::vector<int>& sources) = 0;
 };
 
 /// What the importance density reads of a particle's map at one step.
@@ -145,7 +165,28 @@ class ParticleFilter final : public OnlineEstimator {
   [[nodiscard]] const std::vector<int>& best_association() const { return best_association_; }
   [[nodiscard]] const Model& model() const { return model_; }
 
+  /// Takes every random number from `replay` instead of the seeded stream (nullptr: back to the
+  /// stream). Step k (counted from 0 since construction) asks for, per particle i, the uniform
+  /// (k, i, component, 0) and the normals (k, i, pose, 0..2), then when resampling the uniforms
+  /// (k, j, resample, 0).
+  void ReplayDraws(std::shared_ptr<DrawReplay> replay) { replay_ = std::move(replay); }
+  /// Reports each step's inside to `observer` (not owned; nullptr: none).
+  void SetObserver(StepObserver<ParticleType>* observer) { observer_ = observer; }
+
  private:
+  double DrawUniform(int particle, DrawPurpose purpose) {
+    return replay_ ? replay_->Next(step_index_, particle, purpose, 0) : rng_.Uniform();
+  }
+  Vec3 DrawNormals(int particle) {
+    Vec3 xi;
+    if (!replay_) {
+      xi << rng_.Normal(), rng_.Normal(), rng_.Normal();
+      return xi;
+    }
+    for (int d = 0; d < 3; ++d) xi[d] = replay_->Next(step_index_, particle, DrawPurpose::kPose, d);
+    return xi;
+  }
+
   /// Steps 2a-2d for one particle; returns the size of the proposal it used.
   void Propagate(int idx, const StepData& step, double uniform, const Vec3& normal);
   void Resample(const std::vector<double>& weights);
@@ -155,6 +196,9 @@ class ParticleFilter final : public OnlineEstimator {
   Model model_;
   std::unique_ptr<ImportanceDensity> density_;
   RandomStream rng_;
+  std::shared_ptr<DrawReplay> replay_;
+  StepObserver<ParticleType>* observer_ = nullptr;
+  int step_index_ = 0;
   std::vector<ParticleType> particles_;
   int best_ = 0;
   std::vector<int> best_association_;
@@ -231,6 +275,7 @@ void ParticleFilter<Model>::Propagate(int idx, const StepData& step, double unif
   if (proposal_increment_) p.log_weight += *proposal_increment_;
   p.cov.setZero();
   p.parent = -1;
+  if (observer_) observer_->Sampled(step_index_, idx, mu0, sigma0, proposal_, p);
   // 2d. Measurement likelihood and map update at the sampled pose.
   if constexpr (ReportsInnovations<Model>) {
     p.nis = InnovationStats{};
@@ -247,8 +292,8 @@ StepOutput ParticleFilter<Model>::Step(const StepData& step) {
   // 1. The step's random numbers: one uniform and three standard normals per particle.
   std::vector<double> uniforms(n);
   std::vector<Vec3> normals(n);
-  for (double& u : uniforms) u = rng_.Uniform();
-  for (Vec3& xi : normals) xi << rng_.Normal(), rng_.Normal(), rng_.Normal();
+  for (int i = 0; i < n; ++i) uniforms[i] = DrawUniform(i, DrawPurpose::kComponent);
+  for (int i = 0; i < n; ++i) normals[i] = DrawNormals(i);
 
   proposal_parent_ = -2;
   hypotheses_total_ = 0;
@@ -258,6 +303,9 @@ StepOutput ParticleFilter<Model>::Step(const StepData& step) {
   rb_moments_.resize(n);
   // 2. Predict, sample, weight and update every particle.
   for (int idx = 0; idx < n; ++idx) Propagate(idx, step, uniforms[idx], normals[idx]);
+  if (observer_) {
+    for (int idx = 0; idx < n; ++idx) observer_->Updated(step_index_, idx, particles_[idx]);
+  }
 
   // 3. Estimate from the highest-weight particle (first on ties), before resampling.
   best_ = 0;
@@ -297,6 +345,7 @@ StepOutput ParticleFilter<Model>::Step(const StepData& step) {
     Resample(w);
     out.diag.resampled = true;
   }
+  ++step_index_;
   return out;
 }
 
@@ -304,8 +353,9 @@ template <class Model>
 void ParticleFilter<Model>::Resample(const std::vector<double>& weights) {
   const int n = static_cast<int>(particles_.size());
   std::vector<double> r(n);
-  for (double& u : r) u = rng_.Uniform();
+  for (int j = 0; j < n; ++j) r[j] = DrawUniform(j, DrawPurpose::kResample);
   const std::vector<int> sources = StratifiedResample(weights, r);
+  if (observer_) observer_->Resampled(step_index_, sources);
   std::vector<ParticleType> next;
   next.reserve(n);
   const double log_uniform = -std::log(static_cast<double>(n));

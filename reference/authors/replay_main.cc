@@ -1,0 +1,149 @@
+// phdslam_authors_replay: runs phdslam's phd3 or phd1 on one seed of a registered scenario with
+// the random draws another implementation recorded (src/core/draw_replay.h) in place of its
+// seeded stream, and writes the inside of every step as step-trace CSV files
+// (step_trace_writer.h), for compare_traces.py to set beside the authors' trace.
+//
+//   phdslam_authors_replay --draws DRAWS.csv --trace OUT [--scenario paper-synthetic] --seed S
+//                          [--steps K] [--variant phd3] [--particles N] [--map-every M]
+//                          [--set key=value ...] [--data-dir DIR]
+#include <cstdlib>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+#include <string>
+
+#include "reference/authors/step_trace_writer.h"
+#include "src/core/draw_replay.h"
+#include "src/filters/phd_slam_family.h"
+#include "src/filters/phd_slam_params_json.h"
+#include "validation/runner/estimator_registry.h"
+#include "validation/runner/scenario_registry.h"
+
+namespace phdslam::authors {
+namespace {
+
+constexpr const char* kUsage =
+    "usage: phdslam_authors_replay --draws FILE --trace DIR --seed S [--scenario NAME] "
+    "[--steps K] [--variant phd3|phd1] [--particles N] [--map-every M] [--set key=value]... "
+    "[--data-dir DIR]\n"
+    "Runs phd3 (or phd1) with the recorded draws of FILE (step,particle,purpose,index,value) in\n"
+    "place of its seeded random stream and writes per-step traces into DIR\n"
+    "(reference/authors/README.md).\n";
+
+struct Options {
+  std::string draws;
+  std::string trace;
+  std::string scenario = "paper-synthetic";
+  std::string variant = "phd3";
+  std::uint64_t seed = 0;
+  int particles = 1;
+  int map_every = 0;
+  validation::ScenarioOptions scenario_options;
+  nlohmann::json overrides = nlohmann::json::object();
+};
+
+nlohmann::json ParseValue(const std::string& text) {
+  try {
+    return nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error&) {
+    return text;  // a bare word, e.g. an enum name
+  }
+}
+
+Options ParseOptions(int argc, char** argv) {
+  Options o;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--help" || a == "-h") {
+      std::cout << kUsage;
+      std::exit(0);
+    }
+    if (i + 1 >= argc) throw std::invalid_argument(a + " needs a value");
+    const std::string v = argv[++i];
+    if (a == "--draws") {
+      o.draws = v;
+    } else if (a == "--trace") {
+      o.trace = v;
+    } else if (a == "--scenario") {
+      o.scenario = v;
+    } else if (a == "--variant") {
+      o.variant = v;
+    } else if (a == "--seed") {
+      o.seed = std::stoull(v);
+    } else if (a == "--steps") {
+      o.scenario_options.steps = std::stoi(v);
+    } else if (a == "--particles") {
+      o.particles = std::stoi(v);
+    } else if (a == "--map-every") {
+      o.map_every = std::stoi(v);
+    } else if (a == "--data-dir") {
+      o.scenario_options.data_dir = v;
+    } else if (a == "--set") {
+      const auto eq = v.find('=');
+      if (eq == std::string::npos)
+        throw std::invalid_argument("--set " + v + ": expected key=value");
+      o.overrides[v.substr(0, eq)] = ParseValue(v.substr(eq + 1));
+    } else {
+      throw std::invalid_argument("unknown option " + a);
+    }
+  }
+  if (o.draws.empty() || o.trace.empty() || o.seed == 0) {
+    throw std::invalid_argument("--draws, --trace and --seed (>= 1) are required");
+  }
+  if (o.variant != "phd3" && o.variant != "phd1") {
+    throw std::invalid_argument("--variant " + o.variant + ": phd3 or phd1");
+  }
+  if (o.particles < 1) throw std::invalid_argument("--particles must be >= 1");
+  return o;
+}
+
+int Run(const Options& o) {
+  const datasets::Scenario scenario =
+      validation::MakeScenario(o.scenario, o.seed, o.scenario_options);
+  const filters::EstimatorContext context = scenario.PublicContext();
+  validation::EstimatorRequest request;
+  request.name = o.variant;
+  request.particles = o.particles;
+  request.scenario_name = o.scenario;
+  request.overrides = o.overrides;
+  request.context = &context;
+  const filters::PhdSlamParams params =
+      validation::ResolveParameters(request, filters::PhdSlamParamsTable());
+  std::unique_ptr<filters::RbPhdSlam> filter = filters::MakePhdSlam(o.variant, context, params, 0);
+  auto replay = std::make_shared<DrawReplay>(DrawReplay::ReadCsv(o.draws));
+  filter->ReplayDraws(replay);
+  const int steps = static_cast<int>(scenario.steps.size());
+  StepTraceWriter writer(o.trace, o.map_every, steps - 1);
+  filter->SetObserver(&writer);
+  for (int k = 0; k < steps; ++k) {
+    const filters::StepOutput out = filter->Step(scenario.steps[k].data);
+    writer.Estimated(k, out, static_cast<int>(filter->Map().means.size()));
+  }
+  if (replay->consumed() != replay->size()) {
+    std::cerr << "phdslam_authors_replay: " << o.draws << ": "
+              << replay->size() - replay->consumed() << " recorded draws left unused after "
+              << steps << " steps\n";
+    return 1;
+  }
+  return 0;
+}
+
+}  // namespace
+}  // namespace phdslam::authors
+
+int main(int argc, char** argv) {
+  phdslam::authors::Options options;
+  try {
+    options = phdslam::authors::ParseOptions(argc, argv);
+  } catch (const std::exception& e) {
+    std::cerr << "phdslam_authors_replay: " << e.what() << "\n" << phdslam::authors::kUsage;
+    return 2;
+  }
+  try {
+    return phdslam::authors::Run(options);
+  } catch (const std::exception& e) {
+    std::cerr << "phdslam_authors_replay: " << e.what() << '\n';
+    return 1;
+  }
+}
