@@ -17,8 +17,8 @@
 #include "src/core/draw_replay.h"
 #include "src/filters/phd_slam_family.h"
 #include "src/filters/phd_slam_params_json.h"
-#include "validation/runner/estimator_registry.h"
-#include "validation/runner/scenario_registry.h"
+#include "validation/runner/registry/estimator_registry.h"
+#include "validation/runner/registry/scenario_registry.h"
 
 namespace phdslam::authors {
 namespace {
