@@ -244,4 +244,15 @@ std::vector<ExperimentSweep> ReadSweepFile(const std::filesystem::path& root) {
   return sweep;
 }
 
+std::vector<std::filesystem::path> ResultsFolders(const std::filesystem::path& root) {
+  const std::vector<ExperimentSweep> sweep = ReadSweepFile(root);
+  if (sweep.empty()) return {root};
+  std::vector<std::filesystem::path> folders;
+  for (const SweepPoint& point : SweepPoints(sweep)) {
+    const std::filesystem::path folder = root / SweepFolderName(sweep, point);
+    if (std::filesystem::exists(folder / kRunsTableFile)) folders.push_back(folder);
+  }
+  return folders;
+}
+
 }  // namespace phdslam::validation

@@ -62,4 +62,8 @@ void WriteSweepFiles(const std::filesystem::path& root, const std::vector<Experi
 /// Throws std::runtime_error for a malformed file.
 std::vector<ExperimentSweep> ReadSweepFile(const std::filesystem::path& root);
 
+/// The results folders under `root`: for a sweep root (with sweep.json, read by ReadSweepFile),
+/// the folder of every sweep point that holds runs.csv, in point order; otherwise `root` itself.
+std::vector<std::filesystem::path> ResultsFolders(const std::filesystem::path& root);
+
 }  // namespace phdslam::validation

@@ -2,12 +2,14 @@
 
 #include <cmath>
 #include <fstream>
+#include <optional>
 #include <stdexcept>
 
 #include "datasets/sha256.h"
 #include "datasets/text_fields.h"
 #include "validation/runner/io/results_io.h"
 #include "validation/runner/io/results_layout.h"
+#include "validation/runner/results/results_config.h"
 
 namespace phdslam::validation {
 namespace {
@@ -231,6 +233,41 @@ std::map<std::string, std::string> ReadExportChecksums(const std::filesystem::pa
     sums[line.substr(66)] = line.substr(0, 64);
   }
   return sums;
+}
+
+nlohmann::json ExportRequest(const Experiment& experiment) {
+  const auto number_or_null = [](const std::optional<double>& value) {
+    return value ? nlohmann::json(*value) : nlohmann::json();
+  };
+  return {{"steps", experiment.steps},
+          {"pd", number_or_null(experiment.pd)},
+          {"clutter_rate", number_or_null(experiment.clutter_rate)},
+          {"settings", experiment.scenario_settings}};
+}
+
+Experiment ReadExportManifest(const std::filesystem::path& export_dir) {
+  const std::filesystem::path path = export_dir / kExportManifestFile;
+  const nlohmann::json manifest = ReadJsonObject(path);
+  try {
+    if (manifest.at("format_version").get<int>() != kExportFormatVersion) {
+      throw std::runtime_error(path.string() + ": format_version " +
+                               manifest.at("format_version").dump() + ", this program reads " +
+                               std::to_string(kExportFormatVersion));
+    }
+    Experiment x;
+    x.scenario = manifest.at("scenario").get<std::string>();
+    const nlohmann::json& request = manifest.at("request");
+    x.steps = request.at("steps").get<int>();
+    if (!request.at("pd").is_null()) x.pd = request.at("pd").get<double>();
+    if (!request.at("clutter_rate").is_null()) {
+      x.clutter_rate = request.at("clutter_rate").get<double>();
+    }
+    x.scenario_settings = request.at("settings");
+    x.seeds = manifest.at("seeds").get<std::vector<std::uint64_t>>();
+    return x;
+  } catch (const nlohmann::json::exception& e) {
+    throw std::runtime_error(path.string() + ": unexpected content (" + e.what() + ")");
+  }
 }
 
 }  // namespace phdslam::validation

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "datasets/scenario.h"
+#include "validation/runner/experiment/experiment_file.h"
 
 namespace phdslam::validation {
 
@@ -55,5 +56,17 @@ void WriteExport(const std::filesystem::path& out, const ExportDescription& desc
 /// The SHA-256 checksums of SHA256SUMS in `folder`: relative path -> hex digest. Throws
 /// std::runtime_error naming the file and line for a malformed line or a missing file.
 std::map<std::string, std::string> ReadExportChecksums(const std::filesystem::path& folder);
+
+/// export.json's `request` of an experiment: the scenario options as given (steps, pd and
+/// clutter_rate, null when not set, and the other scenario settings), from which
+/// ReadExportManifest rebuilds the same experiment.
+nlohmann::json ExportRequest(const Experiment& experiment);
+
+/// The experiment of an export folder, from its export.json (as WriteExport writes it): the
+/// scenario, the options of its `request` and its seeds. Throws std::runtime_error naming the
+/// file when it is missing or not a JSON object, when its format_version is not
+/// kExportFormatVersion ("<path>: format_version 2, this program reads 1"), or when a key is
+/// missing or of the wrong type.
+Experiment ReadExportManifest(const std::filesystem::path& export_dir);
 
 }  // namespace phdslam::validation

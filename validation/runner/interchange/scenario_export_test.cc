@@ -8,6 +8,7 @@
 #include <string>
 
 #include "datasets/sha256.h"
+#include "datasets/test_file_bytes.h"
 #include "datasets/test_temp_dir.h"
 #include "validation/runner/io/results_io.h"
 #include "validation/runner/registry/scenario_registry.h"
@@ -155,6 +156,54 @@ TEST(ScenarioExport, PythonReaderReadsBackExactlyWhatTheRunnerUses) {
   }
   EXPECT_EQ(scenario.steps.size(), 4000U);
   EXPECT_GT(measurements, 40000U);
+}
+
+TEST(ExportManifest, ReadsBackTheExperimentItWasWrittenFrom) {
+  const std::filesystem::path out = FreshTestDir();
+  Experiment x;
+  x.scenario = "paper-synthetic";
+  x.steps = 30;
+  x.pd = 0.9;
+  x.scenario_settings = {{"landmarks", 40}};
+  x.seeds = {4, 2};
+  const ScenarioSource source = PaperSynthetic(x.steps);
+  ExportDescription d;
+  d.scenario = source.name;
+  d.options = source.options;
+  d.request = ExportRequest(x);
+  d.seeds = x.seeds;
+  WriteExport(out, d, {source.make(4), source.make(2)});
+  EXPECT_TRUE(ReadJsonObject(out / kExportManifestFile).at("request").at("clutter_rate").is_null());
+
+  const Experiment back = ReadExportManifest(out);
+  EXPECT_EQ(back.scenario, "paper-synthetic");
+  EXPECT_EQ(back.steps, 30);
+  EXPECT_EQ(back.pd, 0.9);
+  EXPECT_FALSE(back.clutter_rate.has_value());
+  EXPECT_EQ(back.scenario_settings, x.scenario_settings);
+  EXPECT_EQ(back.seeds, (std::vector<std::uint64_t>{4, 2}));
+}
+
+TEST(ExportManifest, RefusesAnotherFormatVersionAndMalformedContentNamingTheFile) {
+  const std::filesystem::path out = FreshTestDir();
+  WriteOne(out, PaperSynthetic(10), 1);
+  const std::filesystem::path path = out / kExportManifestFile;
+  nlohmann::json manifest = ReadJsonObject(path);
+  manifest["format_version"] = kExportFormatVersion + 1;
+  WriteFileAtomically(path, JsonFileText(manifest));
+  EXPECT_EQ(datasets::testing::ErrorOf([&] { ReadExportManifest(out); }),
+            path.string() + ": format_version " + std::to_string(kExportFormatVersion + 1) +
+                ", this program reads " + std::to_string(kExportFormatVersion));
+
+  manifest["format_version"] = kExportFormatVersion;
+  manifest.erase("request");
+  WriteFileAtomically(path, JsonFileText(manifest));
+  const std::string error = datasets::testing::ErrorOf([&] { ReadExportManifest(out); });
+  EXPECT_EQ(error.rfind(path.string() + ": unexpected content (", 0), 0u) << error;
+
+  std::filesystem::remove(path);
+  EXPECT_NE(datasets::testing::ErrorOf([&] { ReadExportManifest(out); }).find(path.string()),
+            std::string::npos);
 }
 
 }  // namespace

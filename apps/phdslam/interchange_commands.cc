@@ -1,0 +1,189 @@
+#include "apps/phdslam/interchange_commands.h"
+
+#include <cstdint>
+#include <filesystem>
+#include <iostream>
+#include <stdexcept>
+
+#include "validation/runner/experiment/experiment_runner.h"
+#include "validation/runner/experiment/option_precedence.h"
+#include "validation/runner/interchange/ingest.h"
+#include "validation/runner/interchange/scenario_export.h"
+#include "validation/runner/io/list_arguments.h"
+#include "validation/runner/io/results_layout.h"
+
+namespace phdslam::apps {
+
+namespace v = phdslam::validation;
+
+namespace {
+
+void AddScenarioOptions(CLI::App* command, ScenarioArguments& a) {
+  a.scenario_option =
+      command->add_option("--scenario", a.scenario, "Scenario name (see `phdslam list`)");
+  a.seeds_option = command->add_option(
+      "--seeds", a.seeds, "Monte Carlo seeds: a range a-b, a single seed, or a comma list");
+  a.data_dir_option =
+      command->add_option("--data-dir", a.data_dir,
+                          "Data sets folder (default: $PHDSLAM_DATA, else the folder compiled in)");
+  a.steps_option = command
+                       ->add_option("--steps", a.steps,
+                                    "Use only the first N filter steps of each seed (0 = all)")
+                       ->check(CLI::NonNegativeNumber);
+  a.pd_option = command->add_option("--pd", a.detection_probability,
+                                    "Override the scenario's detection probability (0, 1]");
+  a.clutter_option = command->add_option("--clutter-rate", a.clutter_rate,
+                                         "Override the scenario's mean clutter count per scan");
+  command->add_option("--scenario-set", a.scenario_assignments,
+                      "Scenario option key=value (repeatable), as for `run`");
+}
+
+// The experiment holding a scenario and its options, as `run` would resolve them.
+v::Experiment ScenarioExperiment(const ScenarioArguments& a) {
+  v::Experiment x;
+  x.scenario = a.scenario;
+  if (a.seeds_option->count() > 0) x.seeds = v::ParseSeedList(a.seeds);
+  x.steps = a.steps;
+  if (a.pd_option->count() > 0) {
+    x.pd = v::CheckedScenarioNumber(x, "--pd", "pd", a.detection_probability);
+  }
+  if (a.clutter_option->count() > 0) {
+    x.clutter_rate = v::CheckedScenarioNumber(x, "--clutter-rate", "clutter_rate", a.clutter_rate);
+  }
+  if (a.data_dir_option->count() > 0) x.data_dir = a.data_dir;
+  v::ApplyScenarioAssignments(a.scenario_assignments, x);
+  return x;
+}
+
+v::ScenarioSource SourceOf(const v::Experiment& x) {
+  return v::PlanExperiment(x, {}, v::EstimatorTable()).front().plan.scenario;
+}
+
+// The scenario of an export folder, from its export.json: the scenario options given with
+// --export are refused; --seeds selects among its seeds, --data-dir is a machine setting.
+v::Experiment ExportedExperiment(const IngestArguments& a) {
+  const ScenarioArguments& s = a.scenario;
+  for (const CLI::Option* o : {s.scenario_option, s.steps_option, s.pd_option, s.clutter_option}) {
+    if (o->count() > 0) {
+      throw std::invalid_argument("ingest: " + o->get_name() +
+                                  " and --export both give the scenario; give one");
+    }
+  }
+  if (!s.scenario_assignments.empty()) {
+    throw std::invalid_argument("ingest: --scenario-set and --export both give the scenario");
+  }
+  v::Experiment x = v::ReadExportManifest(a.export_dir);
+  if (s.seeds_option->count() > 0) x.seeds = v::ParseSeedList(s.seeds);
+  if (s.data_dir_option->count() > 0) x.data_dir = s.data_dir;
+  return x;
+}
+
+}  // namespace
+
+void AddExportCommand(CLI::App& app, ExportArguments& a) {
+  CLI::App* command = app.add_subcommand(
+      "export",
+      "Write the inputs of a filter for every seed of a scenario, as `run` would give them to "
+      "an estimator, into --out: seed-<s>/steps.csv (step,t,controls,measurements), "
+      "seed-<s>/controls.csv (step,t_start,t_end,u1,u2), seed-<s>/measurements.csv "
+      "(step,index,range,bearing), seed-<s>/models.json (initial pose, motion and sensor models, "
+      "noise, field of view, detection and clutter); the truth in truth/seed-<s>/ "
+      "(trajectory.tum, map.csv id,x,y, gps.csv t,x,y, origins.csv step,index,origin; those the "
+      "scenario has); export.json (format "
+      "version, scenario and options, seeds) and SHA256SUMS (`sha256sum -c SHA256SUMS`). "
+      "Format: validation/EXPORT_FORMAT.md.");
+  AddScenarioOptions(command, a.scenario);
+  command->add_option("--out", a.out, "Export folder (created if needed; must be empty)")
+      ->required();
+}
+
+void AddIngestCommand(CLI::App& app, IngestArguments& a) {
+  CLI::App* command = app.add_subcommand(
+      "ingest",
+      "Read an external filter's outputs, --from DIR with DIR/seed-<s>/trajectory.tum (one "
+      "pose per step, at the step's time stamp) and DIR/seed-<s>/map.csv (x,y[,weight,pxx,pxy,"
+      "pyy]), optionally pose_cov.csv (step,pxx,pxy,pxt,pyy,pyt,ptt), maps.csv (step,x,y: the "
+      "map after each step), association.csv (step,index,x,y) and timing.csv (step,ms) per "
+      "seed and DIR/parameters.json, score them against the scenario and write them as the runs "
+      "of estimator --estimator into the results folder --out, as `run` writes runs (the folder "
+      "may already hold `run` results of the same scenario and experiment name). The scenario "
+      "comes from --export (the export folder the filter read; its checksums are verified) or "
+      "from the scenario options, as for `run`. Format: validation/EXPORT_FORMAT.md.");
+  AddScenarioOptions(command, a.scenario);
+  command->add_option("--from", a.from, "Folder of the external filter's outputs")
+      ->required()
+      ->check(CLI::ExistingDirectory);
+  command->add_option("--estimator", a.estimator, "Name the external filter's runs are filed under")
+      ->required();
+  command->add_option("--out", a.out, "Results folder (created if needed)")->required();
+  command
+      ->add_option("--export", a.export_dir,
+                   "Export folder the filter read: scenario, options and seeds (default: all of "
+                   "its seeds) come from its export.json")
+      ->check(CLI::ExistingDirectory);
+  command->add_option("--description", a.description, "Description stored in config.json")
+      ->capture_default_str();
+  command
+      ->add_option("--experiment-name", a.experiment,
+                   "Experiment name; must be that of the results folder's runs")
+      ->capture_default_str();
+  command->add_option("--particles", a.particles, "Particle count the runs are filed under")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  command->add_flag("--replace", a.replace,
+                    "Replace the runs the estimator already has in --out (without it an estimator "
+                    "name that already has runs there is refused); the replaced run folders are "
+                    "listed");
+}
+
+int Export(const ExportArguments& a) {
+  for (const CLI::Option* o : {a.scenario.scenario_option, a.scenario.seeds_option}) {
+    if (o->count() == 0) throw std::invalid_argument("export: " + o->get_name() + " is required");
+  }
+  v::RequireEmptyExportFolder(a.out);
+  const v::Experiment x = ScenarioExperiment(a.scenario);
+  const v::ScenarioSource source = SourceOf(x);
+  std::vector<datasets::Scenario> scenarios;
+  for (std::uint64_t seed : x.seeds) scenarios.push_back(source.make(seed));
+  v::ExportDescription description;
+  description.scenario = source.name;
+  description.options = source.options;
+  description.request = v::ExportRequest(x);
+  description.seeds = x.seeds;
+  v::WriteExport(a.out, description, scenarios);
+  std::cout << "export: " << a.out << " (" << scenarios.size() << " seeds of " << source.name
+            << ", format version " << v::kExportFormatVersion << "; checksums in "
+            << (std::filesystem::path(a.out) / v::kExportChecksumFile).string() << ")\n";
+  return 0;
+}
+
+int Ingest(const IngestArguments& a) {
+  const bool from_export = !a.export_dir.empty();
+  if (!from_export) {
+    for (const CLI::Option* o : {a.scenario.scenario_option, a.scenario.seeds_option}) {
+      if (o->count() == 0) {
+        throw std::invalid_argument("ingest: " + o->get_name() + " is required (or give --export)");
+      }
+    }
+  }
+  const v::Experiment x = from_export ? ExportedExperiment(a) : ScenarioExperiment(a.scenario);
+  v::IngestRequest request;
+  request.from = a.from;
+  request.estimator = a.estimator;
+  request.description = a.description;
+  request.particles = a.particles;
+  request.experiment = a.experiment;
+  request.scenario = SourceOf(x);
+  request.seeds = x.seeds;
+  if (from_export) request.export_dir = a.export_dir;
+  request.replace = a.replace;
+  const v::IngestReport report = v::IngestResults(request, a.out);
+  for (const std::filesystem::path& replaced : report.replaced) {
+    std::cout << "replaced: " << replaced.string() << "\n";
+  }
+  std::cout << "ingested " << report.runs << " runs of " << a.estimator << " into " << a.out
+            << "\nsummary: " << (std::filesystem::path(a.out) / v::kSummaryFile).string() << "\n";
+  return 0;
+}
+
+}  // namespace phdslam::apps
