@@ -1,7 +1,8 @@
-// libFuzzer target: the readers of `phdslam ingest` (validation/runner/interchange/external_run_reader.h).
-// A generated scenario of a few steps is built once, with valid outputs (its true trajectory and
-// map); the first input byte picks one of the six files of a seed folder, the rest of the input
-// replaces it. ReadExternalRun must accept the folder or throw std::runtime_error.
+// libFuzzer target: the readers of `phdslam ingest`
+// (validation/runner/interchange/external_run_reader.h). A generated scenario of a few steps is
+// built once, with valid outputs (its true trajectory and map); the first input byte picks one of
+// the six files of a seed folder, the rest of the input replaces it. ReadExternalRun must accept
+// the folder or throw std::runtime_error.
 #include <array>
 #include <cstddef>
 #include <cstdint>

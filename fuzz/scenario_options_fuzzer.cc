@@ -16,8 +16,8 @@
 #include "datasets/glmb_simulation.h"
 #include "datasets/scenario_generator.h"
 #include "datasets/scphd_simulation.h"
-#include "validation/runner/registry/scenario_option_tables.h"
 #include "validation/runner/io/utf8_text.h"
+#include "validation/runner/registry/scenario_option_tables.h"
 
 namespace {
 

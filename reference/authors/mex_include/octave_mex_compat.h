@@ -11,7 +11,7 @@
 #define mxOBJECT_CLASS ((mxClassID)(mxFUNCTION_CLASS + 2))
 
 #define PHDSLAM_COMPLEX_ACCESSOR(Name, Type) \
-  static inline Type *Name(const mxArray *a) { return (Type *)mxGetData(a); }
+  static inline Type* Name(const mxArray* a) { return (Type*)mxGetData(a); }
 PHDSLAM_COMPLEX_ACCESSOR(mxGetComplexInt8s, mxComplexInt8)
 PHDSLAM_COMPLEX_ACCESSOR(mxGetComplexUint8s, mxComplexUint8)
 PHDSLAM_COMPLEX_ACCESSOR(mxGetComplexInt16s, mxComplexInt16)

@@ -45,8 +45,8 @@ void ApplyScenarioAssignments(const std::vector<std::string>& assignments, Exper
   }
 }
 
-double CheckedScenarioNumber(const Experiment& x, const std::string& option,
-                             const std::string& key, double value) {
+double CheckedScenarioNumber(const Experiment& x, const std::string& option, const std::string& key,
+                             double value) {
   try {
     if (!x.scenario.empty()) CheckScenarioOption(x.scenario, key, value);
   } catch (const std::invalid_argument& e) {

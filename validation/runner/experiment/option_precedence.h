@@ -48,7 +48,7 @@ void ApplyScenarioAssignments(const std::vector<std::string>& assignments, Exper
 /// `value` of command-line option `option` (scenario option `key`, e.g. "--pd" and "pd"),
 /// checked against the option table of x.scenario when it is set; std::invalid_argument naming
 /// the option as typed otherwise.
-double CheckedScenarioNumber(const Experiment& x, const std::string& option,
-                             const std::string& key, double value);
+double CheckedScenarioNumber(const Experiment& x, const std::string& option, const std::string& key,
+                             double value);
 
 }  // namespace phdslam::validation

@@ -13,9 +13,9 @@
 #include <vector>
 
 #include "datasets/scenario.h"
-#include "validation/runner/interchange/external_run_reader.h"
 #include "validation/runner/evaluation/run_metrics.h"
 #include "validation/runner/evaluation/run_record.h"
+#include "validation/runner/interchange/external_run_reader.h"
 #include "validation/runner/registry/scenario_registry.h"
 
 namespace phdslam::validation {
