@@ -28,6 +28,12 @@
 
 namespace phdslam::params {
 
+/// `v` as JSON text for an error message. Bytes that are not UTF-8 (a string read from a
+/// hostile file) are shown as U+FFFD instead of making the message itself throw.
+inline std::string Shown(const nlohmann::json& v) {
+  return v.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+}
+
 /// Thrown for a bad parameter value or an unknown key; the message names the key.
 inline void Fail(const std::string& key, const std::string& what) {
   throw std::invalid_argument("parameter '" + key + "': " + what);
@@ -70,26 +76,26 @@ inline Bounds Probability() { return {0.0, 1.0}; }
 
 /// A finite JSON number, checked against `bounds`.
 inline double ReadNumber(const nlohmann::json& v, const std::string& key, const Bounds& bounds) {
-  if (!v.is_number()) Fail(key, "expected a number, got " + v.dump());
+  if (!v.is_number()) Fail(key, "expected a number, got " + Shown(v));
   const double d = v.get<double>();
   if (!std::isfinite(d)) Fail(key, "not finite");
-  if (!bounds.Contains(d)) Fail(key, "must be " + bounds.Describe() + ", got " + v.dump());
+  if (!bounds.Contains(d)) Fail(key, "must be " + bounds.Describe() + ", got " + Shown(v));
   return d;
 }
 
 /// A whole JSON number of modest size (|v| <= 1e9), checked against `bounds`.
 inline int ReadInt(const nlohmann::json& v, const std::string& key, const Bounds& bounds) {
-  if (!v.is_number()) Fail(key, "expected an integer, got " + v.dump());
+  if (!v.is_number()) Fail(key, "expected an integer, got " + Shown(v));
   const double d = v.get<double>();
   if (!std::isfinite(d) || d != std::floor(d) || std::abs(d) > 1e9) {
-    Fail(key, "expected an integer, got " + v.dump());
+    Fail(key, "expected an integer, got " + Shown(v));
   }
-  if (!bounds.Contains(d)) Fail(key, "must be " + bounds.Describe() + ", got " + v.dump());
+  if (!bounds.Contains(d)) Fail(key, "must be " + bounds.Describe() + ", got " + Shown(v));
   return static_cast<int>(d);
 }
 
 inline bool ReadBool(const nlohmann::json& v, const std::string& key) {
-  if (!v.is_boolean()) Fail(key, "expected true or false, got " + v.dump());
+  if (!v.is_boolean()) Fail(key, "expected true or false, got " + Shown(v));
   return v.get<bool>();
 }
 
@@ -119,7 +125,7 @@ class ParameterTable {
   /// unknown (listing the known keys) or its value is of the wrong type or out of range.
   void Apply(const nlohmann::json& overrides, T& params) const {
     if (!overrides.is_object()) {
-      throw std::invalid_argument("parameters: expected an object, got " + overrides.dump());
+      throw std::invalid_argument("parameters: expected an object, got " + Shown(overrides));
     }
     for (const auto& [key, value] : overrides.items()) {
       const Field<T>* field = Find(key);
@@ -193,7 +199,7 @@ Field<T> EnumField(std::string key, Access access, std::vector<std::pair<E, std:
                 }
               }
             }
-            Fail(key, "expected one of " + help + ", got " + v.dump());
+            Fail(key, "expected one of " + help + ", got " + Shown(v));
           }};
 }
 
@@ -208,7 +214,7 @@ Field<T> DiagonalField(std::string key, Access access, Bounds bounds = {}) {
           },
           [access, key, bounds](const nlohmann::json& v, T& p) {
             if (!v.is_array() || v.size() != static_cast<std::size_t>(N)) {
-              Fail(key, "expected an array of " + std::to_string(N) + " numbers, got " + v.dump());
+              Fail(key, "expected an array of " + std::to_string(N) + " numbers, got " + Shown(v));
             }
             Eigen::Matrix<double, N, N> m = Eigen::Matrix<double, N, N>::Zero();
             for (int i = 0; i < N; ++i) m(i, i) = ReadNumber(v[i], key, bounds);
@@ -221,7 +227,7 @@ template <class T, class Access>
 Field<T> StringField(std::string key, Access access) {
   return {key, "a string", [access](const T& p) { return nlohmann::json(access(p)); },
           [access, key](const nlohmann::json& v, T& p) {
-            if (!v.is_string()) Fail(key, "expected a string, got " + v.dump());
+            if (!v.is_string()) Fail(key, "expected a string, got " + Shown(v));
             access(p) = v.get<std::string>();
           }};
 }
@@ -253,7 +259,7 @@ Field<T> VectorField(std::string key, Access access, Bounds bounds = {}) {
           },
           [access, key, bounds](const nlohmann::json& v, T& p) {
             if (!v.is_array() || v.size() != static_cast<std::size_t>(N)) {
-              Fail(key, "expected an array of " + std::to_string(N) + " numbers, got " + v.dump());
+              Fail(key, "expected an array of " + std::to_string(N) + " numbers, got " + Shown(v));
             }
             Eigen::Matrix<double, N, 1> x;
             for (int i = 0; i < N; ++i) x(i) = ReadNumber(v[i], key, bounds);
@@ -278,7 +284,7 @@ Field<T> StructArrayField(std::string key, Access access,
           },
           [access, key, members, names, bounds](const nlohmann::json& v, T& p) {
             if (!v.is_array() || v.size() != members.size()) {
-              Fail(key, "expected " + names + ", got " + v.dump());
+              Fail(key, "expected " + names + ", got " + Shown(v));
             }
             S s = access(p);
             for (std::size_t i = 0; i < members.size(); ++i) {
@@ -299,7 +305,7 @@ Field<T> Fixed(Field<T> field, const std::string& reason) {
     T candidate = p;
     read(v, candidate);
     if (write(candidate) != write(p)) {
-      Fail(key, reason + ": expected " + write(p).dump() + ", got " + v.dump());
+      Fail(key, reason + ": expected " + Shown(write(p)) + ", got " + Shown(v));
     }
   };
   return field;

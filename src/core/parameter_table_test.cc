@@ -110,6 +110,19 @@ TEST(ParameterTable, ErrorsNameTheKeyAndTheRule) {
             "parameter 'count': expected an integer, got 1000000000000.0");
 }
 
+TEST(ParameterTable, ErrorsShowBytesThatAreNotUtf8AsReplacementCharacters) {
+  // A string value read from a hostile file may hold bytes that are not UTF-8; the error
+  // message must still be built (and name the key) instead of throwing while printing it.
+  const std::string bad_bytes = "\xff\xfe";
+  EXPECT_EQ(ErrorOf({{"count", bad_bytes}}),
+            "parameter 'count': expected an integer, got \"\xEF\xBF\xBD\xEF\xBF\xBD\"");
+  EXPECT_EQ(ErrorOf({{"mode", bad_bytes}}),
+            "parameter 'mode': expected one of \"fast\", \"exact\", got "
+            "\"\xEF\xBF\xBD\xEF\xBF\xBD\"");
+  EXPECT_EQ(ErrorOf(nlohmann::json(bad_bytes)),
+            "parameters: expected an object, got \"\xEF\xBF\xBD\xEF\xBF\xBD\"");
+}
+
 TEST(ParameterTable, RejectsNonFiniteNumbers) {
   EXPECT_EQ(ErrorOf({{"rate", std::numeric_limits<double>::infinity()}}),
             "parameter 'rate': not finite");

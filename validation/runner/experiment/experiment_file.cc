@@ -6,6 +6,7 @@
 #include <set>
 #include <stdexcept>
 
+#include "src/core/parameter_table.h"
 #include "validation/runner/io/list_arguments.h"
 #include "validation/runner/io/results_io.h"
 #include "validation/runner/io/utf8_text.h"
@@ -214,15 +215,15 @@ ExperimentSweep ReadSweepDimension(const YAML::Node& node, const FileErrors& err
     const nlohmann::json value = ToJson(v, errors);
     if (!value.is_number() && !value.is_boolean() && !value.is_string()) {
       errors.Fail(v, "'sweep.values' of '" + sweep.parameter +
-                         "': expected numbers, true/false or names, got " + value.dump());
+                         "': expected numbers, true/false or names, got " + params::Shown(value));
     }
     if (value.is_number() && !std::isfinite(value.get<double>())) {
       errors.Fail(v, "'sweep.values' of '" + sweep.parameter + "': a value is not finite");
     }
     for (const nlohmann::json& earlier : sweep.values) {
       if (earlier == value) {
-        errors.Fail(
-            v, "'sweep.values' of '" + sweep.parameter + "': " + value.dump() + " is listed twice");
+        errors.Fail(v, "'sweep.values' of '" + sweep.parameter + "': " + params::Shown(value) +
+                           " is listed twice");
       }
     }
     sweep.values.push_back(value);
@@ -322,7 +323,7 @@ void SetScenarioOption(Experiment& experiment, const std::string& key,
   if (pd || key == kSweepParameterClutterRate) {
     if (!value.is_number() || !std::isfinite(value.get<double>())) {
       throw std::invalid_argument("scenario option '" + key + "': expected a number, got " +
-                                  value.dump());
+                                  params::Shown(value));
     }
     (pd ? experiment.pd : experiment.clutter_rate) = value.get<double>();
     return;

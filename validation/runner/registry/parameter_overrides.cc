@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "src/core/parameter_table.h"
 #include "validation/runner/io/utf8_text.h"
 
 namespace phdslam::validation {
@@ -29,7 +30,7 @@ nlohmann::json CheckedValue(const nlohmann::json& def, const nlohmann::json& val
                             std::string_view owner, const std::string& path) {
   const auto fail = [&](const std::string& expected) {
     throw std::invalid_argument(std::string(owner) + ": parameter '" + path + "' expects " +
-                                expected + ", got " + value.dump());
+                                expected + ", got " + params::Shown(value));
   };
   if (def.is_number()) {
     if (!value.is_number()) fail("a number");
@@ -71,7 +72,8 @@ nlohmann::json ApplyOverrides(const nlohmann::json& defaults, const nlohmann::js
                               std::string_view owner) {
   if (!overrides.is_object()) {
     throw std::invalid_argument(std::string(owner) +
-                                ": parameter overrides must be an object, got " + overrides.dump());
+                                ": parameter overrides must be an object, got " +
+                                params::Shown(overrides));
   }
   nlohmann::json resolved = defaults.is_null() ? nlohmann::json::object() : defaults;
   ApplyInto(resolved, overrides, owner, "");

@@ -6,6 +6,7 @@
 #include "reference/mrpt/fastslam.h"
 #include "reference/mrpt/mrpt_baseline_params_json.h"
 #include "reference/mrpt/mrpt_ekf_slam.h"
+#include "src/core/parameter_table.h"
 #include "validation/runner/registry/estimator_registry.h"
 
 namespace phdslam::validation {
@@ -86,7 +87,7 @@ reference::FastSlamOptions ResolveFastSlam(const EstimatorRequest& r,
     throw std::invalid_argument(
         "estimator '" + r.name + "': parameter 'proposal': fixed by the estimator's name " +
         "(fastslam1, fastslam2): expected " + reference::ToJson(defaults)["proposal"].dump() +
-        ", got " + reference::ToJson(o)["proposal"].dump());
+        ", got " + params::Shown(reference::ToJson(o)["proposal"]));
   }
   return o;
 }

@@ -5,6 +5,7 @@
 
 #include "datasets/range_bearing_simulator.h"
 #include "datasets/simulation_limits.h"
+#include "src/core/parameter_table.h"
 
 namespace phdslam::validation {
 namespace {
@@ -34,7 +35,8 @@ nlohmann::json MatrixJson(const Mat2& m) {
 // A 2 x 2 covariance, written as [[a, b], [c, d]] and read from that form or from the two
 // diagonal entries [a, d]. Symmetry and definiteness are checked by the options' Validate().
 Mat2 ReadMatrix(const nlohmann::json& v, const std::string& key) {
-  const std::string form = "expected [[a, b], [c, d]] or the diagonal [a, d], got " + v.dump();
+  const std::string form =
+      "expected [[a, b], [c, d]] or the diagonal [a, d], got " + params::Shown(v);
   if (!v.is_array() || v.size() != 2) params::Fail(key, form);
   Mat2 m = Mat2::Zero();
   if (v[0].is_number() && v[1].is_number()) {
@@ -69,7 +71,7 @@ Field<T> PoseField(std::string key, Access access) {
           },
           [access, key](const nlohmann::json& v, T& p) {
             if (!v.is_array() || v.size() != 3) {
-              params::Fail(key, "expected an array [x, y, theta], got " + v.dump());
+              params::Fail(key, "expected an array [x, y, theta], got " + params::Shown(v));
             }
             for (int i = 0; i < 2; ++i) {
               access(p)(i) = params::ReadNumber(
