@@ -4,11 +4,16 @@ octave/phdslam_authors_run.m, and phdslam's replay on the same draws, written by
 phdslam_authors_replay) and reports, per quantity, the largest difference and the first step where
 it exceeds the tolerance, and the first divergence overall.
 
-    compare_traces.py AUTHORS_TRACE PHDSLAM_TRACE [--rtol 1e-6] [--atol 1e-9] [--json OUT]
+    compare_traces.py AUTHORS_TRACE PHDSLAM_TRACE [--rtol 1e-6] [--atol 1e-9]
+                      [--negligible-weight 1e-12] [--json OUT]
 
 Two numbers agree when |a - b| <= atol + rtol * max(|a|, |b|); counts, resampling flags and
 sources must be equal. Proposal log-weights are compared normalised (the authors' are
-unnormalised). Exit 0 when everything agrees, 1 when something diverges, 2 on bad input.
+unnormalised). The mean and covariance of a proposal component whose normalised weight is below
+--negligible-weight on both sides are reported apart ("..., negligible weight") and never count
+as a divergence: such a component moves the proposal mixture by at most its weight times the
+difference, and is drawn with that probability. Its weight is still compared.
+Exit 0 when everything agrees, 1 when something diverges, 2 on bad input.
 """
 import argparse
 import csv
@@ -54,9 +59,10 @@ class Quantity:
 
 
 class Comparison:
-    def __init__(self, rtol, atol):
+    def __init__(self, rtol, atol, negligible_weight=0.0):
         self.rtol = rtol
         self.atol = atol
+        self.negligible_weight = negligible_weight
         self.quantities = {}
 
     def q(self, name):
@@ -64,9 +70,9 @@ class Comparison:
             self.quantities[name] = Quantity(name)
         return self.quantities[name]
 
-    def number(self, name, step, a, b, where):
+    def number(self, name, step, a, b, where, gated=True):
         diff = abs(a - b)
-        ok = diff <= self.atol + self.rtol * max(abs(a), abs(b))
+        ok = not gated or diff <= self.atol + self.rtol * max(abs(a), abs(b))
         self.q(name).add(step, diff, ok, f"{where}: authors {a!r}, phdslam {b!r} (|diff| {diff:.3g})")
 
     def exact(self, name, step, a, b, where):
@@ -117,16 +123,24 @@ def normalised(rows):
 def compare_proposals(cmp, a_rows, b_rows):
     a = normalised(a_rows)
     b = normalised(b_rows)
+    components = {}
+    for k in a:
+        components[k[:2]] = components.get(k[:2], 0) + 1
     for key in sorted(set(a) & set(b)):
         step, i, j = key
         where = f"step {step}, particle {i}, component {j}"
         (wa, ra), (wb, rb) = a[key], b[key]
-        if len([k for k in a if k[:2] == key[:2]]) > 1:
+        if components[key[:2]] > 1:
             cmp.number("proposal weight", step, math.exp(wa), math.exp(wb), where)
+        negligible = (cmp.negligible_weight > 0
+                      and max(wa, wb) < math.log(cmp.negligible_weight))
+        suffix = ", negligible weight" if negligible else ""
         for c in ("x", "y", "theta"):
-            cmp.number("proposal mean", step, num(ra, c), num(rb, c), f"{where} {c}")
+            cmp.number("proposal mean" + suffix, step, num(ra, c), num(rb, c), f"{where} {c}",
+                       gated=not negligible)
         for c in ("pxx", "pxy", "pxt", "pyy", "pyt", "ptt"):
-            cmp.number("proposal covariance", step, num(ra, c), num(rb, c), f"{where} {c}")
+            cmp.number("proposal covariance" + suffix, step, num(ra, c), num(rb, c),
+                       f"{where} {c}", gated=not negligible)
 
 
 def compare_states(cmp, a_rows, b_rows):
@@ -173,8 +187,8 @@ def compare_estimates(cmp, a_rows, b_rows):
         cmp.exact("resampling sources", step, ra["sources"].strip(), rb["sources"].strip(), where)
 
 
-def compare(a_dir, b_dir, rtol, atol):
-    cmp = Comparison(rtol, atol)
+def compare(a_dir, b_dir, rtol, atol, negligible_weight=0.0):
+    cmp = Comparison(rtol, atol, negligible_weight)
     files = [("particles.csv", compare_particles), ("proposals.csv", compare_proposals),
              ("states.csv", compare_states), ("maps.csv", compare_maps),
              ("estimate.csv", compare_estimates)]
@@ -183,7 +197,8 @@ def compare(a_dir, b_dir, rtol, atol):
     quantities = [q.as_dict() for q in cmp.quantities.values()]
     diverged = [q for q in quantities if q["first_divergence_step"] is not None]
     first = min(diverged, key=lambda q: q["first_divergence_step"]) if diverged else None
-    return {"rtol": rtol, "atol": atol, "quantities": quantities, "first_divergence": first}
+    return {"rtol": rtol, "atol": atol, "negligible_weight": negligible_weight,
+            "quantities": quantities, "first_divergence": first}
 
 
 def main():
@@ -192,16 +207,23 @@ def main():
     ap.add_argument("phdslam")
     ap.add_argument("--rtol", type=float, default=1e-6)
     ap.add_argument("--atol", type=float, default=1e-9)
+    ap.add_argument("--negligible-weight", type=float, default=1e-12,
+                    help="proposal components below this normalised weight on both sides are "
+                         "reported but not gated (0: gate every component)")
     ap.add_argument("--json", help="write the comparison here as JSON")
     args = ap.parse_args()
     try:
-        result = compare(args.authors, args.phdslam, args.rtol, args.atol)
+        if not 0.0 <= args.negligible_weight < 1.0:
+            raise ValueError(f"--negligible-weight must be in [0, 1), got {args.negligible_weight}")
+        result = compare(args.authors, args.phdslam, args.rtol, args.atol, args.negligible_weight)
     except (OSError, KeyError, ValueError) as e:
         print(f"compare_traces.py: {e}", file=sys.stderr)
         return 2
     for q in result["quantities"]:
         flag = "ok" if q["first_divergence_step"] is None else f"DIVERGES at step {q['first_divergence_step']}"
-        print(f"{q['quantity']:28s} n={q['compared']:8d} max|diff|={q['max_diff']:.3g} "
+        if q["quantity"].endswith("negligible weight"):
+            flag = "reported, not gated"
+        print(f"{q['quantity']:44s} n={q['compared']:8d} max|diff|={q['max_diff']:.3g} "
               f"(step {q['max_diff_step']}) {flag}")
     first = result["first_divergence"]
     print("first divergence: " + ("none" if first is None else
