@@ -55,8 +55,8 @@
 #include "src/filters/estimator.h"
 #include "src/filters/importance_density.h"
 #include "src/filters/innovation_stats.h"
+#include "src/filters/particle_estimate.h"
 #include "src/filters/particle_filter_params.h"
-#include "src/filters/particle_spread.h"
 #include "src/filters/pose_mixture_moments.h"
 #include "src/filters/pose_prediction.h"
 #include "src/filters/resampling.h"
@@ -308,10 +308,8 @@ StepOutput ParticleFilter<Model>::Step(const StepData& step) {
   }
 
   // 3. Estimate from the highest-weight particle (first on ties), before resampling.
-  best_ = 0;
-  for (int i = 1; i < n; ++i) {
-    if (particles_[i].log_weight > particles_[best_].log_weight) best_ = i;
-  }
+  best_ = static_cast<int>(
+      HighestWeightIndex(particles_, [](const ParticleType& p) { return p.log_weight; }));
   best_association_ =
       associations_.empty() ? std::vector<int>{} : associations_[association_owner_[best_]];
   snapshot_ = model_.Estimate(particles_[best_].map);
