@@ -11,6 +11,7 @@
 #include <system_error>
 #include <utility>
 
+#include "validation/runner/evaluation/run_metrics.h"
 #include "validation/runner/experiment/sweep.h"
 #include "validation/runner/io/results_io.h"
 #include "validation/runner/io/results_layout.h"
@@ -31,10 +32,14 @@ struct RunSource {
   bool finished = true;  ///< metrics.json present; otherwise error.json only
 };
 
-nlohmann::json WithoutTimingKeys(nlohmann::json metrics) {
+// The results of a metrics.json: without the timing keys (ms_*), which differ between runs, and
+// without format_version, so that a run written before the key existed (version 1) and the same
+// run written now compare equal.
+nlohmann::json ResultsOf(nlohmann::json metrics) {
   for (auto it = metrics.begin(); it != metrics.end();) {
     it = it.key().rfind("ms_", 0) == 0 ? metrics.erase(it) : std::next(it);
   }
+  metrics.erase(kFormatVersionKey);
   return metrics;
 }
 
@@ -176,7 +181,7 @@ FolderMerge PlanFolderMerge(const fs::path& out, const std::vector<fs::path>& in
       }
       const fs::path a = it->second.folder / kMetricsFile;
       const fs::path b = source.folder / kMetricsFile;
-      if (WithoutTimingKeys(ReadJsonObject(a)) != WithoutTimingKeys(ReadJsonObject(b))) {
+      if (ResultsOf(ReadJsonObject(a)) != ResultsOf(ReadJsonObject(b))) {
         throw std::invalid_argument("merge: " + a.string() + " and " + b.string() +
                                     " hold different results for the same run (other program "
                                     "builds?); remove one of them");
