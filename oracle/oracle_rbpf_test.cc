@@ -14,6 +14,7 @@
 #include "datasets/scenario_generator.h"
 #include "src/core/angles.h"
 #include "src/core/random.h"
+#include "src/models/pose_propagation.h"
 #include "src/models/range_bearing_model.h"
 #include "src/models/velocity_motion_model.h"
 
@@ -206,12 +207,10 @@ TEST(OracleRbpf, SingleParticleWeightIncrementEqualsTheHandComputation) {
   Vec3 xi;
   for (int i = 0; i < 3; ++i) xi(i) = rng.Normal();  // in order: x, y, heading
 
-  // Prediction from a zero covariance: Q_n, then one propagation.
-  const models::VelocityMotionModel motion;
-  const auto fj = motion.Jacobians(context.initial_pose, s1.controls[0], 1.0);
-  const Pose mu0 = motion.Predict(context.initial_pose, s1.controls[0], 1.0);
-  const Mat3 sigma0 = fj.fx * params.pose_regularisation * fj.fx.transpose() +
-                      fj.fu * context.control_noise_cov * fj.fu.transpose();
+  // Prediction from a zero covariance: Q_n, then one propagation (models_test checks it).
+  Pose mu0 = context.initial_pose;
+  Mat3 sigma0 = params.pose_regularisation;
+  models::PropagatePoseGaussian(*context.motion, context.control_noise_cov, s1, mu0, sigma0);
   // One EKF update of the pose with the landmark's uncertainty in the measurement noise.
   const Mat2& r = context.sensor.noise_cov;
   const auto j0 = models::MeasurementJacobians(mu0, lm0.mean);

@@ -10,9 +10,11 @@
 #include <stdexcept>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "reference/mrpt/fastslam_particle_set.h"
 #include "src/core/gaussian.h"
+#include "src/filters/particle_estimate.h"
 
 namespace phdslam::reference {
 namespace {
@@ -141,11 +143,9 @@ filters::StepOutput FastSlam::Step(const datasets::StepData& step) {
 
   // Estimate: the highest-weight particle (the first one on ties), before resampling.
   const std::size_t n = set.m_particles.size();
-  std::size_t best = 0;
-  for (std::size_t i = 1; i < n; ++i) {
-    if (set.m_particles[i].log_w > set.m_particles[best].log_w) best = i;
-  }
-  best_ = set.m_particles[best].d;
+  best_ = set.m_particles[filters::HighestWeightIndex(set.m_particles,
+                                                      [](const auto& p) { return p.log_w; })]
+              .d;
 
   filters::StepOutput out;
   out.pose = best_.pose;
@@ -164,20 +164,20 @@ filters::StepOutput FastSlam::Step(const datasets::StepData& step) {
     }
   }
   if (n > 1) {
-    // Weighted spread of the particle poses (weights are normalised to max 0 by executeOn).
+    // Weighted spread of the particle poses about their weighted mean (the log-weights are
+    // normalised to max 0 by executeOn).
+    std::vector<double> w(n);
     double sum = 0.0;
     Pose mean = Pose::Zero();
-    for (const auto& p : set.m_particles) {
-      const double w = std::exp(p.log_w);
-      sum += w;
-      mean += w * p.d.pose;
+    for (std::size_t i = 0; i < n; ++i) {
+      w[i] = std::exp(set.m_particles[i].log_w);
+      sum += w[i];
+      mean += w[i] * set.m_particles[i].d.pose;
     }
     mean /= sum;
-    Mat3 cov = Mat3::Zero();
-    for (const auto& p : set.m_particles) {
-      const Vec3 d = p.d.pose - mean;
-      cov += std::exp(p.log_w) / sum * d * d.transpose();
-    }
+    for (double& wi : w) wi /= sum;
+    Mat3 cov = filters::WeightedSpread(set.m_particles, w, mean,
+                                       [](const auto& p) -> const Pose& { return p.d.pose; });
     Symmetrize(cov);
     out.pose_cov = cov;
 

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "src/core/gaussian.h"
+#include "src/models/pose_propagation.h"
 
 namespace phdslam::reference {
 
@@ -15,18 +16,15 @@ PoseGaussian PropagateOverStep(const models::MotionModel& motion, const Mat2& co
                                 std::to_string(step.controls.size()) + " controls for " +
                                 std::to_string(step.times.size()) + " time stamps");
   }
-  PoseGaussian out = start;
   for (std::size_t i = 0; i + 1 < step.times.size(); ++i) {
     const double dt = step.times[i + 1] - step.times[i];
     if (!(dt >= 0.0)) {
       throw std::invalid_argument("StepData: time stamps must not decrease (sub-interval " +
                                   std::to_string(i) + " has dt = " + std::to_string(dt) + ")");
     }
-    const models::MotionJacobians j = motion.Jacobians(out.mean, step.controls[i], dt);
-    out.mean = motion.Predict(out.mean, step.controls[i], dt);
-    out.cov = j.fx * out.cov * j.fx.transpose() + j.fu * control_noise_cov * j.fu.transpose();
-    Symmetrize(out.cov);
   }
+  PoseGaussian out = start;
+  models::PropagatePoseGaussian(motion, control_noise_cov, step, out.mean, out.cov);
   return out;
 }
 

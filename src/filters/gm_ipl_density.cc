@@ -23,17 +23,7 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 /// Stack bytes for the scratch lists of one association-cost or proposal build.
 constexpr std::size_t kScratchArenaBytes = std::size_t{8} * 1024;
 
-ProposalOutput PriorOnly(const ProposalInput& input) {
-  ProposalOutput out;
-  out.mixture.Add(0.0, input.predicted_mean, input.predicted_cov);
-  return out;
-}
-
 }  // namespace
-
-ProposalOutput TransitionDensity::Build(const ProposalInput& input) const {
-  return PriorOnly(input);
-}
 
 AssociationCosts BuildAssociationCosts(const ProposalInput& input, const PhdSlamParams& params) {
   const std::span<const phd::GaussianComponent> active = input.landmarks;
@@ -118,10 +108,8 @@ AssociationCosts BuildAssociationCosts(const ProposalInput& input, const PhdSlam
 ProposalOutput GmIplDensity::Build(const ProposalInput& input) const {
   const std::span<const phd::GaussianComponent> active = input.landmarks;
   if (params_.max_hypotheses <= 0 || active.empty() || input.measurements.empty()) {
-    ProposalOutput prior = PriorOnly(input);
     // Nothing to associate with: every measurement is clutter or a new landmark.
-    prior.best_association.assign(input.measurements.size(), -1);
-    return prior;
+    return PriorProposal(input);
   }
   const AssociationCosts costs = BuildAssociationCosts(input, params_);
   const int r = static_cast<int>(costs.rows.size());

@@ -52,7 +52,12 @@ class ImportanceDensity {
   }
 };
 
-/// PHD-SLAM 1.0: the Gaussian-linearised transition density N(mu_0, Sigma_0).
+/// The predicted Gaussian N(mu_0, Sigma_0) as the whole proposal, every measurement reported
+/// unassigned (-1): what a density proposes when nothing can be associated.
+ProposalOutput PriorProposal(const ProposalInput& input);
+
+/// PHD-SLAM 1.0: the Gaussian-linearised transition density N(mu_0, Sigma_0). It associates
+/// nothing, so it reports no association (best_association empty).
 class TransitionDensity final : public ImportanceDensity {
  public:
   [[nodiscard]] ProposalOutput Build(const ProposalInput& input) const override;

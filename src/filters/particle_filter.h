@@ -55,8 +55,8 @@
 #include "src/filters/estimator.h"
 #include "src/filters/importance_density.h"
 #include "src/filters/innovation_stats.h"
+#include "src/filters/particle_estimate.h"
 #include "src/filters/particle_filter_params.h"
-#include "src/filters/particle_spread.h"
 #include "src/filters/pose_mixture_moments.h"
 #include "src/filters/pose_prediction.h"
 #include "src/filters/resampling.h"
@@ -111,17 +111,48 @@ concept ProposesFromMap = requires(const Model& m, const typename Model::Map& ma
   { m.Propose(map, input) } -> std::same_as<std::optional<ProposalOutput>>;
 };
 
-/// The skeleton over a map model. Model provides:
-///   using Map; using Snapshot;
+/// A map model whose Update takes the map, the sampled pose, the scan and the log-weight to add
+/// the measurement likelihood to (with or without the InnovationStats of ReportsInnovations).
+template <class Model>
+concept UpdatesMaps = ReportsInnovations<Model> ||
+    requires(const Model& m, typename Model::Map& map, const Pose& x, const StepData& step,
+             double& w) {
+  m.Update(map, x, step, w);
+};
+
+/// What the skeleton requires of a map model (the per-particle map with its prediction, update
+/// and estimate):
+///   Map: the per-particle map, copied when particles are resampled; a copy is a value of its
+///     own (updating the original leaves it unchanged, even where copies share storage);
+///   Snapshot: the estimate's map kept between steps, default-constructible and copyable;
 ///   Map InitialMap() const;
 ///   void BeginStep(const StepData&);                      // per-step checks and bookkeeping
 ///   void BeforePrediction(Map&, const Pose& pose) const;  // at the pose before prediction
 ///   MapView View(const Map&);                             // valid until the next View call
-///   void Update(Map&, const Pose&, const StepData&, double& log_weight) const;
+///   void Update(Map&, const Pose&, const StepData&, double& log_weight) const;  // UpdatesMaps
 ///   Snapshot Estimate(const Map&) const;                  // the map estimate of the best particle
 ///   MapEstimate ToMapEstimate(const Snapshot&) const;
 ///   int ComponentCount(const Map&) const;                 // for the step diagnostics
+/// The typed contract suite validation/filters/map_model_contract_test.cc checks the behaviour
+/// behind these signatures for every map model.
 template <class Model>
+concept MapModel = std::move_constructible<Model> && std::copyable<typename Model::Map> &&
+    std::copyable<typename Model::Snapshot> &&
+    std::default_initializable<typename Model::Snapshot> && UpdatesMaps<Model> &&
+    requires(Model& model, const Model& const_model, typename Model::Map& map,
+             const typename Model::Map& const_map, const typename Model::Snapshot& snapshot,
+             const Pose& x, const StepData& step) {
+  { const_model.InitialMap() } -> std::same_as<typename Model::Map>;
+  model.BeginStep(step);
+  const_model.BeforePrediction(map, x);
+  { model.View(const_map) } -> std::same_as<MapView>;
+  { const_model.Estimate(const_map) } -> std::same_as<typename Model::Snapshot>;
+  { const_model.ToMapEstimate(snapshot) } -> std::same_as<MapEstimate>;
+  { const_model.ComponentCount(const_map) } -> std::same_as<int>;
+};
+
+/// The skeleton over a map model (MapModel).
+template <MapModel Model>
 class ParticleFilter final : public OnlineEstimator {
  public:
   using MapType = typename Model::Map;
@@ -216,7 +247,7 @@ class ParticleFilter final : public OnlineEstimator {
   std::vector<PoseMoments> rb_moments_;  ///< per particle: proposal moments, carried-in weight
 };
 
-template <class Model>
+template <MapModel Model>
 void ParticleFilter<Model>::Propagate(int idx, const StepData& step, double uniform,
                                       const Vec3& normal) {
   ParticleType& p = particles_[idx];
@@ -285,7 +316,7 @@ void ParticleFilter<Model>::Propagate(int idx, const StepData& step, double unif
   }
 }
 
-template <class Model>
+template <MapModel Model>
 StepOutput ParticleFilter<Model>::Step(const StepData& step) {
   model_.BeginStep(step);
   const int n = static_cast<int>(particles_.size());
@@ -308,10 +339,8 @@ StepOutput ParticleFilter<Model>::Step(const StepData& step) {
   }
 
   // 3. Estimate from the highest-weight particle (first on ties), before resampling.
-  best_ = 0;
-  for (int i = 1; i < n; ++i) {
-    if (particles_[i].log_weight > particles_[best_].log_weight) best_ = i;
-  }
+  best_ = static_cast<int>(
+      HighestWeightIndex(particles_, [](const ParticleType& p) { return p.log_weight; }));
   best_association_ =
       associations_.empty() ? std::vector<int>{} : associations_[association_owner_[best_]];
   snapshot_ = model_.Estimate(particles_[best_].map);
@@ -349,7 +378,7 @@ StepOutput ParticleFilter<Model>::Step(const StepData& step) {
   return out;
 }
 
-template <class Model>
+template <MapModel Model>
 void ParticleFilter<Model>::Resample(const std::vector<double>& weights) {
   const int n = static_cast<int>(particles_.size());
   std::vector<double> r(n);

@@ -14,13 +14,6 @@
 namespace phdslam::filters {
 namespace {
 
-ProposalOutput PriorProposal(const ProposalInput& input) {
-  ProposalOutput out;
-  out.mixture.Add(0.0, input.predicted_mean, input.predicted_cov);
-  out.best_association.assign(input.measurements.size(), -1);
-  return out;
-}
-
 /// One gated (component, measurement) pair.
 struct Pair {
   int component;  ///< active-list index

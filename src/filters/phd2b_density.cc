@@ -19,13 +19,6 @@
 namespace phdslam::filters {
 namespace {
 
-ProposalOutput PriorProposal(const ProposalInput& input) {
-  ProposalOutput out;
-  out.mixture.Add(0.0, input.predicted_mean, input.predicted_cov);
-  out.best_association.assign(input.measurements.size(), -1);
-  return out;
-}
-
 /// log of the chi-square survival function for even dof = 2k:
 /// Q(x) = exp(-x/2) sum_{i<k} (x/2)^i / i!.
 double LogChiSquareSurvivalEvenDof(int k, double x) {

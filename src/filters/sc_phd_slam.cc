@@ -9,8 +9,9 @@
 
 #include "src/core/gaussian.h"
 #include "src/core/log_sum_exp.h"
-#include "src/filters/particle_spread.h"
+#include "src/filters/particle_estimate.h"
 #include "src/filters/resampling.h"
+#include "src/models/pose_propagation.h"
 #include "src/models/sensor_model.h"
 
 namespace phdslam::filters {
@@ -118,14 +119,8 @@ Pose ScPhdSlam::SamplePose(const Pose& pose, const StepData& step,
 
 PoseMoments ScPhdSlam::LinearisedPrediction(const Pose& pose, const StepData& step) const {
   PoseMoments predicted{0.0, pose, params_.pose_regularisation};
-  for (std::size_t i = 0; i + 1 < step.times.size(); ++i) {
-    const double dt = step.times[i + 1] - step.times[i];
-    const auto j = context_.motion->Jacobians(predicted.mean, step.controls[i], dt);
-    predicted.mean = context_.motion->Predict(predicted.mean, step.controls[i], dt);
-    predicted.cov = j.fx * predicted.cov * j.fx.transpose() +
-                    j.fu * context_.control_noise_cov * j.fu.transpose();
-    Symmetrize(predicted.cov);
-  }
+  models::PropagatePoseGaussian(*context_.motion, context_.control_noise_cov, step, predicted.mean,
+                                predicted.cov);
   return predicted;
 }
 
@@ -225,11 +220,9 @@ StepOutput ScPhdSlam::Step(const StepData& step) {
   const std::vector<double> w = NormalisedWeights(log_w);
   StepOutput out;
   out.pose.setZero();
-  best_ = 0;
-  for (std::size_t i = 0; i < parents_.size(); ++i) {
-    out.pose += w[i] * parents_[i].pose;
-    if (parents_[i].log_weight > parents_[best_].log_weight) best_ = static_cast<int>(i);
-  }
+  for (std::size_t i = 0; i < parents_.size(); ++i) out.pose += w[i] * parents_[i].pose;
+  best_ = static_cast<int>(
+      HighestWeightIndex(parents_, [](const ScParent& p) { return p.log_weight; }));
   if (parents_.size() > 1) {
     out.pose_cov = WeightedSpread(parents_, w, out.pose,
                                   [](const ScParent& p) -> const Pose& { return p.pose; });

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <utility>
 
 #include "src/core/log_sum_exp.h"
@@ -12,10 +13,10 @@ namespace phdslam::glmb {
 
 namespace {
 
-double LogClutterIntensity(const models::SensorModel& sensor, ClutterSpace space) {
-  if (space == ClutterSpace::kSensor) return std::log(sensor.ClutterIntensity());
-  const double rate = std::max(sensor.clutter_rate, models::SensorModel::kMinFilterClutterRate);
-  return std::log(rate / (sensor.fov_range * 2.0 * sensor.fov_half_angle));
+/// log kappa: the sensor's clutter intensity, in the space `space` when one is given.
+double LogClutterIntensity(models::SensorModel sensor, std::optional<models::ClutterSpace> space) {
+  if (space) sensor.clutter_space = *space;
+  return std::log(sensor.ClutterIntensity());
 }
 
 void AddInnovations(const UpdateResult& result, filters::InnovationStats& nis) {

@@ -1,6 +1,7 @@
 #include "src/glmb/glmb_slam_params.h"
 
 #include <limits>
+#include <optional>
 
 namespace phdslam::glmb {
 
@@ -27,9 +28,9 @@ const params::ParameterTable<GlmbSlamParams>& GlmbSlamParamsTable() {
            [](auto& p) -> auto& { return p.hypothesis_prune_threshold; }, params::Between(0, 1)),
        params::BoolField<P>(
            "optimal_start", [](auto& p) -> auto& { return p.optimal_start; }),
-       params::EnumField<P, ClutterSpace>(
+       params::EnumField<P, std::optional<models::ClutterSpace>>(
            "clutter_space", [](auto& p) -> auto& { return p.clutter_space; },
-           {{ClutterSpace::kSensor, "sensor"}, {ClutterSpace::kRangeBearing, "range-bearing"}}),
+           {{std::nullopt, "sensor"}, {models::ClutterSpace::kRangeBearingBox, "range-bearing"}}),
        params::EnumField<P, BirthRule>("birth_rule", [](auto& p) -> auto& { return p.birth.rule; },
                                        {{BirthRule::kThresholded, "thresholded"},
                                         {BirthRule::kGatesBest, "gates-best"},

@@ -5,12 +5,14 @@
 #pragma once
 
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "src/core/parameter_table.h"
 #include "src/core/types.h"
 #include "src/filters/particle_filter_params.h"
 #include "src/glmb/birth.h"
 #include "src/glmb/lmb.h"
+#include "src/models/sensor_model.h"
 
 namespace phdslam::glmb {
 
@@ -33,12 +35,6 @@ enum class KernelForm {
   kMixture,   ///< sample the mixture itself
 };
 
-/// The clutter density kappa(z) = Lambda pdf_c(z), docs/algorithms/glmb-slam.md section 2.3.
-enum class ClutterSpace {
-  kSensor,        ///< the suite's SensorModel::ClutterIntensity (default: what the scenarios use)
-  kRangeBearing,  ///< [V]: uniform over the (r, b) box, 1 / (R_fov 2 half-angle)
-};
-
 /// When particles are resampled.
 enum class ResamplingRule {
   kEveryStep,  ///< the source paper: every step (the suite's stratified scheme), default
@@ -53,7 +49,11 @@ struct GlmbSlamParams {
   int max_hypotheses = 1000;                 ///< H_max ([V]: = H_upd)
   double hypothesis_prune_threshold = 1e-5;  ///< the source paper's 1e-5
   bool optimal_start = true;  ///< optimal Gibbs start, docs/algorithms/glmb-slam.md section 4.3
-  ClutterSpace clutter_space = ClutterSpace::kSensor;
+  /// The space of the clutter density kappa(z) = Lambda pdf_c(z), docs/algorithms/glmb-slam.md
+  /// section 2.3: unset ("sensor", default) the scenario's SensorModel::clutter_space (what its
+  /// clutter generation and the other filters use); kRangeBearingBox ("range-bearing") [V]'s
+  /// uniform density over the (r, b) box, 1 / (R_fov 2 half-angle).
+  std::optional<models::ClutterSpace> clutter_space;
   BirthSettings birth;  ///< rule (a), 1e-4 new, 5e-5 existing, threshold 0.5
   // delta-GLMB-SLAM 2.0's optimal-kernel proposal.
   KernelWeight kernel_weight = KernelWeight::kImportance;

@@ -5,6 +5,7 @@
 
 #include "src/core/angles.h"
 #include "src/models/car_motion_model.h"
+#include "src/models/pose_propagation.h"
 #include "src/models/range_bearing_model.h"
 #include "src/models/sensor_model.h"
 #include "src/models/velocity_motion_model.h"
@@ -26,6 +27,40 @@ TEST(VelocityMotionModel, JacobiansMatchFiniteDifferences) {
     ExpectJacobianNear<3, 2>(
         j.fu, [&](const Vec2& uu) { return f.Predict(x, uu, 1.0); }, u, 1e-5);
   }
+}
+
+// One sub-interval: f(x) and Fx P Fx^T + Fu Q_u Fu^T; a second one chains from that result; a
+// single time stamp changes nothing.
+TEST(PropagatePoseGaussian, IsTheLinearisedPredictionPerSubInterval) {
+  const VelocityMotionModel f;
+  const Mat2 qu = Vec2(0.04, 1e-4).asDiagonal();
+  const Pose x(1.0, -2.0, 0.4);
+  Mat3 p;
+  p << 0.3, 0.01, 0.002, 0.01, 0.2, -0.001, 0.002, -0.001, 0.01;
+  StepData step;
+  step.times = {0.0, 0.5, 1.5};
+  step.controls = {Control(1.2, 0.1), Control(0.8, -0.3)};
+  const auto j0 = f.Jacobians(x, step.controls[0], 0.5);
+  const Pose x1 = f.Predict(x, step.controls[0], 0.5);
+  const Mat3 p1 = j0.fx * p * j0.fx.transpose() + j0.fu * qu * j0.fu.transpose();
+  const auto j1 = f.Jacobians(x1, step.controls[1], 1.0);
+  const Pose x2 = f.Predict(x1, step.controls[1], 1.0);
+  const Mat3 p2 = j1.fx * p1 * j1.fx.transpose() + j1.fu * qu * j1.fu.transpose();
+  Pose mean = x;
+  Mat3 cov = p;
+  PropagatePoseGaussian(f, qu, step, mean, cov);
+  EXPECT_LT((mean - x2).norm(), 1e-12);
+  EXPECT_LT((cov - p2).norm(), 1e-12);
+  EXPECT_EQ(cov, cov.transpose());
+  ExpectSymmetricPositiveDefinite(cov);
+
+  StepData still;
+  still.times = {3.0};
+  mean = x;
+  cov = p;
+  PropagatePoseGaussian(f, qu, still, mean, cov);
+  EXPECT_EQ(mean, x);
+  EXPECT_EQ(cov, p);
 }
 
 TEST(VelocityMotionModel, StraightLineLimitIsContinuous) {

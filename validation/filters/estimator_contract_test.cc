@@ -4,14 +4,18 @@
 
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <ostream>
+#include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "datasets/scenario_generator.h"
 #include "oracle/known_association_density.h"
 #include "src/core/gaussian.h"
 #include "src/filters/phd_slam_family.h"
+#include "src/glmb/glmb_slam.h"
 #include "src/models/range_bearing_model.h"
 #include "validation/runner/execution/run_estimator.h"
 #include "validation/runner/registry/estimator_registry.h"
@@ -161,6 +165,30 @@ struct DensityCase {
   bool known_association = false;
 };
 
+/// delta-GLMB-SLAM 2.0's kernel proposal (GlmbMapModel::Propose, a proposal the map model builds
+/// from its whole map) as an importance density: the landmark view becomes the map's one
+/// hypothesis (weight 1) with a track per landmark. Each Build makes the model afresh with one
+/// seed, so the Gibbs samples, and with them the proposal, are reproducible.
+class GlmbKernelDensity final : public filters::ImportanceDensity {
+ public:
+  [[nodiscard]] filters::ProposalOutput Build(const filters::ProposalInput& input) const override {
+    filters::EstimatorContext context;
+    context.sensor = *input.sensor;
+    glmb::GlmbMapModel model(context, glmb::GlmbSlamParams{}, /*optimal_kernel=*/true, 5);
+    auto tracks = std::make_shared<glmb::TrackSet>();
+    for (std::size_t i = 0; i < input.landmarks.size(); ++i) {
+      const phd::GaussianComponent& c = input.landmarks[i];
+      tracks->push_back(glmb::MakeTrack(i + 1, {0, static_cast<int>(i)}, c.mean, c.cov));
+    }
+    glmb::GlmbParticleMap map;
+    map.hypotheses = {glmb::Hypothesis{tracks, 0.0}};
+    map.next_id = input.landmarks.size() + 1;
+    std::optional<filters::ProposalOutput> out = model.Propose(map, input);
+    if (!out) throw std::logic_error("GlmbKernelDensity: glmb2 proposed nothing");
+    return std::move(*out);
+  }
+};
+
 std::vector<DensityCase> Densities() {
   std::vector<DensityCase> cases;
   const filters::PhdSlamParams params;
@@ -170,6 +198,7 @@ std::vector<DensityCase> Densities() {
   cases.push_back(
       {"oracle", std::make_shared<oracle::KnownAssociationIplDensity>(filters::IplOptions{5, 1e-3}),
        true});
+  cases.push_back({"glmb2", std::make_shared<GlmbKernelDensity>(), false});
   return cases;
 }
 

@@ -15,6 +15,7 @@
 #include "datasets/scenario_generator.h"
 #include "src/core/angles.h"
 #include "src/core/log_sum_exp.h"
+#include "src/models/pose_propagation.h"
 #include "src/models/velocity_motion_model.h"
 #include "validation/runner/registry/scenario_defaults.h"
 #include "validation/runner/studies/parent_weights.h"
@@ -486,12 +487,12 @@ TEST(ScPhdSlam, ChildSpreadMatchesThePropagatedCovariance) {
   const Control u(1.0, 0.05);
   const Mat2 qu = Vec2(0.1 * 0.1, 0.01 * 0.01).asDiagonal();
   const Mat3 qn = Vec3(1e-4, 4e-4, 1e-6).asDiagonal();
-  const auto j = motion.Jacobians(x0, u, 1.0);
-  const Mat3 expected = j.fx * qn * j.fx.transpose() + j.fu * qu * j.fu.transpose();
-  const Pose expected_mean = motion.Predict(x0, u, 1.0);
   StepData st;
   st.times = {0.0, 1.0};
   st.controls = {u};
+  Pose expected_mean = x0;
+  Mat3 expected = qn;
+  models::PropagatePoseGaussian(motion, qu, st, expected_mean, expected);
   for (ScPredictionSampling mode :
        {ScPredictionSampling::kControlNoise, ScPredictionSampling::kLinearisedGaussian}) {
     EstimatorContext c;
@@ -526,11 +527,12 @@ TEST(ScPhdSlam, RaoBlackwellisedCovarianceIsThePredictedGaussian) {
   const Control u(1.0, 0.05);
   const Mat2 qu = Vec2(0.1 * 0.1, 0.01 * 0.01).asDiagonal();
   const Mat3 qn = Vec3(1e-4, 4e-4, 1e-6).asDiagonal();
-  const auto j = motion.Jacobians(x0, u, 1.0);
-  const Mat3 expected = j.fx * qn * j.fx.transpose() + j.fu * qu * j.fu.transpose();
   StepData st;
   st.times = {0.0, 1.0};
   st.controls = {u};
+  Pose expected_mean = x0;
+  Mat3 expected = qn;
+  models::PropagatePoseGaussian(motion, qu, st, expected_mean, expected);
   for (int particles : {1, 5}) {
     EstimatorContext c;
     c.initial_pose = x0;
@@ -543,7 +545,7 @@ TEST(ScPhdSlam, RaoBlackwellisedCovarianceIsThePredictedGaussian) {
     const StepOutput out = f.Step(st);
     ASSERT_TRUE(out.pose_cov_rb.has_value()) << particles;
     ASSERT_TRUE(out.pose_mean_rb.has_value()) << particles;
-    EXPECT_TRUE(out.pose_mean_rb->isApprox(motion.Predict(x0, u, 1.0), 1e-12)) << particles;
+    EXPECT_TRUE(out.pose_mean_rb->isApprox(expected_mean, 1e-12)) << particles;
     EXPECT_TRUE(out.pose_cov_rb->isApprox(expected, 1e-9)) << particles;
   }
   // A step with one time stamp has no propagation and no Rao-Blackwellised covariance.

@@ -111,15 +111,29 @@ RunEvaluation EvaluateRun(const RunRecord& record, const datasets::Scenario& sce
 /// as failed with this reason instead of writing a metrics.json that later readers refuse.
 std::string NonFiniteMetrics(const RunMetrics& m);
 
-/// The first error-statistic field of a metrics.json that is null although it must be a number:
-/// what older versions wrote for an overflowed error. "" when there is none. Readers count such a
-/// run as failed.
+/// The first error-statistic field of a format-version-1 metrics.json that is null although it
+/// must be a number: what older versions wrote for an overflowed error. "" when there is none (and
+/// for every later version, which refuses to write such a run). Readers count such a run as failed.
 std::string OverflowedMetricsField(const nlohmann::json& j);
 
-/// metrics.json fields of RunMetrics (flat; "not available" is null). Derived values (RMSE,
-/// std, means) are written for readers; FromJson reads back the sufficient statistics.
+/// The metrics.json key of the layout version, and the version this program writes. A file
+/// without the key is version 1: the keys of version 2 (all but format_version), some of which it
+/// may lack because it was written before they existed (the consistency keys, the association
+/// counts, the solver keys: read as "none"). Version 2 requires every key.
+inline constexpr const char* kFormatVersionKey = "format_version";
+inline constexpr int kMetricsFormatVersion = 2;
+
+/// The format version of a metrics.json (1 without the key). Throws std::runtime_error naming
+/// `source` and the version when it is not an integer or not one this program reads.
+int MetricsFormatVersion(const nlohmann::json& j, const std::string& source);
+
+/// metrics.json fields of RunMetrics (flat; "not available" is null), with format_version. The
+/// keys and how each is written and read are one table (run_metrics_json.cc). Derived values
+/// (RMSE, std, means, rates) are written for readers; RunMetricsFromJson reads back the
+/// sufficient statistics.
 nlohmann::json ToJson(const RunMetrics& m);
-/// Throws std::runtime_error naming `source` and the field when a field is missing or mistyped.
+/// Throws std::runtime_error naming `source` and the field when a field is missing or mistyped,
+/// or naming the version when the file's format_version is unknown (MetricsFormatVersion).
 RunMetrics RunMetricsFromJson(const nlohmann::json& j, const std::string& source);
 
 }  // namespace phdslam::validation

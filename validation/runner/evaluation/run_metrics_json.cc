@@ -1,8 +1,12 @@
-// metrics.json form of RunMetrics.
+// metrics.json form of RunMetrics: one table of keys (MetricsKeys) writes and reads every key.
 #include <cmath>
+#include <cstdint>
+#include <functional>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -18,15 +22,6 @@ nlohmann::json OrNull(const std::optional<double>& v) {
 template <typename T>
 nlohmann::json OrNull(const std::optional<T>& v) {
   return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
-}
-
-// Writes the sufficient statistics of `m` under `<prefix>_count`, `<prefix>_sum<unit>` and
-// `<prefix>_sq_sum<unit>2`.
-void PutMoments(nlohmann::json& j, const std::string& prefix, const std::string& unit,
-                const ErrorMoments& m) {
-  j[prefix + "_count"] = m.count;
-  j[prefix + "_sum" + unit] = m.sum;
-  j[prefix + "_sq_sum" + unit + (unit.empty() ? "" : "2")] = m.sum_sq;
 }
 
 class JsonReader {
@@ -61,35 +56,248 @@ class JsonReader {
     if (Field(key).is_null()) return std::nullopt;
     return Count(key);
   }
-  ErrorMoments Moments(const std::string& prefix, const std::string& unit) const {
-    ErrorMoments m;
-    m.count = Count(prefix + "_count");
-    m.sum = Number(prefix + "_sum" + unit);
-    m.sum_sq = Number(prefix + "_sq_sum" + unit + (unit.empty() ? "" : "2"));
-    return m;
-  }
-
- private:
   [[noreturn]] void Fail(const std::string& key, const std::string& expected) const {
     throw std::runtime_error(source_ + ": field '" + key + "' must be " + expected + ", got " +
                              j_.at(key).dump());
   }
+
+ private:
   const nlohmann::json& j_;
   const std::string& source_;
 };
 
-// metrics.json keys of the association counts; all null when the run was not scored.
-const std::vector<std::pair<std::string, long AssociationCounts::*>>& AssociationFields() {
-  static const std::vector<std::pair<std::string, long AssociationCounts::*>> fields = {
-      {"da_tp", &AssociationCounts::tp},
-      {"da_fn", &AssociationCounts::fn},
-      {"da_tn", &AssociationCounts::tn},
-      {"da_fp", &AssociationCounts::fp},
-      {"da_first_sightings", &AssociationCounts::first_sightings},
-      {"da_first_sightings_associated", &AssociationCounts::first_sightings_associated},
-      {"da_unreported", &AssociationCounts::unreported},
+// One metrics.json key: how it is written from RunMetrics and read back. The keys are written in
+// one object (sorted by name in the file) and read in table order, so a group's leading key
+// (gospa_m, da_tp) is read before the keys that depend on it.
+struct MetricsKey {
+  std::string name;
+  std::function<nlohmann::json(const RunMetrics&)> write;
+  /// Reads the value into the metrics; empty for derived keys (RMSE, std, means, rates), written
+  /// for readers and recomputed from the sufficient statistics.
+  std::function<void(const JsonReader&, const std::string&, RunMetrics&)> read;
+  /// A format-version-1 file (no format_version) may lack the key: it was written before the key
+  /// existed, and the metric keeps its default (none).
+  bool absent_before_v2 = false;
+};
+
+using Metrics = RunMetrics;
+using Reader = JsonReader;
+
+// Keys of one ErrorMoments member: <prefix>_count, <prefix>_sum<unit>, <prefix>_sq_sum<unit>2.
+std::vector<MetricsKey> MomentKeys(const std::string& prefix, const std::string& unit,
+                                   ErrorMoments RunMetrics::*member) {
+  const std::string sq = prefix + "_sq_sum" + unit + (unit.empty() ? "" : "2");
+  return {
+      {prefix + "_count", [member](const Metrics& m) { return nlohmann::json((m.*member).count); },
+       [member](const Reader& r, const std::string& k, Metrics& m) {
+         (m.*member).count = r.Count(k);
+       }},
+      {prefix + "_sum" + unit,
+       [member](const Metrics& m) { return nlohmann::json((m.*member).sum); },
+       [member](const Reader& r, const std::string& k, Metrics& m) {
+         (m.*member).sum = r.Number(k);
+       }},
+      {sq, [member](const Metrics& m) { return nlohmann::json((m.*member).sum_sq); },
+       [member](const Reader& r, const std::string& k, Metrics& m) {
+         (m.*member).sum_sq = r.Number(k);
+       }},
   };
-  return fields;
+}
+
+// Keys of a NEES-like statistic: <prefix>_mean (derived), <prefix>_count and <prefix>_sum. The
+// values are finite and non-negative, so a sum written as null overflowed: it reads as +infinity
+// (e.g. collapsed particles without resampling, where single values reach 1e300).
+std::vector<MetricsKey> NeesKeys(const std::string& prefix, ErrorMoments RunMetrics::*member,
+                                 bool absent_before_v2) {
+  return {
+      {prefix + "_mean",
+       [member](const Metrics& m) { return OrNull((m.*member).Mean()); },
+       {},
+       absent_before_v2},
+      {prefix + "_count", [member](const Metrics& m) { return nlohmann::json((m.*member).count); },
+       [member](const Reader& r, const std::string& k, Metrics& m) {
+         (m.*member).count = r.Count(k);
+       },
+       absent_before_v2},
+      {prefix + "_sum", [member](const Metrics& m) { return nlohmann::json((m.*member).sum); },
+       [member](const Reader& r, const std::string& k, Metrics& m) {
+         (m.*member).sum = r.OptionalNumber(k).value_or(std::numeric_limits<double>::infinity());
+       },
+       absent_before_v2},
+  };
+}
+
+// A part of the final-map GOSPA, null without a true map; read when gospa_m was not null.
+template <typename T>
+MetricsKey GospaKey(const std::string& name, T FinalMapGospa::*member) {
+  return {name,
+          [member](const Metrics& m) {
+            return m.gospa ? nlohmann::json((*m.gospa).*member) : nlohmann::json(nullptr);
+          },
+          [member](const Reader& r, const std::string& k, Metrics& m) {
+            if (!m.gospa) return;
+            if constexpr (std::is_same_v<T, int>) {
+              (*m.gospa).*member = static_cast<int>(r.Count(k));
+            } else {
+              (*m.gospa).*member = r.Number(k);
+            }
+          }};
+}
+
+// An association count, null when not scored; read when da_tp was not null.
+MetricsKey AssociationKey(const std::string& name, long AssociationCounts::*member) {
+  return {name,
+          [member](const Metrics& m) {
+            return m.association ? nlohmann::json((*m.association).*member)
+                                 : nlohmann::json(nullptr);
+          },
+          [member](const Reader& r, const std::string& k, Metrics& m) {
+            if (m.association) (*m.association).*member = static_cast<long>(r.Count(k));
+          },
+          true};
+}
+
+// An optional number (null when not available).
+MetricsKey OptionalNumberKey(const std::string& name, std::optional<double> RunMetrics::*member) {
+  return {name, [member](const Metrics& m) { return OrNull(m.*member); },
+          [member](const Reader& r, const std::string& k, Metrics& m) {
+            m.*member = r.OptionalNumber(k);
+          }};
+}
+
+// A count stored in a std::size_t member; optional counts are null when not available.
+MetricsKey CountKey(const std::string& name, std::size_t RunMetrics::*member,
+                    bool absent_before_v2 = false) {
+  return {name, [member](const Metrics& m) { return nlohmann::json(m.*member); },
+          [member](const Reader& r, const std::string& k, Metrics& m) { m.*member = r.Count(k); },
+          absent_before_v2};
+}
+MetricsKey OptionalCountKey(const std::string& name, std::optional<std::size_t> RunMetrics::*member,
+                            bool absent_before_v2 = false) {
+  return {name, [member](const Metrics& m) { return OrNull(m.*member); },
+          [member](const Reader& r, const std::string& k, Metrics& m) {
+            m.*member = r.OptionalCount(k);
+          },
+          absent_before_v2};
+}
+
+// A number stored in a double member.
+MetricsKey NumberKey(const std::string& name, double RunMetrics::*member) {
+  return {name, [member](const Metrics& m) { return nlohmann::json(m.*member); },
+          [member](const Reader& r, const std::string& k, Metrics& m) { m.*member = r.Number(k); }};
+}
+
+// A value written for readers only, from the metrics.
+MetricsKey Derived(const std::string& name, std::function<nlohmann::json(const Metrics&)> write,
+                   bool absent_before_v2 = false) {
+  return {name, std::move(write), {}, absent_before_v2};
+}
+
+std::optional<double> DaRate(const Metrics& m, double (AssociationCounts::*rate)() const) {
+  return m.association ? std::optional<double>(((*m.association).*rate)()) : std::nullopt;
+}
+
+// The keys of metrics.json after the identity (validation/README.md, "metrics.json"), in reading
+// order: the one place that names them.
+const std::vector<MetricsKey>& MetricsKeys() {
+  static const std::vector<MetricsKey> keys = [] {
+    std::vector<MetricsKey> table;
+    const auto add = [&table](std::vector<MetricsKey> more) {
+      for (MetricsKey& key : more) table.push_back(std::move(key));
+    };
+    add({CountKey("steps", &Metrics::steps),
+         Derived("pos_rmse_m", [](const Metrics& m) { return OrNull(m.position_m.Rms()); }),
+         Derived("pos_err_std_m", [](const Metrics& m) { return OrNull(m.position_m.Std()); })});
+    add(MomentKeys("pos_err", "_m", &Metrics::position_m));
+    add({Derived("heading_rmse_deg", [](const Metrics& m) { return OrNull(m.heading_deg.Rms()); }),
+         Derived("heading_err_std_deg",
+                 [](const Metrics& m) { return OrNull(m.heading_deg.Std()); })});
+    add(MomentKeys("heading_err", "_deg", &Metrics::heading_deg));
+    add({{"gospa_m",
+          [](const Metrics& m) {
+            return m.gospa ? nlohmann::json(m.gospa->gospa) : nlohmann::json(nullptr);
+          },
+          [](const Reader& r, const std::string& k, Metrics& m) {
+            if (const std::optional<double> g = r.OptionalNumber(k)) {
+              m.gospa = FinalMapGospa{};
+              m.gospa->gospa = *g;
+            }
+          }},
+         GospaKey("gospa_localisation_mp", &FinalMapGospa::localisation),
+         GospaKey("gospa_missed_mp", &FinalMapGospa::missed),
+         GospaKey("gospa_false_mp", &FinalMapGospa::false_),
+         GospaKey("n_missed", &FinalMapGospa::n_missed),
+         GospaKey("n_false", &FinalMapGospa::n_false),
+         NumberKey("gospa_c", &Metrics::gospa_c),
+         NumberKey("gospa_p", &Metrics::gospa_p),
+         CountKey("map_size", &Metrics::map_size),
+         OptionalCountKey("truth_map_size", &Metrics::truth_map_size),
+         OptionalNumberKey("ess_pct", &Metrics::ess_pct),
+         OptionalNumberKey("resampling_pct", &Metrics::resampling_pct),
+         OptionalNumberKey("hypotheses_mean", &Metrics::hypotheses_mean),
+         OptionalNumberKey("map_components_mean", &Metrics::map_components_mean)});
+    add(NeesKeys("pose_nees", &Metrics::pose_nees, false));
+    add(NeesKeys("landmark_nees", &Metrics::landmark_nees, false));
+    add({CountKey("pose_coverage_inside", &Metrics::pose_coverage_inside, true)});
+    add(NeesKeys("pose_nees_rb", &Metrics::pose_nees_rb, true));
+    add({CountKey("pose_coverage_rb_inside", &Metrics::pose_coverage_rb_inside, true)});
+    add(NeesKeys("gps_nees_rb", &Metrics::gps_nees_rb, true));
+    add({CountKey("gps_coverage_rb_inside", &Metrics::gps_coverage_rb_inside, true),
+         {"nis_sum", [](const Metrics& m) { return nlohmann::json(m.nis_sum); },
+          [](const Reader& r, const std::string& k, Metrics& m) {
+            m.nis_sum = r.OptionalNumber(k).value_or(std::numeric_limits<double>::infinity());
+          },
+          true},
+         CountKey("nis_count", &Metrics::nis_count, true),
+         Derived(
+             "nis_mean",
+             [](const Metrics& m) {
+               return OrNull(m.nis_count > 0 ? std::optional<double>(
+                                                   m.nis_sum / static_cast<double>(m.nis_count))
+                                             : std::nullopt);
+             },
+             true),
+         {"da_tp",
+          [](const Metrics& m) {
+            return m.association ? nlohmann::json(m.association->tp) : nlohmann::json(nullptr);
+          },
+          [](const Reader& r, const std::string& k, Metrics& m) {
+            if (r.Field(k).is_null()) return;
+            m.association = AssociationCounts{};
+            m.association->tp = static_cast<long>(r.Count(k));
+          },
+          true},
+         AssociationKey("da_fn", &AssociationCounts::fn),
+         AssociationKey("da_tn", &AssociationCounts::tn),
+         AssociationKey("da_fp", &AssociationCounts::fp),
+         AssociationKey("da_first_sightings", &AssociationCounts::first_sightings),
+         AssociationKey("da_first_sightings_associated",
+                        &AssociationCounts::first_sightings_associated),
+         AssociationKey("da_unreported", &AssociationCounts::unreported),
+         Derived(
+             "da_tpr", [](const Metrics& m) { return OrNull(DaRate(m, &AssociationCounts::tpr)); },
+             true),
+         Derived(
+             "da_tnr", [](const Metrics& m) { return OrNull(DaRate(m, &AssociationCounts::tnr)); },
+             true),
+         OptionalCountKey("gps_matched_steps", &Metrics::gps_matched_steps),
+         OptionalCountKey("solver_iterations", &Metrics::solver_iterations, true),
+         {"solver_converged", [](const Metrics& m) { return OrNull(m.solver_converged); },
+          [](const Reader& r, const std::string& k, Metrics& m) {
+            const nlohmann::json& v = r.Field(k);
+            if (v.is_null()) return;
+            if (!v.is_boolean()) r.Fail(k, "true, false or null");
+            m.solver_converged = v.get<bool>();
+          },
+          true},
+         Derived("ms_per_step_mean", [](const Metrics& m) { return OrNull(m.step_ms.Mean()); }),
+         Derived("ms_per_step_std", [](const Metrics& m) { return OrNull(m.step_ms.Std()); })});
+    // The timing statistics are ms_count, ms_sum, ms_sq_sum (unit-less prefix "ms").
+    add(MomentKeys("ms", "", &Metrics::step_ms));
+    add({NumberKey("ms_total", &Metrics::total_ms)});
+    return table;
+  }();
+  return keys;
 }
 
 // The error-statistic fields every metrics.json holds as numbers.
@@ -115,146 +323,46 @@ std::string NonFiniteMetrics(const RunMetrics& m) {
 }
 
 std::string OverflowedMetricsField(const nlohmann::json& j) {
+  if (j.contains(kFormatVersionKey)) return "";
   for (const char* key : kRequiredStatistics) {
     if (j.contains(key) && j.at(key).is_null()) return key;
   }
   return "";
 }
 
+int MetricsFormatVersion(const nlohmann::json& j, const std::string& source) {
+  if (!j.contains(kFormatVersionKey)) return 1;
+  const nlohmann::json& v = j.at(kFormatVersionKey);
+  if (!v.is_number_integer()) {
+    throw std::runtime_error(source + ": field '" + std::string(kFormatVersionKey) +
+                             "' must be an integer, got " + v.dump());
+  }
+  const std::int64_t version = v.get<std::int64_t>();
+  if (version < 1 || version > kMetricsFormatVersion) {
+    throw std::runtime_error(source + ": metrics.json format_version " + std::to_string(version) +
+                             " is unknown to this program, which reads versions 1 to " +
+                             std::to_string(kMetricsFormatVersion) +
+                             " (validation/README.md, metrics.json); written by a newer phdslam?");
+  }
+  return static_cast<int>(version);
+}
+
 nlohmann::json ToJson(const RunMetrics& m) {
   nlohmann::json j = nlohmann::json::object();
-  j["steps"] = m.steps;
-  j["pos_rmse_m"] = OrNull(m.position_m.Rms());
-  j["pos_err_std_m"] = OrNull(m.position_m.Std());
-  PutMoments(j, "pos_err", "_m", m.position_m);
-  j["heading_rmse_deg"] = OrNull(m.heading_deg.Rms());
-  j["heading_err_std_deg"] = OrNull(m.heading_deg.Std());
-  PutMoments(j, "heading_err", "_deg", m.heading_deg);
-  const auto gospa_part = [&](auto member) {
-    return m.gospa ? nlohmann::json((*m.gospa).*member) : nlohmann::json(nullptr);
-  };
-  j["gospa_m"] = gospa_part(&FinalMapGospa::gospa);
-  j["gospa_localisation_mp"] = gospa_part(&FinalMapGospa::localisation);
-  j["gospa_missed_mp"] = gospa_part(&FinalMapGospa::missed);
-  j["gospa_false_mp"] = gospa_part(&FinalMapGospa::false_);
-  j["n_missed"] = gospa_part(&FinalMapGospa::n_missed);
-  j["n_false"] = gospa_part(&FinalMapGospa::n_false);
-  j["gospa_c"] = m.gospa_c;
-  j["gospa_p"] = m.gospa_p;
-  j["map_size"] = m.map_size;
-  j["truth_map_size"] = OrNull(m.truth_map_size);
-  j["ess_pct"] = OrNull(m.ess_pct);
-  j["resampling_pct"] = OrNull(m.resampling_pct);
-  j["hypotheses_mean"] = OrNull(m.hypotheses_mean);
-  j["map_components_mean"] = OrNull(m.map_components_mean);
-  j["pose_nees_mean"] = OrNull(m.pose_nees.Mean());
-  j["pose_nees_count"] = m.pose_nees.count;
-  j["pose_nees_sum"] = m.pose_nees.sum;
-  j["landmark_nees_mean"] = OrNull(m.landmark_nees.Mean());
-  j["landmark_nees_count"] = m.landmark_nees.count;
-  j["landmark_nees_sum"] = m.landmark_nees.sum;
-  j["pose_coverage_inside"] = m.pose_coverage_inside;
-  j["pose_nees_rb_mean"] = OrNull(m.pose_nees_rb.Mean());
-  j["pose_nees_rb_count"] = m.pose_nees_rb.count;
-  j["pose_nees_rb_sum"] = m.pose_nees_rb.sum;
-  j["pose_coverage_rb_inside"] = m.pose_coverage_rb_inside;
-  j["gps_nees_rb_mean"] = OrNull(m.gps_nees_rb.Mean());
-  j["gps_nees_rb_count"] = m.gps_nees_rb.count;
-  j["gps_nees_rb_sum"] = m.gps_nees_rb.sum;
-  j["gps_coverage_rb_inside"] = m.gps_coverage_rb_inside;
-  j["nis_sum"] = m.nis_sum;
-  j["nis_count"] = m.nis_count;
-  j["nis_mean"] =
-      OrNull(m.nis_count > 0 ? std::optional<double>(m.nis_sum / static_cast<double>(m.nis_count))
-                             : std::nullopt);
-  const std::optional<AssociationCounts>& da = m.association;
-  const auto da_count = [&](long AssociationCounts::*member) {
-    return da ? nlohmann::json((*da).*member) : nlohmann::json(nullptr);
-  };
-  for (const auto& [key, member] : AssociationFields()) j[key] = da_count(member);
-  j["da_tpr"] = OrNull(da ? std::optional<double>(da->tpr()) : std::nullopt);
-  j["da_tnr"] = OrNull(da ? std::optional<double>(da->tnr()) : std::nullopt);
-  j["gps_matched_steps"] = OrNull(m.gps_matched_steps);
-  j["solver_iterations"] = OrNull(m.solver_iterations);
-  j["solver_converged"] =
-      m.solver_converged ? nlohmann::json(*m.solver_converged) : nlohmann::json(nullptr);
-  j["ms_per_step_mean"] = OrNull(m.step_ms.Mean());
-  j["ms_per_step_std"] = OrNull(m.step_ms.Std());
-  j["ms_count"] = m.step_ms.count;
-  j["ms_sum"] = m.step_ms.sum;
-  j["ms_sq_sum"] = m.step_ms.sum_sq;
-  j["ms_total"] = m.total_ms;
+  j[kFormatVersionKey] = kMetricsFormatVersion;
+  for (const MetricsKey& key : MetricsKeys()) j[key.name] = key.write(m);
   return j;
 }
 
 RunMetrics RunMetricsFromJson(const nlohmann::json& j, const std::string& source) {
   const JsonReader r(j, source);
+  const int version = MetricsFormatVersion(j, source);
   RunMetrics m;
-  m.steps = r.Count("steps");
-  m.position_m = r.Moments("pos_err", "_m");
-  m.heading_deg = r.Moments("heading_err", "_deg");
-  if (const std::optional<double> g = r.OptionalNumber("gospa_m")) {
-    FinalMapGospa gospa;
-    gospa.gospa = *g;
-    gospa.localisation = r.Number("gospa_localisation_mp");
-    gospa.missed = r.Number("gospa_missed_mp");
-    gospa.false_ = r.Number("gospa_false_mp");
-    gospa.n_missed = static_cast<int>(r.Count("n_missed"));
-    gospa.n_false = static_cast<int>(r.Count("n_false"));
-    m.gospa = gospa;
+  for (const MetricsKey& key : MetricsKeys()) {
+    if (!key.read) continue;
+    if (version == 1 && key.absent_before_v2 && !j.contains(key.name)) continue;
+    key.read(r, key.name, m);
   }
-  m.gospa_c = r.Number("gospa_c");
-  m.gospa_p = r.Number("gospa_p");
-  m.map_size = r.Count("map_size");
-  m.truth_map_size = r.OptionalCount("truth_map_size");
-  m.ess_pct = r.OptionalNumber("ess_pct");
-  m.resampling_pct = r.OptionalNumber("resampling_pct");
-  m.hypotheses_mean = r.OptionalNumber("hypotheses_mean");
-  m.map_components_mean = r.OptionalNumber("map_components_mean");
-  // NEES values are finite and non-negative, so a sum written as null overflowed: +infinity
-  // (e.g. collapsed particles without resampling, where single values reach 1e300).
-  const auto nees_sum = [&](const std::string& key) {
-    return r.OptionalNumber(key).value_or(std::numeric_limits<double>::infinity());
-  };
-  m.pose_nees.count = r.Count("pose_nees_count");
-  m.pose_nees.sum = nees_sum("pose_nees_sum");
-  m.landmark_nees.count = r.Count("landmark_nees_count");
-  m.landmark_nees.sum = nees_sum("landmark_nees_sum");
-  // Consistency fields: absent in folders written before they existed (read as none).
-  if (j.contains("pose_nees_rb_count")) {
-    m.pose_coverage_inside = r.Count("pose_coverage_inside");
-    m.pose_nees_rb.count = r.Count("pose_nees_rb_count");
-    m.pose_nees_rb.sum = nees_sum("pose_nees_rb_sum");
-    m.pose_coverage_rb_inside = r.Count("pose_coverage_rb_inside");
-    m.gps_nees_rb.count = r.Count("gps_nees_rb_count");
-    m.gps_nees_rb.sum = nees_sum("gps_nees_rb_sum");
-    m.gps_coverage_rb_inside = r.Count("gps_coverage_rb_inside");
-    m.nis_sum = nees_sum("nis_sum");
-    m.nis_count = r.Count("nis_count");
-  }
-  // Association counts: absent in folders written before they existed, null when not scored.
-  if (j.contains("da_tp") && !j.at("da_tp").is_null()) {
-    AssociationCounts da;
-    for (const auto& [key, member] : AssociationFields()) {
-      da.*member = static_cast<long>(r.Count(key));
-    }
-    m.association = da;
-  }
-  m.gps_matched_steps = r.OptionalCount("gps_matched_steps");
-  // Absent in folders written before it existed.
-  if (j.contains("solver_iterations")) m.solver_iterations = r.OptionalCount("solver_iterations");
-  if (j.contains("solver_converged") && !j.at("solver_converged").is_null()) {
-    if (!j.at("solver_converged").is_boolean()) {
-      throw std::runtime_error(source +
-                               ": field 'solver_converged' must be true, false or null, got " +
-                               j.at("solver_converged").dump());
-    }
-    m.solver_converged = j.at("solver_converged").get<bool>();
-  }
-  m.step_ms.count = r.Count("ms_count");
-  m.step_ms.sum = r.Number("ms_sum");
-  m.step_ms.sum_sq = r.Number("ms_sq_sum");
-  m.total_ms = r.Number("ms_total");
   return m;
 }
 

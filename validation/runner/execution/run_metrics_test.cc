@@ -6,6 +6,7 @@
 #include <limits>
 #include <numbers>
 #include <stdexcept>
+#include <string>
 
 #include "datasets/map_io.h"
 #include "datasets/test_temp_dir.h"
@@ -270,7 +271,9 @@ TEST(RunMetricsJson, RoundTripsTheSufficientStatistics) {
   ASSERT_TRUE(da_back.association);
   EXPECT_EQ(da_back.association->tn, 2);
   EXPECT_EQ(ToJson(da_back), da);
+  // A file written before format_version existed (version 1) may lack the later keys.
   nlohmann::json old = j;
+  old.erase("format_version");
   for (const char* key : {"da_tp", "da_fn", "da_tn", "da_fp", "da_first_sightings",
                           "da_first_sightings_associated", "da_unreported", "da_tpr", "da_tnr"}) {
     old.erase(key);
@@ -287,9 +290,57 @@ TEST(RunMetricsJson, RoundTripsTheSufficientStatistics) {
   nlohmann::json missing = j;
   missing.erase("pos_err_count");
   EXPECT_THROW(RunMetricsFromJson(missing, "test"), std::runtime_error);
+  // Version 2 requires the keys version 1 could lack.
+  nlohmann::json without_counts = j;
+  without_counts.erase("da_tp");
+  EXPECT_THROW(RunMetricsFromJson(without_counts, "test"), std::runtime_error);
   nlohmann::json mistyped = j;
   mistyped["ms_sum"] = "fast";
   EXPECT_THROW(RunMetricsFromJson(mistyped, "test"), std::runtime_error);
+}
+
+// The message of the std::runtime_error `read` throws, or "" when it throws none.
+template <typename Read>
+std::string ErrorOf(Read read) {
+  try {
+    read();
+  } catch (const std::runtime_error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(RunMetricsJson, WritesItsFormatVersionAndRefusesUnknownOnes) {
+  const nlohmann::json j = ToJson(EvaluateRun(HandRecord(), TruthScenario()).metrics);
+  EXPECT_EQ(j.at("format_version"), kMetricsFormatVersion);
+  EXPECT_EQ(MetricsFormatVersion(j, "a/metrics.json"), 2);
+
+  // A file without the key is version 1 and reads as the same metrics.
+  nlohmann::json v1 = j;
+  v1.erase("format_version");
+  EXPECT_EQ(MetricsFormatVersion(v1, "a/metrics.json"), 1);
+  EXPECT_EQ(ToJson(RunMetricsFromJson(v1, "a/metrics.json")), j);
+
+  nlohmann::json newer = j;
+  newer["format_version"] = 3;
+  const std::string why = ErrorOf([&] { RunMetricsFromJson(newer, "runs/x/metrics.json"); });
+  EXPECT_NE(why.find("runs/x/metrics.json"), std::string::npos) << why;
+  EXPECT_NE(why.find("format_version 3"), std::string::npos) << why;
+  for (const nlohmann::json& bad :
+       {nlohmann::json(0), nlohmann::json("2"), nlohmann::json(2.5), nlohmann::json(nullptr)}) {
+    nlohmann::json mistyped = j;
+    mistyped["format_version"] = bad;
+    const std::string message = ErrorOf([&] { RunMetricsFromJson(mistyped, "b/metrics.json"); });
+    EXPECT_NE(message.find("b/metrics.json"), std::string::npos) << bad.dump();
+    EXPECT_NE(message.find("format_version"), std::string::npos) << bad.dump();
+  }
+  // Only version-1 files can hold the nulls older versions wrote for an overflowed error.
+  nlohmann::json overflowed = v1;
+  overflowed["pos_err_sum_m"] = nullptr;
+  EXPECT_EQ(OverflowedMetricsField(overflowed), "pos_err_sum_m");
+  overflowed["format_version"] = 2;
+  EXPECT_EQ(OverflowedMetricsField(overflowed), "");
+  EXPECT_THROW(RunMetricsFromJson(overflowed, "c/metrics.json"), std::runtime_error);
 }
 
 // A batch estimator returning fixed poses, for RunEstimator.

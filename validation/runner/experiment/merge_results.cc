@@ -3,7 +3,6 @@
 #include <unistd.h>
 
 #include <chrono>
-#include <ctime>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -12,6 +11,7 @@
 #include <system_error>
 #include <utility>
 
+#include "validation/runner/evaluation/run_metrics.h"
 #include "validation/runner/experiment/sweep.h"
 #include "validation/runner/io/results_io.h"
 #include "validation/runner/io/results_layout.h"
@@ -32,10 +32,14 @@ struct RunSource {
   bool finished = true;  ///< metrics.json present; otherwise error.json only
 };
 
-nlohmann::json WithoutTimingKeys(nlohmann::json metrics) {
+// The results of a metrics.json: without the timing keys (ms_*), which differ between runs, and
+// without format_version, so that a run written before the key existed (version 1) and the same
+// run written now compare equal.
+nlohmann::json ResultsOf(nlohmann::json metrics) {
   for (auto it = metrics.begin(); it != metrics.end();) {
     it = it.key().rfind("ms_", 0) == 0 ? metrics.erase(it) : std::next(it);
   }
+  metrics.erase(kFormatVersionKey);
   return metrics;
 }
 
@@ -115,15 +119,6 @@ void CopyTruthFiles(const fs::path& input, const fs::path& out) {
   }
 }
 
-std::string UtcNow() {
-  const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
-  std::tm utc{};
-  gmtime_r(&now, &utc);
-  char buffer[32];
-  std::strftime(buffer, sizeof(buffer), "%Y-%m-%dT%H:%M:%SZ", &utc);
-  return buffer;
-}
-
 void RequireDistinct(const fs::path& out, const fs::path& input) {
   if (!fs::exists(input)) throw std::invalid_argument("merge: " + input.string() + " not found");
   std::error_code ec;
@@ -186,7 +181,7 @@ FolderMerge PlanFolderMerge(const fs::path& out, const std::vector<fs::path>& in
       }
       const fs::path a = it->second.folder / kMetricsFile;
       const fs::path b = source.folder / kMetricsFile;
-      if (WithoutTimingKeys(ReadJsonObject(a)) != WithoutTimingKeys(ReadJsonObject(b))) {
+      if (ResultsOf(ReadJsonObject(a)) != ResultsOf(ReadJsonObject(b))) {
         throw std::invalid_argument("merge: " + a.string() + " and " + b.string() +
                                     " hold different results for the same run (other program "
                                     "builds?); remove one of them");

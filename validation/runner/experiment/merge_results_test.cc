@@ -113,6 +113,30 @@ TEST(MergeResults, TwoShardsMergedEqualTheUnshardedRun) {
   ExpectSameResults(base / "whole", base / "merged");
 }
 
+// A run written before metrics.json had format_version (version 1) merges with the same run
+// written now; a run with other results is still refused.
+TEST(MergeResults, AVersionOneMetricsFileMergesWithTheSameRunWrittenNow) {
+  const fs::path base = datasets::testing::FreshTestDir();
+  Experiment x = SmallExperiment();
+  x.estimators = {{"odometry", nlohmann::json::object(), {1}}};
+  x.seeds = {1};
+  RunExperiment(x, Quiet(base / "new"));
+  RunExperiment(x, Quiet(base / "old"));
+  const fs::path old_metrics = RunFolder(base / "old", "odometry", 1, 1) / kMetricsFile;
+  nlohmann::json old = ReadJsonObject(old_metrics);
+  ASSERT_EQ(old.at("format_version"), 2);
+  old.erase("format_version");
+  WriteFileAtomically(old_metrics, JsonFileText(old));
+  // The run is in both inputs: copied from the first, compared with the second.
+  const MergeReport report = MergeResults(base / "merged", {base / "new", base / "old"});
+  EXPECT_EQ(report.runs_copied, 1u);
+  EXPECT_TRUE(fs::exists(RunFolder(base / "merged", "odometry", 1, 1) / kMetricsFile));
+
+  old["pos_err_sum_m"] = old.at("pos_err_sum_m").get<double>() + 1.0;
+  WriteFileAtomically(old_metrics, JsonFileText(old));
+  EXPECT_THROW(MergeResults(base / "merged2", {base / "new", base / "old"}), std::invalid_argument);
+}
+
 TEST(MergeResults, ShardedSweepsMergeValueByValue) {
   const fs::path base = datasets::testing::FreshTestDir();
   Experiment x = SmallExperiment();

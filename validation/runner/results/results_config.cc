@@ -1,12 +1,23 @@
 #include "validation/runner/results/results_config.h"
 
+#include <chrono>
 #include <cstdint>
+#include <ctime>
 #include <set>
 #include <stdexcept>
 
 #include "validation/runner/io/results_io.h"
 
 namespace phdslam::validation {
+
+std::string UtcNow() {
+  const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  char buffer[32];
+  std::strftime(buffer, sizeof(buffer), "%Y-%m-%dT%H:%M:%SZ", &utc);
+  return buffer;
+}
 
 nlohmann::json ReadJsonObject(const std::filesystem::path& path) {
   nlohmann::json j = nlohmann::json::parse(ReadTextFile(path), nullptr, false);

@@ -8,6 +8,9 @@
 
 namespace phdslam::validation {
 
+/// The current time in UTC as config.json's started_utc records it: "YYYY-MM-DDTHH:MM:SSZ".
+std::string UtcNow();
+
 /// The object in a JSON file; throws std::runtime_error naming the file when it cannot be read or
 /// is not a JSON object.
 nlohmann::json ReadJsonObject(const std::filesystem::path& path);

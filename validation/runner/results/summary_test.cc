@@ -7,6 +7,7 @@
 #include <limits>
 #include <map>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -247,6 +248,7 @@ TEST_F(SummaryTest, WritesSummaryAndRunsCsv) {
 TEST_F(SummaryTest, AnOverflowedErrorInAnOldMetricsFileCountsAsAFailedRun) {
   nlohmann::json poisoned = Identity("a", 1, 3);
   poisoned.update(ToJson(SecondRun()));
+  poisoned.erase(kFormatVersionKey);        // written before the key existed (version 1)
   poisoned["pos_err_sq_sum_m2"] = nullptr;  // what an overflowed sum was written as
   WriteJson(out_, "a", 1, 3, kMetricsFile, poisoned.dump());
   const ResultsInventory inv = ReadResults(out_);
@@ -259,6 +261,23 @@ TEST_F(SummaryTest, AnOverflowedErrorInAnOldMetricsFileCountsAsAFailedRun) {
   ASSERT_EQ(groups.size(), 2u);
   EXPECT_EQ(groups[0].failed_runs, 1u);
   EXPECT_TRUE(std::filesystem::exists(out_ / "summary.csv"));
+}
+
+TEST_F(SummaryTest, AMetricsFileOfAnUnknownFormatVersionIsRefusedNamingTheFile) {
+  nlohmann::json newer = Identity("a", 1, 3);
+  newer.update(ToJson(SecondRun()));
+  newer[kFormatVersionKey] = kMetricsFormatVersion + 1;
+  WriteJson(out_, "a", 1, 3, kMetricsFile, newer.dump());
+  try {
+    ReadResults(out_);
+    ADD_FAILURE() << "a metrics.json of an unknown version was read";
+  } catch (const std::runtime_error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("seed-3/metrics.json"), std::string::npos) << what;
+    EXPECT_NE(what.find("format_version " + std::to_string(kMetricsFormatVersion + 1)),
+              std::string::npos)
+        << what;
+  }
 }
 
 TEST(RunMetricsCheck, NonFiniteErrorsAreNamedAndFiniteOnesPass) {
