@@ -6,6 +6,7 @@
 #include <cmath>
 #include <utility>
 
+#include "reference/ceres/pose_covariance_propagation.h"
 #include "src/core/gaussian.h"
 #include "src/models/range_bearing_model.h"
 
@@ -23,21 +24,6 @@ Pose PredictPose(const datasets::Scenario& scenario, const std::vector<OdometryI
                  const std::vector<Pose>& poses, std::size_t k) {
   const Pose base = k == 0 ? scenario.initial_pose : poses[k - 1];
   return inc[k].propagated ? ComposeRelative(base, inc[k].delta) : base;
-}
-
-/// Covariance of x (+) d given that of x (px) and d's (in the frame of x).
-Mat3 PropagatePoseCovariance(const Pose& x, const OdometryIncrement& inc, const Mat3& px) {
-  if (!inc.propagated) return px;
-  const double c = std::cos(x(2));
-  const double s = std::sin(x(2));
-  Mat3 jx = Mat3::Identity();
-  jx(0, 2) = -s * inc.delta(0) - c * inc.delta(1);
-  jx(1, 2) = c * inc.delta(0) - s * inc.delta(1);
-  Mat3 jd = Mat3::Identity();
-  jd.topLeftCorner<2, 2>() << c, -s, s, c;
-  Mat3 p = jx * px * jx.transpose() + jd * inc.covariance * jd.transpose();
-  Symmetrize(p);
-  return p;
 }
 
 /// The steps [0, end) of the graph, chunk by chunk: held_before for the chunk ending at `end`.
@@ -96,6 +82,7 @@ class AssociationPass {
   void Step(std::size_t k) {
     px_ = PropagatePoseCovariance(k == 0 ? scenario_.initial_pose : poses_[k - 1], increments_[k],
                                   px_);
+    Symmetrize(px_);
     poses_[k] = PredictPose(scenario_, increments_, poses_, k);
     const Pose& x = poses_[k];
     std::vector<int> ids;
