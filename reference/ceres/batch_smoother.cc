@@ -262,6 +262,7 @@ datasets::BatchResult BatchSmoother::Solve(const datasets::Scenario& scenario) {
   IncrementalSettings incremental_settings;
   incremental_settings.chunk_steps = static_cast<std::size_t>(options_.incremental_chunk_steps);
   incremental_settings.active_steps = static_cast<std::size_t>(options_.incremental_active_steps);
+  incremental_settings.held_prior = options_.incremental_held_prior;
   incremental_settings.solve = settings(options_.intermediate_function_tolerance);
 
   // Known association: gross outliers (mislabelled detections) are left out of the final solves

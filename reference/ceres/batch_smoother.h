@@ -55,6 +55,10 @@ struct SmootherOptions {
   /// Incremental solve: the newest poses optimised in each chunk's solve, older ones held as they
   /// stand (0: every pose). The final solve always optimises every pose.
   int incremental_active_steps = 500;
+  /// Incremental solve: the measurements taken from held poses are folded, once, into a fixed
+  /// Gaussian prior on their landmarks (held_measurement_prior.h), so that a chunk solve costs
+  /// the same at every chunk; false re-evaluates them in every chunk solve.
+  bool incremental_held_prior = true;
   /// Known association: a labelled measurement whose squared whitened residual (chi-square, 2
   /// dof) at the warm-started estimate exceeds this is left out of the final solves as a
   /// mislabelled detection (README.md, "Outliers in the known association"); the incremental

@@ -4,8 +4,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <utility>
 
+#include "reference/ceres/held_measurement_prior.h"
 #include "reference/ceres/pose_covariance_propagation.h"
 #include "src/core/gaussian.h"
 #include "src/models/range_bearing_model.h"
@@ -137,8 +139,11 @@ class AssociationPass {
   ceres::Solver::Summary Solve(std::size_t end, const OdometrySpec& odometry,
                                ceres::LossFunction* loss, const IncrementalSettings& settings) {
     const Association partial = SolveAssociation(end);
-    FactorGraph graph(scenario_, odometry, partial, loss, &poses_, &landmarks_,
-                      HeldBefore(settings, end));
+    const std::size_t held = HeldBefore(settings, end);
+    if (settings.held_prior && !priors_) priors_.emplace(scenario_, loss);
+    if (priors_) priors_->FoldUntil(held, partial, poses_, landmarks_);
+    FactorGraph graph(scenario_, odometry, partial, loss, &poses_, &landmarks_, held,
+                      priors_ ? &*priors_ : nullptr);
     ceres::Solver::Summary summary = graph.Optimise(settings.solve);
     std::vector<int> near;
     NearLandmarks(poses_[end - 1], &near);
@@ -203,6 +208,7 @@ class AssociationPass {
   Association association_;
   Mat3 px_ = Mat3::Zero();
   int born_ = 0;
+  std::optional<HeldMeasurementPriors> priors_;  ///< with IncrementalSettings::held_prior
 };
 
 }  // namespace
@@ -217,6 +223,7 @@ void IncrementalSolve(const datasets::Scenario& scenario, const OdometrySpec& od
   poses->assign(steps, Pose::Zero());
   landmarks->assign(landmark_count, Landmark::Zero());
   std::vector<bool> started(landmark_count, false);
+  HeldMeasurementPriors priors(scenario, loss);
   for (std::size_t done = 0; done < steps;) {
     const std::size_t end = std::min(steps, done + settings.chunk_steps);
     for (std::size_t k = done; k < end; ++k) {
@@ -232,8 +239,10 @@ void IncrementalSolve(const datasets::Scenario& scenario, const OdometrySpec& od
     const Association partial(association.begin(),
                               association.begin() + static_cast<std::ptrdiff_t>(end));
     const Clock::time_point t = Clock::now();
-    FactorGraph graph(scenario, odometry, partial, loss, poses, landmarks,
-                      HeldBefore(settings, end));
+    const std::size_t held = HeldBefore(settings, end);
+    if (settings.held_prior) priors.FoldUntil(held, partial, *poses, *landmarks);
+    FactorGraph graph(scenario, odometry, partial, loss, poses, landmarks, held,
+                      settings.held_prior ? &priors : nullptr);
     const ceres::Solver::Summary summary = graph.Optimise(settings.solve);
     if (observer) observer(summary, SecondsSince(t));
     done = end;
