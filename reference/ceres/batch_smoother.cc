@@ -348,6 +348,7 @@ datasets::BatchResult BatchSmoother::Solve(const datasets::Scenario& scenario) {
         io.confirmation = {options_.min_observations, options_.min_detection_ratio};
         io.sensor = scenario.sensor;
         io.measurement_cov = scenario.sensor.noise_cov;
+        io.squared_loss_marginals = options_.incremental_squared_marginals;
         AssociatedMap map =
             IncrementalAssociation(scenario, loose_odometry, robust.get(), incremental_settings, io,
                                    record, &report_.association_seconds);

@@ -59,6 +59,10 @@ struct SmootherOptions {
   /// Gaussian prior on their landmarks (held_measurement_prior.h), so that a chunk solve costs
   /// the same at every chunk; false re-evaluates them in every chunk solve.
   bool incremental_held_prior = true;
+  /// Incremental solve, own association: the gate's marginal covariances from the squared-loss
+  /// graph at each chunk's solution instead of the robust one (README.md, "Own association along
+  /// the incremental solve").
+  bool incremental_squared_marginals = false;
   /// Known association: a labelled measurement whose squared whitened residual (chi-square, 2
   /// dof) at the warm-started estimate exceeds this is left out of the final solves as a
   /// mislabelled detection (README.md, "Outliers in the known association"); the incremental

@@ -153,7 +153,16 @@ class AssociationPass {
         near.end());
     Mat3 px;
     std::vector<Mat2> covs;
-    if (graph.NewestCovariances(near, &px, &covs)) {
+    // The marginals of the gate come from the squared-loss graph at the solution: with a robust
+    // loss Ceres' corrected Jacobian drops the residual direction of every measurement beyond the
+    // loss scale, and the covariance of a landmark seen by one or two such measurements is
+    // singular (ceres::Covariance then fails and the gate would keep a stale pose covariance).
+    std::optional<FactorGraph> squared;
+    if (loss != nullptr && options_.squared_loss_marginals) {
+      squared.emplace(scenario_, odometry, partial, nullptr, &poses_, &landmarks_, held,
+                      priors_ ? &*priors_ : nullptr);
+    }
+    if ((squared ? *squared : graph).NewestCovariances(near, &px, &covs)) {
       px_ = px;
       for (std::size_t n = 0; n < near.size(); ++n) {
         state_[static_cast<std::size_t>(near[n])].cov = covs[n];

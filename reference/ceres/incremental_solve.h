@@ -49,6 +49,10 @@ struct IncrementalAssociationOptions {
   ConfirmationOptions confirmation;
   models::SensorModel sensor;               ///< FOV and pD for the expected detections
   Mat2 measurement_cov = Mat2::Identity();  ///< R
+  /// Gate marginals from the squared-loss graph at each chunk's solution (false: from the
+  /// chunk's robust graph, whose covariance is singular when a landmark's few measurements lie
+  /// beyond the loss scale).
+  bool squared_loss_marginals = false;
 };
 
 /// Own association: scan-to-map association, confirmation and deletion along the incremental

@@ -41,6 +41,9 @@ const params::ParameterTable<SmootherOptions>& SmootherOptionsTable() {
           AtLeast(0)),
       params::BoolField<O>(
           "incremental_held_prior", [](auto& o) -> auto& { return o.incremental_held_prior; }),
+      params::BoolField<O>(
+          "incremental_squared_marginals",
+          [](auto& o) -> auto& { return o.incremental_squared_marginals; }),
       params::NumberField<O>(
           "known_outlier_chi2", [](auto& o) -> auto& { return o.known_outlier_chi2; },
           AtLeast(0.0)),

@@ -55,7 +55,7 @@ TEST(SmootherParamsJson, WritesEveryOptionWithItsType) {
             nlohmann::json::parse(R"({"association": "known", "compute_covariances": true,
       "filter_label_distance": 2.0, "function_tolerance": 1e-09, "gate_chi2": 13.8,
       "incremental_active_steps": 500, "incremental_chunk_steps": 25,
-      "incremental_held_prior": true,
+      "incremental_held_prior": true, "incremental_squared_marginals": false,
       "initial_pass_solve_steps": 200, "initialisation": "batch",
       "intermediate_function_tolerance": 1e-06, "known_outlier_chi2": 1000.0,
       "linear_solver": "sparse_normal_cholesky", "max_iterations": 100,
