@@ -13,6 +13,7 @@
 
 #include "reference/ceres/factor_graph.h"
 #include "reference/ceres/incremental_solve.h"
+#include "reference/ceres/outlier_screening.h"
 #include "src/core/gaussian.h"
 #include "src/models/range_bearing_model.h"
 
@@ -163,6 +164,7 @@ void SmootherOptions::Validate() const {
   const auto require = [](bool ok, const std::string& what) {
     if (!ok) throw std::invalid_argument("SmootherOptions." + what);
   };
+  require(known_outlier_chi2 >= 0.0, "known_outlier_chi2: expected >= 0 (0: off)");
   require(max_iterations > 0, "max_iterations: expected > 0");
   require(function_tolerance > 0.0, "function_tolerance: expected > 0");
   require(intermediate_function_tolerance > 0.0, "intermediate_function_tolerance: expected > 0");
@@ -260,7 +262,30 @@ datasets::BatchResult BatchSmoother::Solve(const datasets::Scenario& scenario) {
   IncrementalSettings incremental_settings;
   incremental_settings.chunk_steps = static_cast<std::size_t>(options_.incremental_chunk_steps);
   incremental_settings.active_steps = static_cast<std::size_t>(options_.incremental_active_steps);
+  incremental_settings.held_prior = options_.incremental_held_prior;
   incremental_settings.solve = settings(options_.intermediate_function_tolerance);
+
+  // Known association: gross outliers (mislabelled detections) are left out of the final solves
+  // (README.md, "Outliers in the known association").
+  const bool screen_known =
+      options_.association == AssociationMode::kKnown && options_.known_outlier_chi2 > 0.0;
+  // Screening of the known association at the warm-started estimate (README.md, "Outliers in the
+  // known association"). The screen uses a robust solve: at a squared-loss solve the outliers pull
+  // the estimate until good measurements look like outliers too. A squared-loss estimate without
+  // any measurement beyond the threshold is taken as it is (no further solve). Nothing is
+  // screened at an estimate whose solve did not converge.
+  const auto ScreenKnownAssociation = [&](bool robust_solved, ceres::LossFunction* robust_loss) {
+    const double chi2 = options_.known_outlier_chi2;
+    if (!robust_solved) {
+      Association probe = association_;
+      if (DropOutlierMeasurements(scenario, poses, landmarks, chi2, &probe) == 0) return;
+      optimise(loose_odometry, robust_loss, options_.intermediate_function_tolerance);
+    }
+    if (!report_.converged) return;
+    const int dropped = DropOutlierMeasurements(scenario, poses, landmarks, chi2, &association_);
+    report_.outliers_dropped += dropped;
+    if (dropped > 0) optimise(loose_odometry, nullptr, options_.intermediate_function_tolerance);
+  };
 
   ceres::LossFunction* final_loss = nullptr;
   switch (options_.association) {
@@ -270,8 +295,11 @@ datasets::BatchResult BatchSmoother::Solve(const datasets::Scenario& scenario) {
       CheckLabelShape(scenario, origins, "known association (scenario.steps[k].origin)");
       CompactLabels(origins, &association_, &labels_);
       if (incremental) {
-        IncrementalSolve(scenario, loose_odometry, association_, labels_.size(), nullptr,
-                         incremental_settings, record, &poses, &landmarks);
+        // With outlier screening the chunk solves use the robust loss: a mislabelled detection
+        // must not pull the growing trajectory before it is screened out.
+        IncrementalSolve(scenario, loose_odometry, association_, labels_.size(),
+                         screen_known ? robust.get() : nullptr, incremental_settings, record,
+                         &poses, &landmarks);
       } else {
         landmarks = InitialLandmarks(scenario, poses, association_, labels_.size());
       }
@@ -320,6 +348,7 @@ datasets::BatchResult BatchSmoother::Solve(const datasets::Scenario& scenario) {
         io.confirmation = {options_.min_observations, options_.min_detection_ratio};
         io.sensor = scenario.sensor;
         io.measurement_cov = scenario.sensor.noise_cov;
+        io.squared_loss_marginals = options_.incremental_squared_marginals;
         AssociatedMap map =
             IncrementalAssociation(scenario, loose_odometry, robust.get(), incremental_settings, io,
                                    record, &report_.association_seconds);
@@ -372,7 +401,11 @@ datasets::BatchResult BatchSmoother::Solve(const datasets::Scenario& scenario) {
   }
 
   if (warm_start && options_.association != AssociationMode::kUnknown) {
-    optimise(loose_odometry, final_loss, options_.intermediate_function_tolerance);
+    // After the incremental solve the estimate is close, and the robust loss safe, when the known
+    // association is screened; from dead reckoning the squared loss.
+    optimise(loose_odometry, screen_known && incremental ? robust.get() : final_loss,
+             options_.intermediate_function_tolerance);
+    if (screen_known) ScreenKnownAssociation(incremental, robust.get());
   }
   if (options_.association == AssociationMode::kFilter && options_.min_detection_ratio > 0.0) {
     // The filter's landmarks pass the unknown mode's detection-ratio test too, at the

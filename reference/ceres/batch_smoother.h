@@ -55,6 +55,21 @@ struct SmootherOptions {
   /// Incremental solve: the newest poses optimised in each chunk's solve, older ones held as they
   /// stand (0: every pose). The final solve always optimises every pose.
   int incremental_active_steps = 500;
+  /// Incremental solve: the measurements taken from held poses are folded, once, into a fixed
+  /// Gaussian prior on their landmarks (held_measurement_prior.h), so that a chunk solve costs
+  /// the same at every chunk; false re-evaluates them in every chunk solve.
+  bool incremental_held_prior = true;
+  /// Incremental solve, own association: the gate's marginal covariances from the squared-loss
+  /// graph at each chunk's solution instead of the robust one (README.md, "Own association along
+  /// the incremental solve").
+  bool incremental_squared_marginals = false;
+  /// Known association: a labelled measurement whose squared whitened residual (chi-square, 2
+  /// dof) at the warm-started estimate exceeds this is left out of the final solves as a
+  /// mislabelled detection (README.md, "Outliers in the known association"); the incremental
+  /// chunk solves then use the robust loss. 1000 (31.6 sigma) leaves out only gross outliers:
+  /// UTIAS MRCLAM's misread barcodes are at ~5e4, the genuine detections below 1000. 0 uses every
+  /// labelled measurement with the squared loss throughout (the reference behaviour).
+  double known_outlier_chi2 = 1000.0;
   int max_iterations = 100;          ///< Levenberg-Marquardt iterations per solve
   double function_tolerance = 1e-9;  ///< relative cost decrease that ends the final solve
   /// Ends the solves before the final one (warm start, association), which only need to bring
@@ -125,6 +140,7 @@ struct SmootherReport {
   bool covariance_ok = false;
   std::size_t landmarks = 0;
   std::size_t associated_measurements = 0;
+  int outliers_dropped = 0;    ///< known association: measurements left out (known_outlier_chi2)
   int unconverged_solves = 0;  ///< solves stopped by the iteration limit or a failure
   /// The final solve met a tolerance (ceres CONVERGENCE); false when it stopped at
   /// max_iterations or failed, and its estimate is then reported as not converged.

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <iostream>
+#include <tuple>
 
 #include "reference/ceres/test_scenario.h"
 #include "src/core/angles.h"
@@ -199,7 +200,9 @@ TEST(BatchSmoother, UnknownAssociationWithoutNoiseRecoversTheTruth) {
   EXPECT_TRUE(smoother.report().association_converged);
 }
 
-class UnknownAssociationWithClutter : public ::testing::TestWithParam<SmootherInitialisation> {};
+// (initialisation, incremental_squared_marginals)
+class UnknownAssociationWithClutter
+    : public ::testing::TestWithParam<std::tuple<SmootherInitialisation, bool>> {};
 
 TEST_P(UnknownAssociationWithClutter, RecoversTheLandmarkCount) {
   CircleScenarioOptions c;
@@ -208,14 +211,15 @@ TEST_P(UnknownAssociationWithClutter, RecoversTheLandmarkCount) {
   const datasets::Scenario s = MakeCircleScenario(c);
   SmootherOptions o;
   o.association = AssociationMode::kUnknown;
-  o.initialisation = GetParam();
+  o.initialisation = std::get<0>(GetParam());
+  o.incremental_squared_marginals = std::get<1>(GetParam());
   o.initial_pass_solve_steps = 25;  // exercise the intermediate solves on this short run
   o.incremental_chunk_steps = 25;
   BatchSmoother smoother(o);
   const datasets::BatchResult r = smoother.Solve(s);
   // 100 steps: the batch pass solves after steps 25, 50 and 75; the incremental one after every
   // chunk of 25, the last included.
-  const int pass_solves = GetParam() == SmootherInitialisation::kBatch ? 3 : 4;
+  const int pass_solves = std::get<0>(GetParam()) == SmootherInitialisation::kBatch ? 3 : 4;
   EXPECT_EQ(smoother.report().solves, pass_solves + smoother.report().reassociation_rounds + 1);
   // Association accuracy against the hidden labels.
   int true_pos = 0;
@@ -245,9 +249,11 @@ TEST_P(UnknownAssociationWithClutter, RecoversTheLandmarkCount) {
   EXPECT_LT(PositionRmse(s, r.poses), 0.5 * dr);
 }
 
-INSTANTIATE_TEST_SUITE_P(BatchSmoother, UnknownAssociationWithClutter,
-                         ::testing::Values(SmootherInitialisation::kIncremental,
-                                           SmootherInitialisation::kBatch));
+INSTANTIATE_TEST_SUITE_P(
+    BatchSmoother, UnknownAssociationWithClutter,
+    ::testing::Values(std::make_tuple(SmootherInitialisation::kIncremental, false),
+                      std::make_tuple(SmootherInitialisation::kIncremental, true),
+                      std::make_tuple(SmootherInitialisation::kBatch, false)));
 
 // The incremental solve ends where the batch solve from dead reckoning ends: the same graph, the
 // same minimum, whatever the linearisation points on the way.

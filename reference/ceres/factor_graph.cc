@@ -1,7 +1,10 @@
 #include "reference/ceres/factor_graph.h"
 
+#include <algorithm>
+#include <stdexcept>
 #include <utility>
 
+#include "reference/ceres/held_measurement_prior.h"
 #include "reference/ceres/odometry_factor.h"
 #include "reference/ceres/range_bearing_factor.h"
 #include "reference/ceres/velocity_odometry_factor.h"
@@ -37,7 +40,7 @@ ceres::CostFunction* MakeOdometryCost(const datasets::Scenario& scenario, std::s
 FactorGraph::FactorGraph(const datasets::Scenario& scenario, const OdometrySpec& odometry,
                          const Association& association, ceres::LossFunction* loss,
                          std::vector<Pose>* poses, std::vector<Landmark>* landmarks,
-                         std::size_t held_before)
+                         std::size_t held_before, const HeldMeasurementPriors* held_priors)
     : anchor_(scenario.initial_pose),
       steps_(association.size()),
       held_before_(held_before),
@@ -80,7 +83,11 @@ FactorGraph::FactorGraph(const datasets::Scenario& scenario, const OdometrySpec&
     }
   }
   const Mat2 w = WhiteningMatrix<2>(scenario.sensor.noise_cov);
-  for (std::size_t k = 0; k < association.size(); ++k) {
+  if (held_priors != nullptr && held_priors->folded() < std::min(held_before_, steps_)) {
+    throw std::invalid_argument("FactorGraph: the held measurement priors miss held steps");
+  }
+  const std::size_t first_measured = held_priors != nullptr ? held_before_ : 0;
+  for (std::size_t k = first_measured; k < association.size(); ++k) {
     for (std::size_t j = 0; j < association[k].size(); ++j) {
       const int i = association[k][j];
       if (i == kUnassociated || !active[static_cast<std::size_t>(i)]) continue;
@@ -88,6 +95,15 @@ FactorGraph::FactorGraph(const datasets::Scenario& scenario, const OdometrySpec&
           RangeBearingFactor::Create(scenario.steps[k].data.measurements[j], w), loss,
           (*poses)[k].data(), (*landmarks)[static_cast<std::size_t>(i)].data());
       ++residuals_;
+    }
+  }
+  if (held_priors != nullptr) {
+    for (std::size_t i = 0; i < landmarks->size(); ++i) {
+      if (!active[i] || !held_priors->Has(i)) continue;
+      ceres::CostFunction* prior = held_priors->MakeFactor(i);
+      if (prior == nullptr) continue;
+      problem_->AddResidualBlock(prior, nullptr, (*landmarks)[i].data());
+      ++priors_;
     }
   }
   for (std::size_t k = 0; k < std::min(held_before_, steps_); ++k) {

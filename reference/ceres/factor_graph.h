@@ -41,15 +41,20 @@ struct SolveSettings {
 ceres::CostFunction* MakeOdometryCost(const datasets::Scenario& scenario, std::size_t k,
                                       const OdometrySpec& spec);
 
+class HeldMeasurementPriors;
+
 /// The factor graph of the first association.size() steps. Parameter blocks point into `poses`
 /// and `landmarks`, which must not be resized while the graph lives. Only landmarks referenced by
 /// the association enter the problem. Poses before `held_before` are held constant (the
-/// incremental solve); the odometry factors between two held poses are left out.
+/// incremental solve); the odometry factors between two held poses are left out. With
+/// `held_priors` (which must have folded the steps before held_before), the measurements taken
+/// from held poses are replaced by each landmark's folded prior (held_measurement_prior.h).
 class FactorGraph {
  public:
   FactorGraph(const datasets::Scenario& scenario, const OdometrySpec& odometry,
               const Association& association, ceres::LossFunction* loss, std::vector<Pose>* poses,
-              std::vector<Landmark>* landmarks, std::size_t held_before = 0);
+              std::vector<Landmark>* landmarks, std::size_t held_before = 0,
+              const HeldMeasurementPriors* held_priors = nullptr);
 
   ceres::Solver::Summary Optimise(const SolveSettings& settings);
 
@@ -64,7 +69,10 @@ class FactorGraph {
   bool NewestCovariances(const std::vector<int>& indices, Mat3* pose_cov,
                          std::vector<Mat2>* landmark_covs);
 
+  /// Range-bearing residual blocks (associated measurements in the problem).
   [[nodiscard]] std::size_t residuals() const { return residuals_; }
+  /// Landmark prior blocks (measurements of held poses folded).
+  [[nodiscard]] std::size_t priors() const { return priors_; }
   [[nodiscard]] bool HasLandmark(std::size_t i) const {
     return problem_->HasParameterBlock((*landmarks_)[i].data());
   }
@@ -80,6 +88,7 @@ class FactorGraph {
   std::unique_ptr<ceres::Problem> problem_;
   bool pose0_constant_ = false;
   std::size_t residuals_ = 0;
+  std::size_t priors_ = 0;
 };
 
 }  // namespace phdslam::reference

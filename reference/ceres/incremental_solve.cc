@@ -4,8 +4,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <utility>
 
+#include "reference/ceres/held_measurement_prior.h"
+#include "reference/ceres/pose_covariance_propagation.h"
 #include "src/core/gaussian.h"
 #include "src/models/range_bearing_model.h"
 
@@ -23,21 +26,6 @@ Pose PredictPose(const datasets::Scenario& scenario, const std::vector<OdometryI
                  const std::vector<Pose>& poses, std::size_t k) {
   const Pose base = k == 0 ? scenario.initial_pose : poses[k - 1];
   return inc[k].propagated ? ComposeRelative(base, inc[k].delta) : base;
-}
-
-/// Covariance of x (+) d given that of x (px) and d's (in the frame of x).
-Mat3 PropagatePoseCovariance(const Pose& x, const OdometryIncrement& inc, const Mat3& px) {
-  if (!inc.propagated) return px;
-  const double c = std::cos(x(2));
-  const double s = std::sin(x(2));
-  Mat3 jx = Mat3::Identity();
-  jx(0, 2) = -s * inc.delta(0) - c * inc.delta(1);
-  jx(1, 2) = c * inc.delta(0) - s * inc.delta(1);
-  Mat3 jd = Mat3::Identity();
-  jd.topLeftCorner<2, 2>() << c, -s, s, c;
-  Mat3 p = jx * px * jx.transpose() + jd * inc.covariance * jd.transpose();
-  Symmetrize(p);
-  return p;
 }
 
 /// The steps [0, end) of the graph, chunk by chunk: held_before for the chunk ending at `end`.
@@ -96,6 +84,7 @@ class AssociationPass {
   void Step(std::size_t k) {
     px_ = PropagatePoseCovariance(k == 0 ? scenario_.initial_pose : poses_[k - 1], increments_[k],
                                   px_);
+    Symmetrize(px_);
     poses_[k] = PredictPose(scenario_, increments_, poses_, k);
     const Pose& x = poses_[k];
     std::vector<int> ids;
@@ -150,8 +139,11 @@ class AssociationPass {
   ceres::Solver::Summary Solve(std::size_t end, const OdometrySpec& odometry,
                                ceres::LossFunction* loss, const IncrementalSettings& settings) {
     const Association partial = SolveAssociation(end);
-    FactorGraph graph(scenario_, odometry, partial, loss, &poses_, &landmarks_,
-                      HeldBefore(settings, end));
+    const std::size_t held = HeldBefore(settings, end);
+    if (settings.held_prior && !priors_) priors_.emplace(scenario_, loss);
+    if (priors_) priors_->FoldUntil(held, partial, poses_, landmarks_);
+    FactorGraph graph(scenario_, odometry, partial, loss, &poses_, &landmarks_, held,
+                      priors_ ? &*priors_ : nullptr);
     ceres::Solver::Summary summary = graph.Optimise(settings.solve);
     std::vector<int> near;
     NearLandmarks(poses_[end - 1], &near);
@@ -161,7 +153,16 @@ class AssociationPass {
         near.end());
     Mat3 px;
     std::vector<Mat2> covs;
-    if (graph.NewestCovariances(near, &px, &covs)) {
+    // The marginals of the gate come from the squared-loss graph at the solution: with a robust
+    // loss Ceres' corrected Jacobian drops the residual direction of every measurement beyond the
+    // loss scale, and the covariance of a landmark seen by one or two such measurements is
+    // singular (ceres::Covariance then fails and the gate would keep a stale pose covariance).
+    std::optional<FactorGraph> squared;
+    if (loss != nullptr && options_.squared_loss_marginals) {
+      squared.emplace(scenario_, odometry, partial, nullptr, &poses_, &landmarks_, held,
+                      priors_ ? &*priors_ : nullptr);
+    }
+    if ((squared ? *squared : graph).NewestCovariances(near, &px, &covs)) {
       px_ = px;
       for (std::size_t n = 0; n < near.size(); ++n) {
         state_[static_cast<std::size_t>(near[n])].cov = covs[n];
@@ -216,6 +217,7 @@ class AssociationPass {
   Association association_;
   Mat3 px_ = Mat3::Zero();
   int born_ = 0;
+  std::optional<HeldMeasurementPriors> priors_;  ///< with IncrementalSettings::held_prior
 };
 
 }  // namespace
@@ -230,6 +232,7 @@ void IncrementalSolve(const datasets::Scenario& scenario, const OdometrySpec& od
   poses->assign(steps, Pose::Zero());
   landmarks->assign(landmark_count, Landmark::Zero());
   std::vector<bool> started(landmark_count, false);
+  HeldMeasurementPriors priors(scenario, loss);
   for (std::size_t done = 0; done < steps;) {
     const std::size_t end = std::min(steps, done + settings.chunk_steps);
     for (std::size_t k = done; k < end; ++k) {
@@ -245,8 +248,10 @@ void IncrementalSolve(const datasets::Scenario& scenario, const OdometrySpec& od
     const Association partial(association.begin(),
                               association.begin() + static_cast<std::ptrdiff_t>(end));
     const Clock::time_point t = Clock::now();
-    FactorGraph graph(scenario, odometry, partial, loss, poses, landmarks,
-                      HeldBefore(settings, end));
+    const std::size_t held = HeldBefore(settings, end);
+    if (settings.held_prior) priors.FoldUntil(held, partial, *poses, *landmarks);
+    FactorGraph graph(scenario, odometry, partial, loss, poses, landmarks, held,
+                      settings.held_prior ? &priors : nullptr);
     const ceres::Solver::Summary summary = graph.Optimise(settings.solve);
     if (observer) observer(summary, SecondsSince(t));
     done = end;

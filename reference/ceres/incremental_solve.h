@@ -26,7 +26,10 @@ namespace phdslam::reference {
 struct IncrementalSettings {
   std::size_t chunk_steps = 25;    ///< steps added between two solves (>= 1)
   std::size_t active_steps = 500;  ///< newest poses optimised per solve; 0: all
-  SolveSettings solve;             ///< settings of each chunk's solve
+  /// Measurements of held poses folded into a fixed prior on their landmarks
+  /// (held_measurement_prior.h); false: re-evaluated in every chunk solve.
+  bool held_prior = true;
+  SolveSettings solve;  ///< settings of each chunk's solve
 };
 
 /// Called after every chunk solve with its summary and wall time.
@@ -46,6 +49,10 @@ struct IncrementalAssociationOptions {
   ConfirmationOptions confirmation;
   models::SensorModel sensor;               ///< FOV and pD for the expected detections
   Mat2 measurement_cov = Mat2::Identity();  ///< R
+  /// Gate marginals from the squared-loss graph at each chunk's solution (false: from the
+  /// chunk's robust graph, whose covariance is singular when a landmark's few measurements lie
+  /// beyond the loss scale).
+  bool squared_loss_marginals = false;
 };
 
 /// Own association: scan-to-map association, confirmation and deletion along the incremental

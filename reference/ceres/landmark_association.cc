@@ -14,6 +14,7 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "reference/ceres/pose_covariance_propagation.h"
 #include "src/core/angles.h"
 #include "src/core/gaussian.h"
 #include "src/models/range_bearing_model.h"
@@ -321,14 +322,7 @@ void SequentialAssociator::State::Step(std::size_t k) {
   const Mat2& r = options.measurement_cov;
   const OdometryIncrement& inc = increments[k];
   if (inc.propagated) {
-    const double c = std::cos(x(2));
-    const double s = std::sin(x(2));
-    Mat3 jx = Mat3::Identity();
-    jx(0, 2) = -s * inc.delta(0) - c * inc.delta(1);
-    jx(1, 2) = c * inc.delta(0) - s * inc.delta(1);
-    Mat3 jd = Mat3::Identity();
-    jd.topLeftCorner<2, 2>() << c, -s, s, c;
-    px = jx * px * jx.transpose() + jd * inc.covariance * jd.transpose();
+    px = PropagatePoseCovariance(x, inc, px);
     x = ComposeRelative(x, inc.delta);
   }
   const std::vector<Measurement>& zs = scenario->steps[k].data.measurements;

@@ -39,6 +39,14 @@ const params::ParameterTable<SmootherOptions>& SmootherOptionsTable() {
       params::IntField<O>(
           "incremental_active_steps", [](auto& o) -> auto& { return o.incremental_active_steps; },
           AtLeast(0)),
+      params::BoolField<O>(
+          "incremental_held_prior", [](auto& o) -> auto& { return o.incremental_held_prior; }),
+      params::BoolField<O>(
+          "incremental_squared_marginals",
+          [](auto& o) -> auto& { return o.incremental_squared_marginals; }),
+      params::NumberField<O>(
+          "known_outlier_chi2", [](auto& o) -> auto& { return o.known_outlier_chi2; },
+          AtLeast(0.0)),
       params::IntField<O>(
           "max_iterations", [](auto& o) -> auto& { return o.max_iterations; }, AtLeast(1)),
       params::NumberField<O>(

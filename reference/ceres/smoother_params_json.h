@@ -11,8 +11,10 @@
 namespace phdslam::reference {
 
 /// Every option by name except the data fields (filter_association, initial_poses):
-/// association ("known" | "filter" | "unknown"), max_iterations, function_tolerance,
-/// intermediate_function_tolerance, compute_covariances, linear_solver
+/// association ("known" | "filter" | "unknown"), initialisation, incremental_chunk_steps,
+/// incremental_active_steps, incremental_held_prior, incremental_squared_marginals,
+/// known_outlier_chi2, max_iterations,
+/// function_tolerance, intermediate_function_tolerance, compute_covariances, linear_solver
 /// ("sparse_normal_cholesky" | "sparse_schur"), num_threads, odometry_residual
 /// ("control_space" | "pose_space"), odometry_floor and warm_start_floor
 /// ([position_std, heading_std]), initial_pass_solve_steps, reassociation_rounds, gate_chi2,

@@ -55,8 +55,9 @@ TEST(SmootherParamsJson, WritesEveryOptionWithItsType) {
             nlohmann::json::parse(R"({"association": "known", "compute_covariances": true,
       "filter_label_distance": 2.0, "function_tolerance": 1e-09, "gate_chi2": 13.8,
       "incremental_active_steps": 500, "incremental_chunk_steps": 25,
+      "incremental_held_prior": true, "incremental_squared_marginals": false,
       "initial_pass_solve_steps": 200, "initialisation": "batch",
-      "intermediate_function_tolerance": 1e-06,
+      "intermediate_function_tolerance": 1e-06, "known_outlier_chi2": 1000.0,
       "linear_solver": "sparse_normal_cholesky", "max_iterations": 100,
       "merge_position_std": 1.0, "min_detection_ratio": 0.3, "min_observations": 3,
       "num_threads": 1, "odometry_floor": [0.0001, 1e-05], "odometry_residual": "control_space",
@@ -97,6 +98,8 @@ TEST(SmootherParamsJson, RejectsBadOverridesAndLeavesTheOptionsUnchanged) {
                  "parameter 'initialisation': expected one of");
   ExpectRejected(R"({"incremental_chunk_steps": 0})", "incremental_chunk_steps");
   ExpectRejected(R"({"incremental_active_steps": -1})", "incremental_active_steps");
+  ExpectRejected(R"({"known_outlier_chi2": -1})",
+                 "parameter 'known_outlier_chi2': must be >= 0, got -1");
   ExpectRejected(R"({"robust_scale": 0})", "parameter 'robust_scale': must be > 0, got 0");
   ExpectRejected(R"([1, 2])", "expected an object, got [1,2]");
 }
