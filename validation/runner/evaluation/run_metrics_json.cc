@@ -178,6 +178,8 @@ nlohmann::json ToJson(const RunMetrics& m) {
   j["solver_iterations"] = OrNull(m.solver_iterations);
   j["solver_converged"] =
       m.solver_converged ? nlohmann::json(*m.solver_converged) : nlohmann::json(nullptr);
+  j["solves"] = OrNull(m.solves);
+  j["unconverged_solves"] = OrNull(m.unconverged_solves);
   j["ms_per_step_mean"] = OrNull(m.step_ms.Mean());
   j["ms_per_step_std"] = OrNull(m.step_ms.Std());
   j["ms_count"] = m.step_ms.count;
@@ -251,6 +253,9 @@ RunMetrics RunMetricsFromJson(const nlohmann::json& j, const std::string& source
     }
     m.solver_converged = j.at("solver_converged").get<bool>();
   }
+  if (j.contains("solves")) m.solves = r.OptionalCount("solves");
+  if (j.contains("unconverged_solves"))
+    m.unconverged_solves = r.OptionalCount("unconverged_solves");
   m.step_ms.count = r.Count("ms_count");
   m.step_ms.sum = r.Number("ms_sum");
   m.step_ms.sum_sq = r.Number("ms_sq_sum");
