@@ -55,6 +55,7 @@ void WindowParams::Validate(std::size_t run_steps) const {
           "odometry_floor: expected positive standard deviations");
   require(gate_chi2 > 0.0, "gate_chi2: expected > 0");
   require(confirm_detections >= 1, "confirm_detections: expected >= 1");
+  require(confirm_ratio >= 0.0 && confirm_ratio <= 1.0, "confirm_ratio: expected in [0, 1]");
   require(robust_loss == "cauchy" || robust_loss == "huber" || robust_loss == "none",
           "robust_loss: expected \"cauchy\", \"huber\" or \"none\", got \"" + robust_loss + "\"");
   require(robust_scale > 0.0, "robust_scale: expected > 0");
@@ -113,6 +114,7 @@ void FixedLagSmoother::Observe(WindowPose& pose, int label, std::size_t j, const
     WindowLandmark lm;
     lm.mean = models::InverseMeasurement(pose.x, z);
     lm.first_step = pose.step;
+    lm.expected_detections = context_.sensor.DetectionProbability(pose.x, lm.mean);
     lm.confirmed = params_.known_association;
     it = landmarks_.emplace(label, lm).first;
   } else if (!it->second.active) {
@@ -134,7 +136,10 @@ void FixedLagSmoother::Observe(WindowPose& pose, int label, std::size_t j, const
   }
   WindowLandmark& lm = it->second;
   ++lm.detections;
-  if (lm.detections >= params_.confirm_detections) lm.confirmed = true;
+  if (lm.detections >= params_.confirm_detections &&
+      lm.detections >= params_.confirm_ratio * lm.expected_detections) {
+    lm.confirmed = true;
+  }
   pose.observations.push_back(
       {label, j,
        GraphFactor{std::shared_ptr<ceres::CostFunction>(
@@ -146,28 +151,30 @@ void FixedLagSmoother::Observe(WindowPose& pose, int label, std::size_t j, const
 std::vector<int> FixedLagSmoother::OwnAssociation(const StepData& step) {
   WindowPose& newest = poses_.back();
   std::vector<const double*> wanted;
-  if (!newest.constant) wanted.push_back(newest.x.data());
   for (auto& [label, lm] : landmarks_) {
-    if (lm.active) {
-      wanted.push_back(lm.mean.data());
-    }
+    if (lm.active) wanted.push_back(lm.mean.data());
   }
-  std::vector<Eigen::MatrixXd> covs;
-  if (!wanted.empty()) covs = MarginalCovariances(WindowFactors(), ConstantBlocks(), wanted);
-  const bool have_covs = covs.size() == wanted.size();
-  Mat3 pose_cov = newest.constant ? Mat3::Zero() : FallbackPoseCovariance();
-  std::size_t next = 0;
+  // The newest pose's covariance and each window landmark's, with their cross-covariance.
+  AnchoredCovariances covs;
   if (!newest.constant) {
-    if (have_covs) pose_cov = covs[0];
-    next = 1;
+    covs = AnchoredMarginalCovariances(WindowFactors(), ConstantBlocks(), newest.x.data(), wanted);
   }
+  const bool have_covs = covs.marginal.size() == wanted.size() && covs.anchor.rows() == 3;
+  Mat3 pose_cov = newest.constant ? Mat3::Zero() : FallbackPoseCovariance();
+  if (!newest.constant && have_covs) pose_cov = covs.anchor;
+  std::size_t next = 0;
   std::vector<AssociationCandidate> candidates;
   for (auto& [label, lm] : landmarks_) {
     AssociationCandidate c;
     c.label = label;
     c.mean = lm.mean;
     if (lm.active) {
-      c.cov = have_covs ? Mat2(covs[next]) : Mat2(Mat2::Identity());
+      if (have_covs) {
+        c.cov = covs.marginal[next];
+        c.pose_cross = covs.cross[next];
+      } else {
+        c.cov = Mat2::Identity();
+      }
       ++next;
     } else {
       c.cov = lm.cov;
@@ -182,6 +189,14 @@ std::vector<int> FixedLagSmoother::OwnAssociation(const StepData& step) {
   return labels;
 }
 
+void FixedLagSmoother::CountExpectedDetections(const Pose& x) {
+  for (auto& [label, lm] : landmarks_) {
+    if (lm.active && !lm.confirmed) {
+      lm.expected_detections += context_.sensor.DetectionProbability(x, lm.mean);
+    }
+  }
+}
+
 void FixedLagSmoother::AddObservations(const StepData& step, filters::StepOutput& out) {
   std::vector<int> labels;
   if (params_.known_association) {
@@ -192,6 +207,7 @@ void FixedLagSmoother::AddObservations(const StepData& step, filters::StepOutput
     }
     labels = origins_[step_index_];
   } else {
+    CountExpectedDetections(poses_.back().x);
     labels = OwnAssociation(step);
   }
   WindowPose& newest = poses_.back();

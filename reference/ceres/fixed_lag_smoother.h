@@ -46,6 +46,10 @@ struct WindowParams {
   /// detection included); one that is not confirmed when the pose of its first detection leaves
   /// the window is deleted with its factors.
   int confirm_detections = 3;
+  /// ... and once its detections are at least this fraction of the scans expected to detect it
+  /// since its first detection (the sum of pD at the newest pose of each of those scans); clutter
+  /// that a wide gate lets collect a few detections over the window fails this.
+  double confirm_ratio = 0.5;
   std::string robust_loss = "cauchy";  ///< "cauchy", "huber" or "none", on every detection
   double robust_scale = 1.0;           ///< in whitened units (standard deviations)
 
@@ -101,6 +105,7 @@ class FixedLagSmoother final : public filters::OnlineEstimator, public filters::
     Mat2 cov = Mat2::Identity();  ///< marginal covariance when marginalised
     bool active = true;           ///< in the window (false: marginalised)
     int detections = 0;
+    double expected_detections = 0.0;  ///< sum of pD over the scans since the first detection
     bool confirmed = false;
     std::size_t first_step = 0;
     std::optional<GraphFactor> reentry_prior;  ///< N(mean, cov) when it came back into the window
@@ -110,6 +115,7 @@ class FixedLagSmoother final : public filters::OnlineEstimator, public filters::
   void AddObservations(const StepData& step, filters::StepOutput& out);
   void Observe(WindowPose& pose, int label, std::size_t j, const Measurement& z);
   std::vector<int> OwnAssociation(const StepData& step);
+  void CountExpectedDetections(const Pose& x);
   void Solve();
   void MarginaliseOldest();
   void DeleteLandmark(int label);

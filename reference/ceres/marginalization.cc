@@ -179,4 +179,45 @@ std::vector<Eigen::MatrixXd> MarginalCovariances(const std::vector<const GraphFa
   return out;
 }
 
+AnchoredCovariances AnchoredMarginalCovariances(const std::vector<const GraphFactor*>& factors,
+                                                const std::set<const double*>& constant,
+                                                const double* anchor,
+                                                const std::vector<const double*>& wanted) {
+  std::vector<double*> order;
+  for (const auto& [block, size] : TouchedBlocks(factors)) {
+    if (constant.count(block) == 0) order.push_back(block);
+  }
+  const DenseSystem s = Linearize(factors, order, {});
+  const Eigen::LDLT<Eigen::MatrixXd> ldlt(s.h);
+  if (ldlt.info() != Eigen::Success || !ldlt.isPositive()) return {};
+  const auto index_of = [&order](const double* b) -> std::ptrdiff_t {
+    const auto it = std::find(order.begin(), order.end(), b);
+    return it == order.end() ? -1 : it - order.begin();
+  };
+  const auto column_block = [&](std::size_t i) {
+    return Eigen::MatrixXd(ldlt.solve(
+        Eigen::MatrixXd::Identity(s.h.rows(), s.h.cols()).middleCols(s.offsets[i], s.sizes[i])));
+  };
+  const std::ptrdiff_t a = index_of(anchor);
+  if (a < 0) return {};
+  const auto ai = static_cast<std::size_t>(a);
+  const Eigen::MatrixXd anchor_columns = column_block(ai);
+  AnchoredCovariances out;
+  out.anchor = anchor_columns.middleRows(s.offsets[ai], s.sizes[ai]);
+  out.anchor = 0.5 * (out.anchor + out.anchor.transpose()).eval();
+  if (!out.anchor.allFinite()) return {};
+  for (const double* w : wanted) {
+    const std::ptrdiff_t k = index_of(w);
+    if (k < 0) return {};
+    const auto ki = static_cast<std::size_t>(k);
+    Eigen::MatrixXd c = column_block(ki).middleRows(s.offsets[ki], s.sizes[ki]);
+    c = 0.5 * (c + c.transpose()).eval();
+    Eigen::MatrixXd x = anchor_columns.middleRows(s.offsets[ki], s.sizes[ki]);
+    if (!c.allFinite() || !x.allFinite()) return {};
+    out.marginal.push_back(std::move(c));
+    out.cross.push_back(std::move(x));
+  }
+  return out;
+}
+
 }  // namespace phdslam::reference

@@ -66,4 +66,18 @@ std::vector<Eigen::MatrixXd> MarginalCovariances(const std::vector<const GraphFa
                                                  const std::set<const double*>& constant,
                                                  const std::vector<const double*>& wanted);
 
+/// Covariances of one block (`anchor`, e.g. the newest pose) and of `wanted` blocks with it, in
+/// the Gaussian of MarginalCovariances: anchor = Cov(anchor), marginal[i] = Cov(wanted[i]),
+/// cross[i] = Cov(wanted[i], anchor). One factorisation and one solve for the anchor's columns
+/// plus one per wanted block. Empty vectors (and an empty anchor) when H is singular.
+struct AnchoredCovariances {
+  Eigen::MatrixXd anchor;
+  std::vector<Eigen::MatrixXd> marginal;
+  std::vector<Eigen::MatrixXd> cross;
+};
+AnchoredCovariances AnchoredMarginalCovariances(const std::vector<const GraphFactor*>& factors,
+                                                const std::set<const double*>& constant,
+                                                const double* anchor,
+                                                const std::vector<const double*>& wanted);
+
 }  // namespace phdslam::reference

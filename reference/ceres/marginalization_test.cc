@@ -157,6 +157,28 @@ TEST_F(LinearChain, MarginalCovariancesAreTheBlocksOfTheInverse) {
   EXPECT_LT(fixed0[0].trace(), covs[0].trace());
 }
 
+TEST_F(LinearChain, AnchoredCovariancesAreTheBlocksOfTheInverseWithTheAnchor) {
+  std::vector<const GraphFactor*> all;
+  for (const GraphFactor& f : factors_) all.push_back(&f);
+  std::vector<double*> order;
+  for (Vec2& x : x_) order.push_back(x.data());
+  const Solution batch = SolveLinear(all, order);
+  const AnchoredCovariances c =
+      AnchoredMarginalCovariances(all, {}, x_[4].data(), {x_[1].data(), x_[3].data()});
+  ASSERT_EQ(c.marginal.size(), 2u);
+  ASSERT_EQ(c.cross.size(), 2u);
+  EXPECT_TRUE(c.anchor.isApprox(batch.cov.block(8, 8, 2, 2), 1e-10));
+  EXPECT_TRUE(c.marginal[0].isApprox(batch.cov.block(2, 2, 2, 2), 1e-10));
+  EXPECT_TRUE(c.marginal[1].isApprox(batch.cov.block(6, 6, 2, 2), 1e-10));
+  EXPECT_TRUE(c.cross[0].isApprox(batch.cov.block(2, 8, 2, 2), 1e-10));
+  EXPECT_TRUE(c.cross[1].isApprox(batch.cov.block(6, 8, 2, 2), 1e-10));
+  // Neighbours on the chain are correlated.
+  EXPECT_GT(c.cross[1].norm(), 1e-6);
+  // An anchor outside the problem gives nothing.
+  Vec2 outside = Vec2::Zero();
+  EXPECT_TRUE(AnchoredMarginalCovariances(all, {}, outside.data(), {x_[1].data()}).cross.empty());
+}
+
 TEST(GaussianPrior, WhitensTheCovariance) {
   Vec2 m(1.0, 2.0);
   Mat2 cov;

@@ -19,7 +19,9 @@ std::vector<int> GatedNearestNeighbour(const Pose& x, const Mat3& pose_cov,
     if ((c.mean - x.head<2>()).squaredNorm() < 1e-18) continue;
     const Measurement h = models::PredictMeasurement(x, c.mean);
     const models::RangeBearingJacobians j = models::MeasurementJacobians(x, c.mean);
-    const Mat2 s = j.hx * pose_cov * j.hx.transpose() + j.hm * c.cov * j.hm.transpose() + noise_cov;
+    const Mat2 cross = j.hm * c.pose_cross * j.hx.transpose();
+    const Mat2 s = j.hx * pose_cov * j.hx.transpose() + j.hm * c.cov * j.hm.transpose() + cross +
+                   cross.transpose() + noise_cov;
     const Eigen::LLT<Mat2> llt(s);
     if (llt.info() != Eigen::Success) continue;
     for (std::size_t m = 0; m < measurements.size(); ++m) {

@@ -9,6 +9,7 @@ namespace phdslam::reference {
 const params::ParameterTable<WindowParams>& WindowParamsTable() {
   using params::Above;
   using params::AtLeast;
+  using params::Between;
   using P = WindowParams;
   using F = OdometryNoiseFloor;
   static const params::ParameterTable<P> table({
@@ -36,6 +37,8 @@ const params::ParameterTable<WindowParams>& WindowParamsTable() {
           "gate_chi2", [](auto& p) -> auto& { return p.gate_chi2; }, Above(0.0)),
       params::IntField<P>(
           "confirm_detections", [](auto& p) -> auto& { return p.confirm_detections; }, AtLeast(1)),
+      params::NumberField<P>(
+          "confirm_ratio", [](auto& p) -> auto& { return p.confirm_ratio; }, Between(0.0, 1.0)),
       // "cauchy", "huber" or "none": checked by WindowParams::Validate().
       params::StringField<P>(
           "robust_loss", [](auto& p) -> auto& { return p.robust_loss; }),
