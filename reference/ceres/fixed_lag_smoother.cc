@@ -3,6 +3,7 @@
 #include <ceres/ceres.h>
 
 #include <algorithm>
+#include <array>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -12,7 +13,6 @@
 #include "reference/ceres/odometry_factor.h"
 #include "reference/ceres/range_bearing_factor.h"
 #include "reference/ceres/velocity_odometry_factor.h"
-#include "reference/ceres/window_association.h"
 #include "src/core/gaussian.h"
 #include "src/models/range_bearing_model.h"
 #include "src/models/velocity_motion_model.h"
@@ -59,6 +59,7 @@ void WindowParams::Validate(std::size_t run_steps) const {
   require(robust_loss == "cauchy" || robust_loss == "huber" || robust_loss == "none",
           "robust_loss: expected \"cauchy\", \"huber\" or \"none\", got \"" + robust_loss + "\"");
   require(robust_scale > 0.0, "robust_scale: expected > 0");
+  require(tentative_robust_scale > 0.0, "tentative_robust_scale: expected > 0");
 }
 
 FixedLagSmoother::FixedLagSmoother(filters::EstimatorContext context, WindowParams params,
@@ -75,6 +76,7 @@ FixedLagSmoother::FixedLagSmoother(filters::EstimatorContext context, WindowPara
       dynamic_cast<const models::VelocityMotionModel*>(context_.motion.get()) != nullptr;
   if (!params_.known_association) {
     loss_ = MakeWindowLoss(params_.robust_loss, params_.robust_scale);
+    tentative_loss_ = std::make_shared<ceres::CauchyLoss>(params_.tentative_robust_scale);
   }
   measurement_whitening_ = WhiteningMatrix<2>(context_.sensor.noise_cov);
   anchor_ = context_.initial_pose;
@@ -114,8 +116,8 @@ void FixedLagSmoother::Observe(WindowPose& pose, int label, std::size_t j, const
     WindowLandmark lm;
     lm.mean = models::InverseMeasurement(pose.x, z);
     lm.first_step = pose.step;
-    lm.expected_detections = context_.sensor.DetectionProbability(pose.x, lm.mean);
-    lm.confirmed = params_.known_association;
+    lm.support.expected = context_.sensor.DetectionProbability(pose.x, lm.mean);
+    lm.status = params_.known_association ? LandmarkStatus::kConfirmed : LandmarkStatus::kTentative;
     it = landmarks_.emplace(label, lm).first;
   } else if (!it->second.active) {
     // A marginalised landmark seen again: it re-enters with its marginal Gaussian as prior.
@@ -135,21 +137,17 @@ void FixedLagSmoother::Observe(WindowPose& pose, int label, std::size_t j, const
                     {lm.mean.data()}};
   }
   WindowLandmark& lm = it->second;
-  ++lm.detections;
-  if (lm.detections >= params_.confirm_detections &&
-      lm.detections >= params_.confirm_ratio * lm.expected_detections) {
-    lm.confirmed = true;
-  }
+  ++lm.support.detections;
   pose.observations.push_back(
       {label, j,
        GraphFactor{std::shared_ptr<ceres::CostFunction>(
                        RangeBearingFactor::Create(z, measurement_whitening_)),
-                   loss_,
+                   lm.status == LandmarkStatus::kConfirmed ? loss_ : tentative_loss_,
                    {pose.x.data(), lm.mean.data()}}});
 }
 
 std::vector<int> FixedLagSmoother::OwnAssociation(const StepData& step) {
-  WindowPose& newest = poses_.back();
+  const WindowPose& newest = poses_.back();
   std::vector<const double*> wanted;
   for (auto& [label, lm] : landmarks_) {
     if (lm.active) wanted.push_back(lm.mean.data());
@@ -157,44 +155,83 @@ std::vector<int> FixedLagSmoother::OwnAssociation(const StepData& step) {
   // The newest pose's covariance and each window landmark's, with their cross-covariance.
   AnchoredCovariances covs;
   if (!newest.constant) {
-    covs = AnchoredMarginalCovariances(WindowFactors(), ConstantBlocks(), newest.x.data(), wanted);
+    covs = AnchoredMarginalCovariances(WindowFactors(), ConstantBlocks(),
+                                       newest.x.data(), wanted);
   }
   const bool have_covs = covs.marginal.size() == wanted.size() && covs.anchor.rows() == 3;
   Mat3 pose_cov = newest.constant ? Mat3::Zero() : FallbackPoseCovariance();
   if (!newest.constant && have_covs) pose_cov = covs.anchor;
+  // Confirmed landmarks (in the window or marginalised) first, tentative ones on what is left.
+  std::vector<MapLandmark> confirmed;
+  std::vector<MapLandmark> tentative;
+  std::vector<int> confirmed_labels;
+  std::vector<int> tentative_labels;
   std::size_t next = 0;
-  std::vector<AssociationCandidate> candidates;
-  for (auto& [label, lm] : landmarks_) {
-    AssociationCandidate c;
-    c.label = label;
-    c.mean = lm.mean;
+  for (const auto& [label, lm] : landmarks_) {
+    MapLandmark m{lm.mean, lm.cov};
     if (lm.active) {
       if (have_covs) {
-        c.cov = covs.marginal[next];
-        c.pose_cross = covs.cross[next];
+        m.cov = covs.marginal[next];
+        m.pose_cross = covs.cross[next];
       } else {
-        c.cov = Mat2::Identity();
+        m.cov = Mat2::Identity();
       }
       ++next;
-    } else {
-      c.cov = lm.cov;
     }
-    candidates.push_back(c);
+    const bool is_confirmed = lm.status == LandmarkStatus::kConfirmed;
+    (is_confirmed ? confirmed : tentative).push_back(m);
+    (is_confirmed ? confirmed_labels : tentative_labels).push_back(label);
   }
-  std::vector<int> labels = GatedNearestNeighbour(newest.x, pose_cov, step.measurements, candidates,
-                                                  context_.sensor.noise_cov, params_.gate_chi2);
-  for (int& l : labels) {
-    if (l < 0) l = next_label_++;
+  const ScanAssociationOptions gate{params_.gate_chi2, 0.0};
+  const Mat2& r = context_.sensor.noise_cov;
+  std::vector<int> labels(step.measurements.size(), -1);
+  const ScanAssociation first =
+      AssociateScan(newest.x, pose_cov, confirmed, step.measurements, r, gate);
+  std::vector<std::size_t> rest;
+  std::vector<Measurement> rest_z;
+  for (std::size_t j = 0; j < labels.size(); ++j) {
+    if (first.landmark[j] != kUnassociated) {
+      labels[j] = confirmed_labels[static_cast<std::size_t>(first.landmark[j])];
+    } else {
+      rest.push_back(j);
+      rest_z.push_back(step.measurements[j]);
+    }
+  }
+  const ScanAssociation second = AssociateScan(newest.x, pose_cov, tentative, rest_z, r, gate);
+  for (std::size_t k = 0; k < rest.size(); ++k) {
+    if (second.landmark[k] != kUnassociated) {
+      labels[rest[k]] = tentative_labels[static_cast<std::size_t>(second.landmark[k])];
+    } else {
+      labels[rest[k]] = next_label_++;
+    }
   }
   return labels;
 }
 
 void FixedLagSmoother::CountExpectedDetections(const Pose& x) {
   for (auto& [label, lm] : landmarks_) {
-    if (lm.active && !lm.confirmed) {
-      lm.expected_detections += context_.sensor.DetectionProbability(x, lm.mean);
+    if (lm.active && lm.status == LandmarkStatus::kTentative) {
+      lm.support.expected += context_.sensor.DetectionProbability(x, lm.mean);
     }
   }
+}
+
+void FixedLagSmoother::ClassifyTentative() {
+  const ConfirmationOptions rule{params_.confirm_detections, params_.confirm_ratio};
+  std::vector<int> deleted;
+  for (auto& [label, lm] : landmarks_) {
+    if (!lm.active || lm.status != LandmarkStatus::kTentative) continue;
+    lm.status = ClassifyLandmark(lm.support, rule);
+    if (lm.status == LandmarkStatus::kDeleted) deleted.push_back(label);
+    if (lm.status == LandmarkStatus::kConfirmed) {
+      for (WindowPose& p : poses_) {
+        for (Observation& o : p.observations) {
+          if (o.landmark == label) o.factor.loss = loss_;
+        }
+      }
+    }
+  }
+  for (int label : deleted) DeleteLandmark(label);
 }
 
 void FixedLagSmoother::AddObservations(const StepData& step, filters::StepOutput& out) {
@@ -220,11 +257,14 @@ void FixedLagSmoother::AddObservations(const StepData& step, filters::StepOutput
     }
     Observe(newest, labels[j], j, step.measurements[j]);
   }
+  if (!params_.known_association) ClassifyTentative();
   out.association.assign(step.measurements.size(),
                          Landmark::Constant(std::numeric_limits<double>::quiet_NaN()));
   for (const Observation& o : newest.observations) {
     const WindowLandmark& lm = landmarks_.at(o.landmark);
-    if (params_.known_association || lm.detections > 1) out.association[o.measurement] = lm.mean;
+    if (params_.known_association || lm.support.detections > 1) {
+      out.association[o.measurement] = lm.mean;
+    }
   }
 }
 
@@ -288,6 +328,25 @@ void FixedLagSmoother::Solve() {
   for (const auto& [label, mean] : landmarks_before) landmarks_.at(label).mean = mean;
 }
 
+int FixedLagSmoother::RejectOutliers() {
+  int rejected = 0;
+  for (WindowPose& p : poses_) {
+    std::erase_if(p.observations, [&](const Observation& o) {
+      WindowLandmark& lm = landmarks_.at(o.landmark);
+      if (lm.status != LandmarkStatus::kConfirmed) return false;
+      Vec2 r;
+      const std::array<const double*, 2> blocks{p.x.data(), lm.mean.data()};
+      if (!o.factor.cost->Evaluate(blocks.data(), r.data(), nullptr)) return false;
+      if (r.squaredNorm() < params_.gate_chi2) return false;
+      --lm.support.detections;
+      ++rejected;
+      return true;
+    });
+  }
+  report_.rejected_detections += rejected;
+  return rejected;
+}
+
 bool FixedLagSmoother::ObservedAfterOldest(int label) const {
   for (std::size_t i = 1; i < poses_.size(); ++i) {
     for (const Observation& o : poses_[i].observations) {
@@ -311,7 +370,9 @@ void FixedLagSmoother::MarginaliseOldest() {
     std::vector<int> unconfirmed;
     for (const Observation& o : poses_.front().observations) {
       const WindowLandmark& lm = landmarks_.at(o.landmark);
-      if (!lm.confirmed && lm.first_step == poses_.front().step) unconfirmed.push_back(o.landmark);
+      if (lm.status != LandmarkStatus::kConfirmed && lm.first_step == poses_.front().step) {
+        unconfirmed.push_back(o.landmark);
+      }
     }
     for (int label : unconfirmed) DeleteLandmark(label);
   }
@@ -386,6 +447,7 @@ filters::StepOutput FixedLagSmoother::Step(const StepData& step) {
   if (steps_since_solve_ >= params_.solve_every) {
     steps_since_solve_ = 0;
     Solve();
+    if (!params_.known_association && RejectOutliers() > 0) Solve();
     while (poses_.size() > static_cast<std::size_t>(params_.window_length)) MarginaliseOldest();
   }
   out.pose = poses_.back().x;
@@ -406,14 +468,16 @@ filters::StepOutput FixedLagSmoother::Step(const StepData& step) {
 filters::MapEstimate FixedLagSmoother::Map() const {
   std::vector<const double*> wanted;
   for (const auto& [label, lm] : landmarks_) {
-    if (lm.active && lm.confirmed) wanted.push_back(lm.mean.data());
+    if (lm.active && lm.status == LandmarkStatus::kConfirmed) wanted.push_back(lm.mean.data());
   }
   std::vector<Eigen::MatrixXd> covs;
-  if (!wanted.empty()) covs = MarginalCovariances(WindowFactors(), ConstantBlocks(), wanted);
+  if (!wanted.empty()) {
+    covs = MarginalCovariances(WindowFactors(), ConstantBlocks(), wanted);
+  }
   filters::MapEstimate map;
   std::size_t next = 0;
   for (const auto& [label, lm] : landmarks_) {
-    if (!lm.confirmed) continue;
+    if (lm.status != LandmarkStatus::kConfirmed) continue;
     map.means.push_back(lm.mean);
     if (lm.active) {
       map.covs.push_back(covs.size() == wanted.size() ? Mat2(covs[next]) : Mat2(Mat2::Identity()));

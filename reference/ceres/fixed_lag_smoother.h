@@ -23,6 +23,7 @@
 #include "reference/ceres/batch_smoother.h"
 #include "reference/ceres/marginalization.h"
 #include "reference/ceres/odometry_increment.h"
+#include "reference/ceres/scan_association.h"
 #include "src/filters/estimator.h"
 #include "src/filters/solve_counter.h"
 
@@ -40,18 +41,21 @@ struct WindowParams {
   double function_tolerance = 1e-6;  ///< relative cost decrease that ends a solve
   OdometryResidual odometry_residual = OdometryResidual::kControlSpace;
   OdometryNoiseFloor odometry_floor;  ///< as the batch smoother's (odometry_increment.h)
-  // Own association (window): gated nearest neighbour, robust loss, confirmation.
+  // Own association (window, docs/algorithms/ceres-smoother.md section 8.3): gated nearest
+  // neighbour, confirmed landmarks first; confirmation and deletion of tentative ones.
   double gate_chi2 = 13.8;  ///< chi2 with 2 dof at 0.999 on the marginal innovation covariance
-  /// A new landmark is confirmed once this many scans have associated with it (its first
-  /// detection included); one that is not confirmed when the pose of its first detection leaves
-  /// the window is deleted with its factors.
-  int confirm_detections = 3;
-  /// ... and once its detections are at least this fraction of the scans expected to detect it
-  /// since its first detection (the sum of pD at the newest pose of each of those scans); clutter
-  /// that a wide gate lets collect a few detections over the window fails this.
+  /// A tentative landmark is confirmed once this many scans have associated with it (its first
+  /// detection included) ...
+  int confirm_detections = 5;
+  /// ... and deleted as soon as its detections fall below this fraction of the scans expected to
+  /// detect it since its first detection (the sum of pD at the predicted pose of each of them).
+  /// One still tentative when the pose of its first detection leaves the window is deleted too.
   double confirm_ratio = 0.5;
-  std::string robust_loss = "cauchy";  ///< "cauchy", "huber" or "none", on every detection
-  double robust_scale = 1.0;           ///< in whitened units (standard deviations)
+  /// Loss on the detections of confirmed landmarks: "huber", "cauchy" or "none"
+  std::string robust_loss = "huber";
+  double robust_scale = 3.0;  ///< in whitened units (standard deviations)
+  /// Cauchy loss scale on the detections of tentative landmarks (whitened units)
+  double tentative_robust_scale = 1.0;
 
   /// Throws std::invalid_argument naming the field when a value is out of range; `run_steps`
   /// (> 0 when known) bounds window_length.
@@ -65,6 +69,7 @@ struct WindowReport {
   int iterations = 0;
   int marginalised_poses = 0;
   int deleted_landmarks = 0;  ///< own association: tentative landmarks never confirmed
+  int rejected_detections = 0;  ///< own association: detections dropped after a solve
 };
 
 class FixedLagSmoother final : public filters::OnlineEstimator, public filters::SolveCounter {
@@ -104,9 +109,8 @@ class FixedLagSmoother final : public filters::OnlineEstimator, public filters::
     Landmark mean = Landmark::Zero();
     Mat2 cov = Mat2::Identity();  ///< marginal covariance when marginalised
     bool active = true;           ///< in the window (false: marginalised)
-    int detections = 0;
-    double expected_detections = 0.0;  ///< sum of pD over the scans since the first detection
-    bool confirmed = false;
+    LandmarkSupport support;  ///< detections and sum of pD over the scans since the first one
+    LandmarkStatus status = LandmarkStatus::kTentative;
     std::size_t first_step = 0;
     std::optional<GraphFactor> reentry_prior;  ///< N(mean, cov) when it came back into the window
   };
@@ -116,7 +120,11 @@ class FixedLagSmoother final : public filters::OnlineEstimator, public filters::
   void Observe(WindowPose& pose, int label, std::size_t j, const Measurement& z);
   std::vector<int> OwnAssociation(const StepData& step);
   void CountExpectedDetections(const Pose& x);
+  void ClassifyTentative();
   void Solve();
+  /// Own association: drops the detections of confirmed landmarks whose whitened residual at the
+  /// solved window lies outside the gate (squared norm >= gate_chi2); returns how many.
+  int RejectOutliers();
   void MarginaliseOldest();
   void DeleteLandmark(int label);
   [[nodiscard]] std::vector<const GraphFactor*> WindowFactors() const;
@@ -128,6 +136,7 @@ class FixedLagSmoother final : public filters::OnlineEstimator, public filters::
   std::vector<std::vector<int>> origins_;
   bool velocity_model_ = false;
   std::shared_ptr<ceres::LossFunction> loss_;
+  std::shared_ptr<ceres::LossFunction> tentative_loss_;
   Mat2 measurement_whitening_ = Mat2::Identity();
 
   std::size_t step_index_ = 0;

@@ -44,6 +44,9 @@ const params::ParameterTable<WindowParams>& WindowParamsTable() {
           "robust_loss", [](auto& p) -> auto& { return p.robust_loss; }),
       params::NumberField<P>(
           "robust_scale", [](auto& p) -> auto& { return p.robust_scale; }, Above(0.0)),
+      params::NumberField<P>(
+          "tentative_robust_scale", [](auto& p) -> auto& { return p.tentative_robust_scale; },
+          Above(0.0)),
   });
   return table;
 }
