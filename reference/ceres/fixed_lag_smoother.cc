@@ -155,8 +155,7 @@ std::vector<int> FixedLagSmoother::OwnAssociation(const StepData& step) {
   // The newest pose's covariance and each window landmark's, with their cross-covariance.
   AnchoredCovariances covs;
   if (!newest.constant) {
-    covs = AnchoredMarginalCovariances(WindowFactors(), ConstantBlocks(),
-                                       newest.x.data(), wanted);
+    covs = AnchoredMarginalCovariances(WindowFactors(), ConstantBlocks(), newest.x.data(), wanted);
   }
   const bool have_covs = covs.marginal.size() == wanted.size() && covs.anchor.rows() == 3;
   Mat3 pose_cov = newest.constant ? Mat3::Zero() : FallbackPoseCovariance();

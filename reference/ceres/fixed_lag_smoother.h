@@ -68,7 +68,7 @@ struct WindowReport {
   int unconverged_solves = 0;  ///< NO_CONVERGENCE (kept) or FAILURE (discarded): see README.md
   int iterations = 0;
   int marginalised_poses = 0;
-  int deleted_landmarks = 0;  ///< own association: tentative landmarks never confirmed
+  int deleted_landmarks = 0;    ///< own association: tentative landmarks never confirmed
   int rejected_detections = 0;  ///< own association: detections dropped after a solve
 };
 
@@ -109,7 +109,7 @@ class FixedLagSmoother final : public filters::OnlineEstimator, public filters::
     Landmark mean = Landmark::Zero();
     Mat2 cov = Mat2::Identity();  ///< marginal covariance when marginalised
     bool active = true;           ///< in the window (false: marginalised)
-    LandmarkSupport support;  ///< detections and sum of pD over the scans since the first one
+    LandmarkSupport support;      ///< detections and sum of pD over the scans since the first one
     LandmarkStatus status = LandmarkStatus::kTentative;
     std::size_t first_step = 0;
     std::optional<GraphFactor> reentry_prior;  ///< N(mean, cov) when it came back into the window

@@ -17,7 +17,7 @@ namespace {
 /// A linear Gaussian factor r = W (sum_i A_i x_i - z) on 2-D blocks.
 class LinearFactor final : public ceres::CostFunction {
  public:
-  LinearFactor(std::vector<Mat2> a, Vec2 z, Mat2 w) : a_(std::move(a)), z_(z), w_(w) {
+  LinearFactor(std::vector<Mat2> a, const Vec2& z, const Mat2& w) : a_(std::move(a)), z_(z), w_(w) {
     for (std::size_t i = 0; i < a_.size(); ++i) mutable_parameter_block_sizes()->push_back(2);
     set_num_residuals(2);
   }

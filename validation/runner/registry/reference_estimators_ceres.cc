@@ -138,8 +138,10 @@ std::vector<EstimatorEntry> CeresEstimators() {
                       "solve_every (1)"),
           WindowEntry("window", false,
                       "Ceres fixed-lag (sliding-window) smoother with its own association: gated "
-                      "nearest neighbour on marginal covariances, Cauchy loss, landmarks "
-                      "confirmed after confirm_detections (3) scans (reference/ceres/README.md)")};
+                      "nearest neighbour on marginal and pose-landmark cross-covariances, "
+                      "confirmed landmarks first, tentative ones confirmed after "
+                      "confirm_detections (5) scans, Huber loss (Cauchy while tentative), "
+                      "outliers dropped after each solve (reference/ceres/README.md)")};
 }
 
 }  // namespace phdslam::validation
