@@ -446,7 +446,7 @@ filters::StepOutput FixedLagSmoother::Step(const StepData& step) {
   if (steps_since_solve_ >= params_.solve_every) {
     steps_since_solve_ = 0;
     Solve();
-    if (!params_.known_association && RejectOutliers() > 0) Solve();
+    if (!params_.known_association && params_.reject_outliers && RejectOutliers() > 0) Solve();
     while (poses_.size() > static_cast<std::size_t>(params_.window_length)) MarginaliseOldest();
   }
   out.pose = poses_.back().x;

@@ -56,6 +56,8 @@ struct WindowParams {
   double robust_scale = 3.0;  ///< in whitened units (standard deviations)
   /// Cauchy loss scale on the detections of tentative landmarks (whitened units)
   double tentative_robust_scale = 1.0;
+  /// After each solve, drop the detections of confirmed landmarks outside the gate and solve again
+  bool reject_outliers = true;
 
   /// Throws std::invalid_argument naming the field when a value is out of range; `run_steps`
   /// (> 0 when known) bounds window_length.

@@ -47,6 +47,8 @@ const params::ParameterTable<WindowParams>& WindowParamsTable() {
       params::NumberField<P>(
           "tentative_robust_scale", [](auto& p) -> auto& { return p.tentative_robust_scale; },
           Above(0.0)),
+      params::BoolField<P>(
+          "reject_outliers", [](auto& p) -> auto& { return p.reject_outliers; }),
   });
   return table;
 }
