@@ -13,7 +13,8 @@ namespace phdslam::reference {
 /// association ("known" | "unknown", fixed by the estimator's name: window-known, window),
 /// window_length, solve_every, max_iterations, function_tolerance, odometry_residual
 /// ("control_space" | "pose_space"), odometry_floor ([position_std, heading_std]), gate_chi2,
-/// confirm_detections, robust_loss, robust_scale.
+/// confirm_detections, confirm_ratio, robust_loss, robust_scale, tentative_robust_scale,
+/// reject_outliers.
 const params::ParameterTable<WindowParams>& WindowParamsTable();
 
 nlohmann::json ToJson(const WindowParams& params);
