@@ -30,7 +30,9 @@ std::vector<Pair> GatedPairs(const Pose& pose, const Mat3& pose_cov,
     if (q < 1e-18) continue;  // bearing undefined
     if (options.max_landmark_distance > 0.0 && q > max_d2) continue;
     const models::PredictionWithJacobians p = models::PredictWithJacobians(pose, m);
-    Mat2 s = p.j.hm * map[i].cov * p.j.hm.transpose() + p.j.hx * pose_cov * p.j.hx.transpose() + r;
+    const Mat2 cross = p.j.hm * map[i].pose_cross * p.j.hx.transpose();
+    Mat2 s = p.j.hm * map[i].cov * p.j.hm.transpose() + p.j.hx * pose_cov * p.j.hx.transpose() +
+             cross + cross.transpose() + r;
     Symmetrize(s);
     for (std::size_t j = 0; j < scan.size(); ++j) {
       const Vec2 nu(scan[j](0) - p.z_hat(0), WrapAngle(scan[j](1) - p.z_hat(1)));

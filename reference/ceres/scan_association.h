@@ -3,9 +3,11 @@
 //
 // * Gating: measurement z at the pose (x, Px) against a map landmark (m, Pm), both with their
 //   marginal covariances: nu = [z_r - h_r; wrap(z_phi - h_phi)],
-//   S = Hx Px Hx^T + Hm Pm Hm^T + R, accepted when nu^T S^-1 nu < gate_chi2 (strict). The
-//   pose-landmark cross-covariance is left out, which makes S larger (more conservative) for a
-//   landmark seen recently from a pose correlated with the current one.
+//   S = Hx Px Hx^T + Hm Pm Hm^T + Hm C Hx^T + Hx C^T Hm^T + R, accepted when
+//   nu^T S^-1 nu < gate_chi2 (strict), with C = Cov(m, x) the pose-landmark cross-covariance
+//   when the caller knows it (the fixed-lag smoother's window) and zero otherwise; leaving it out
+//   makes S larger (more conservative) for a landmark seen recently from a pose correlated with
+//   the current one.
 // * Assignment: gated nearest neighbour over the whole scan (greedy global nearest neighbour):
 //   candidate pairs in increasing Mahalanobis distance, ties broken by measurement then landmark
 //   index, each measurement and each landmark used at most once. The solver then applies a robust
@@ -23,10 +25,12 @@
 
 namespace phdslam::reference {
 
-/// A map landmark as the association sees it: its mean and marginal covariance.
+/// A map landmark as the association sees it: its mean, marginal covariance and (when known)
+/// cross-covariance with the pose, Cov(m, x).
 struct MapLandmark {
   Landmark mean = Landmark::Zero();
   Mat2 cov = Mat2::Identity();
+  Eigen::Matrix<double, 2, 3> pose_cross = Eigen::Matrix<double, 2, 3>::Zero();
 };
 
 struct ScanAssociationOptions {

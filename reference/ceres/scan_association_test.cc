@@ -76,6 +76,22 @@ TEST(ScanAssociationTest, GateUsesThePoseCovariance) {
   EXPECT_EQ(AssociateScan(x, tight, vague, scan, SensorNoise(), {}).landmark[0], 0);
 }
 
+/// A landmark that shares the pose's drift (cross-covariance C = Cov(m, x) equal to the common
+/// position covariance): the relative uncertainty is only the noise, and a detection 2 m off in
+/// range, inside the gate without C, is outside it with C.
+TEST(ScanAssociationTest, GateUsesThePoseLandmarkCrossCovariance) {
+  const Pose x(0.0, 0.0, 0.0);
+  const Mat3 px = Vec3(4.0, 4.0, 1e-6).asDiagonal();
+  MapLandmark drifting{Landmark(20.0, 0.0), 4.0 * Mat2::Identity()};
+  const std::vector<Measurement> scan{Observe(x, drifting.mean, 2.0, 0.0)};
+  EXPECT_EQ(AssociateScan(x, px, {drifting}, scan, SensorNoise(), {}).landmark[0], 0);
+  drifting.pose_cross.leftCols<2>() = 4.0 * Mat2::Identity();
+  EXPECT_EQ(AssociateScan(x, px, {drifting}, scan, SensorNoise(), {}).landmark[0], kUnassociated);
+  // The undisturbed detection still passes.
+  const std::vector<Measurement> exact{Observe(x, drifting.mean, 0.0, 0.0)};
+  EXPECT_EQ(AssociateScan(x, px, {drifting}, exact, SensorNoise(), {}).landmark[0], 0);
+}
+
 TEST(ScanAssociationTest, LandmarksBeyondTheDistanceLimitAreSkipped) {
   const Pose x(0.0, 0.0, 0.0);
   const std::vector<MapLandmark> map{{Landmark(30.0, 0.0), 1e-4 * Mat2::Identity()}};

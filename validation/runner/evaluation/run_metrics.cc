@@ -216,6 +216,11 @@ RunEvaluation EvaluateRun(const RunRecord& record, const datasets::Scenario& sce
   for (double ms : record.step_ms) ev.metrics.step_ms.Add(ms);
   ev.map_ospa_m = MapOspaTrace(record, scenario, settings.map_ospa_c);
   ev.metrics.total_ms = record.total_ms;
+  if (record.solves) {
+    ev.metrics.solves = static_cast<std::size_t>(std::max(record.solves->solves, 0));
+    ev.metrics.unconverged_solves =
+        static_cast<std::size_t>(std::max(record.solves->unconverged, 0));
+  }
   if (record.solver_iterations) {
     ev.metrics.solver_iterations = static_cast<std::size_t>(std::max(*record.solver_iterations, 0));
   }

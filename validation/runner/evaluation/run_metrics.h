@@ -79,6 +79,11 @@ struct RunMetrics {
   /// Batch estimators: the final solve met its tolerance (false: stopped at the iteration limit
   /// or failed, so the estimate is not a converged solution).
   std::optional<bool> solver_converged;
+  /// Online graph optimisers (filters::SolveCounter): solves run, and those that ended without
+  /// convergence (reference/ceres/README.md says what is kept of them); nullopt for other
+  /// estimators.
+  std::optional<std::size_t> solves;
+  std::optional<std::size_t> unconverged_solves;
   ErrorMoments step_ms;  ///< wall time per step (online estimators)
   double total_ms = 0.0;
 };

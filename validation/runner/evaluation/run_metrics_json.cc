@@ -290,6 +290,8 @@ const std::vector<MetricsKey>& MetricsKeys() {
             m.solver_converged = v.get<bool>();
           },
           true},
+         OptionalCountKey("solves", &Metrics::solves, true),
+         OptionalCountKey("unconverged_solves", &Metrics::unconverged_solves, true),
          Derived("ms_per_step_mean", [](const Metrics& m) { return OrNull(m.step_ms.Mean()); }),
          Derived("ms_per_step_std", [](const Metrics& m) { return OrNull(m.step_ms.Std()); })});
     // The timing statistics are ms_count, ms_sum, ms_sq_sum (unit-less prefix "ms").

@@ -9,6 +9,7 @@
 
 #include "src/core/types.h"
 #include "src/filters/estimator.h"
+#include "src/filters/solve_counter.h"
 
 namespace phdslam::validation {
 
@@ -39,6 +40,8 @@ struct RunRecord {
   std::optional<int> solver_iterations;
   /// Batch estimators: whether the final solve converged (BatchResult::converged).
   std::optional<bool> solver_converged;
+  /// Online estimators that solve (filters::SolveCounter): their solves after the last step.
+  std::optional<filters::SolveCounts> solves;
   /// Wall time of the whole estimation (ms): the sum of step_ms, or the batch solve.
   double total_ms = 0.0;
   /// The map estimate after the last step.

@@ -334,6 +334,7 @@ MonteCarloReport RunMonteCarlo(const MonteCarloPlan& plan, const MonteCarloSetti
       request.particles = job.particles;
       request.stream_seed = identity.at("stream_seed").get<std::uint64_t>();
       request.context = &context;
+      request.steps = scenario.steps.size();
       request.scenario_name = plan.scenario.name;
       request.overrides = selection.overrides;
       const RunRecord record = RunEstimator(

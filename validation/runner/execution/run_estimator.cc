@@ -54,6 +54,9 @@ void RunOnline(const EstimatorEntry& entry, const EstimatorRequest& request,
                   [](const auto& states) { return !states.empty(); });
   if (!exposes_particles) record.particle_states.clear();
   record.final_map = estimator->Map();
+  if (const auto* counter = dynamic_cast<const filters::SolveCounter*>(estimator.get())) {
+    record.solves = counter->Solves();
+  }
 }
 
 void RunBatch(const EstimatorEntry& entry, const EstimatorRequest& request,

@@ -36,6 +36,9 @@ struct EstimatorRequest {
   /// The public part of the run's scenario; null while parameters are resolved (before any
   /// scenario is built).
   const filters::EstimatorContext* context = nullptr;
+  /// Number of filter steps of the run's scenario; 0 while parameters are resolved (estimators
+  /// whose parameters are bounded by the run's length check them when they are built).
+  std::size_t steps = 0;
 };
 
 using OnlineFactory =

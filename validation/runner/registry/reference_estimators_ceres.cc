@@ -3,9 +3,12 @@
 #include <stdexcept>
 #include <utility>
 
+#include "oracle/oracle_rbpf.h"
 #include "reference/ceres/batch_smoother.h"
 #include "reference/ceres/filter_association.h"
+#include "reference/ceres/fixed_lag_smoother.h"
 #include "reference/ceres/smoother_params_json.h"
+#include "reference/ceres/window_params_json.h"
 #include "src/filters/phd_slam_family.h"
 #include "src/filters/phd_slam_params_json.h"
 #include "validation/runner/registry/estimator_registry.h"
@@ -59,6 +62,57 @@ EstimatorEntry SmootherEntry(const std::string& name, reference::AssociationMode
   return e;
 }
 
+// `run_steps` (0 when not known yet) bounds window_length: a value given as an override longer
+// than the run is an error naming it, while the default is shortened to a shorter run.
+reference::WindowParams ResolveWindow(const EstimatorRequest& r, bool known,
+                                      std::size_t run_steps) {
+  RequireSingleParticle(r);
+  reference::WindowParams defaults;
+  defaults.known_association = known;
+  reference::WindowParams p = ResolveParameters(r, reference::WindowParamsTable(), defaults);
+  if (run_steps > 0 && !r.overrides.contains("window_length") &&
+      static_cast<std::size_t>(p.window_length) > run_steps) {
+    p.window_length = static_cast<int>(run_steps);
+  }
+  try {
+    p.Validate(run_steps);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument("estimator '" + r.name + "': " + e.what());
+  }
+  if (known) RequireKnownOrigins(r);
+  return p;
+}
+
+// The fixed-lag smoother: `window-known` reads the origin labels as the oracle does; `window`
+// sees only the public context.
+EstimatorEntry WindowEntry(const std::string& name, bool known, const std::string& description) {
+  EstimatorEntry e;
+  e.name = name;
+  e.description = description;
+  e.reads_truth = known;
+  e.resolved_parameters = [known](const EstimatorRequest& r) {
+    return reference::ToJson(ResolveWindow(r, known, 0));
+  };
+  if (known) {
+    e.make_online_with_truth =
+        [](const EstimatorRequest& r,
+           const datasets::Scenario& with_truth) -> std::unique_ptr<filters::OnlineEstimator> {
+      const reference::WindowParams p = ResolveWindow(r, true, with_truth.steps.size());
+      return std::make_unique<reference::FixedLagSmoother>(with_truth.PublicContext(), p,
+                                                           oracle::ScenarioOrigins(with_truth),
+                                                           with_truth.steps.size());
+    };
+  } else {
+    e.make_online = [](const EstimatorRequest& r) -> std::unique_ptr<filters::OnlineEstimator> {
+      const reference::WindowParams p = ResolveWindow(r, false, r.steps);
+      const filters::EstimatorContext& context = RequireContext(r);
+      return std::make_unique<reference::FixedLagSmoother>(
+          context, p, std::vector<std::vector<int>>{}, r.steps);
+    };
+  }
+  return e;
+}
+
 }  // namespace
 
 std::vector<EstimatorEntry> CeresEstimators() {
@@ -76,7 +130,18 @@ std::vector<EstimatorEntry> CeresEstimators() {
                         "in a sequential EKF pass from dead reckoning (initialisation=batch, "
                         "default) or with the optimised map on marginal covariances as the "
                         "graph grows (initialisation=incremental), robust loss, re-association "
-                        "in a final full solve (reference/ceres/README.md)")};
+                        "in a final full solve (reference/ceres/README.md)"),
+          WindowEntry("window-known", true,
+                      "Ceres fixed-lag (sliding-window) smoother with the known association "
+                      "(reads the hidden origin labels): old states marginalised into a Gaussian "
+                      "prior; pose = newest window pose; parameters window_length (20), "
+                      "solve_every (1)"),
+          WindowEntry("window", false,
+                      "Ceres fixed-lag (sliding-window) smoother with its own association: gated "
+                      "nearest neighbour on marginal and pose-landmark cross-covariances, "
+                      "confirmed landmarks first, tentative ones confirmed after "
+                      "confirm_detections (5) scans, Huber loss (Cauchy while tentative), "
+                      "outliers dropped after each solve (reference/ceres/README.md)")};
 }
 
 }  // namespace phdslam::validation

@@ -313,6 +313,10 @@ const std::vector<Column<RunResult>>& RunColumns() {
        [](const R& r) {
          return Num(Fraction(r.metrics.gps_coverage_rb_inside, r.metrics.gps_nees_rb.count));
        }},
+      {"unconverged_solves",
+       [](const R& r) {
+         return r.metrics.unconverged_solves ? Count(*r.metrics.unconverged_solves) : std::string();
+       }},
   };
   return columns;
 }

@@ -1,0 +1,155 @@
+// Fixed-lag (sliding-window) smoother: the online graph-optimisation baseline (README.md,
+// "Fixed-lag smoother"). It keeps the newest `window_length` poses and the landmarks they see in
+// a Ceres problem, solves it every `solve_every` steps (Levenberg-Marquardt warm-started from the
+// previous solution and the odometry prediction), and marginalises the oldest pose, with the
+// landmarks no later pose sees, into a Gaussian prior (marginalization.h): the Schur complement
+// of the linearised problem, kept as a whitened linear residual whose linearisation points stay
+// fixed (first-estimate Jacobians, linear_prior.h). A landmark leaves with its mean and marginal
+// covariance; when it is seen again it re-enters the window with that Gaussian as its prior.
+//
+// The pose of each step is the newest window pose after that step (a filtered estimate, not a
+// smoothed one); the map is every landmark in the window plus every marginalised one.
+#pragma once
+
+#include <cstddef>
+#include <deque>
+#include <map>
+#include <memory>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "reference/ceres/batch_smoother.h"
+#include "reference/ceres/marginalization.h"
+#include "reference/ceres/odometry_increment.h"
+#include "reference/ceres/scan_association.h"
+#include "src/filters/estimator.h"
+#include "src/filters/solve_counter.h"
+
+namespace phdslam::reference {
+
+struct WindowParams {
+  /// Known: the generator's labels (fixed by the estimator's name, window-known); unknown: the
+  /// smoother's own association (window_association.h).
+  bool known_association = true;
+  /// Poses kept in the window after each solve (>= 1, at most the run's length).
+  int window_length = 20;
+  int solve_every = 1;               ///< steps between solves (>= 1); the window holds up to
+                                     ///< window_length + solve_every - 1 poses before a solve
+  int max_iterations = 10;           ///< Levenberg-Marquardt iterations per solve
+  double function_tolerance = 1e-6;  ///< relative cost decrease that ends a solve
+  OdometryResidual odometry_residual = OdometryResidual::kControlSpace;
+  OdometryNoiseFloor odometry_floor;  ///< as the batch smoother's (odometry_increment.h)
+  // Own association (window, docs/algorithms/ceres-smoother.md section 8.3): gated nearest
+  // neighbour, confirmed landmarks first; confirmation and deletion of tentative ones.
+  double gate_chi2 = 13.8;  ///< chi2 with 2 dof at 0.999 on the marginal innovation covariance
+  /// A tentative landmark is confirmed once this many scans have associated with it (its first
+  /// detection included) ...
+  int confirm_detections = 5;
+  /// ... and deleted as soon as its detections fall below this fraction of the scans expected to
+  /// detect it since its first detection (the sum of pD at the predicted pose of each of them).
+  /// One still tentative when the pose of its first detection leaves the window is deleted too.
+  double confirm_ratio = 0.5;
+  /// Loss on the detections of confirmed landmarks: "huber", "cauchy" or "none"
+  std::string robust_loss = "huber";
+  double robust_scale = 3.0;  ///< in whitened units (standard deviations)
+  /// Cauchy loss scale on the detections of tentative landmarks (whitened units)
+  double tentative_robust_scale = 1.0;
+  /// After each solve, drop the detections of confirmed landmarks outside the gate and solve again
+  bool reject_outliers = true;
+
+  /// Throws std::invalid_argument naming the field when a value is out of range; `run_steps`
+  /// (> 0 when known) bounds window_length.
+  void Validate(std::size_t run_steps = 0) const;
+};
+
+/// What the smoother did, over the whole run.
+struct WindowReport {
+  int solves = 0;
+  int unconverged_solves = 0;  ///< NO_CONVERGENCE (kept) or FAILURE (discarded): see README.md
+  int iterations = 0;
+  int marginalised_poses = 0;
+  int deleted_landmarks = 0;    ///< own association: tentative landmarks never confirmed
+  int rejected_detections = 0;  ///< own association: detections dropped after a solve
+};
+
+class FixedLagSmoother final : public filters::OnlineEstimator, public filters::SolveCounter {
+ public:
+  /// `origins`: per step, per measurement, the landmark label (>= 0) or a negative value
+  /// (clutter, unknown); required (one entry per step) with known_association, ignored
+  /// otherwise. `run_steps` bounds window_length (0: unknown). Throws std::invalid_argument
+  /// naming the parameter.
+  FixedLagSmoother(filters::EstimatorContext context, WindowParams params,
+                   std::vector<std::vector<int>> origins = {}, std::size_t run_steps = 0);
+
+  filters::StepOutput Step(const StepData& step) override;
+  [[nodiscard]] filters::MapEstimate Map() const override;
+
+  /// Every pose currently in the window, oldest first (tests: the window of a whole run is the
+  /// batch solution).
+  [[nodiscard]] std::vector<Pose> WindowPoses() const;
+  [[nodiscard]] const WindowReport& report() const { return report_; }
+  [[nodiscard]] filters::SolveCounts Solves() const override {
+    return {report_.solves, report_.unconverged_solves};
+  }
+
+ private:
+  struct Observation {
+    int landmark;
+    std::size_t measurement;
+    GraphFactor factor;
+  };
+  struct WindowPose {
+    std::size_t step = 0;
+    Pose x = Pose::Zero();
+    bool constant = false;
+    std::optional<GraphFactor> odometry;  ///< from the previous pose or the anchor
+    std::vector<Observation> observations;
+  };
+  struct WindowLandmark {
+    Landmark mean = Landmark::Zero();
+    Mat2 cov = Mat2::Identity();  ///< marginal covariance when marginalised
+    bool active = true;           ///< in the window (false: marginalised)
+    LandmarkSupport support;      ///< detections and sum of pD over the scans since the first one
+    LandmarkStatus status = LandmarkStatus::kTentative;
+    std::size_t first_step = 0;
+    std::optional<GraphFactor> reentry_prior;  ///< N(mean, cov) when it came back into the window
+  };
+
+  void AddPose(const StepData& step);
+  void AddObservations(const StepData& step, filters::StepOutput& out);
+  void Observe(WindowPose& pose, int label, std::size_t j, const Measurement& z);
+  std::vector<int> OwnAssociation(const StepData& step);
+  void CountExpectedDetections(const Pose& x);
+  void ClassifyTentative();
+  void Solve();
+  /// Own association: drops the detections of confirmed landmarks whose whitened residual at the
+  /// solved window lies outside the gate (squared norm >= gate_chi2); returns how many.
+  int RejectOutliers();
+  void MarginaliseOldest();
+  void DeleteLandmark(int label);
+  [[nodiscard]] std::vector<const GraphFactor*> WindowFactors() const;
+  [[nodiscard]] std::set<const double*> ConstantBlocks() const;
+  [[nodiscard]] bool ObservedAfterOldest(int label) const;
+
+  filters::EstimatorContext context_;
+  WindowParams params_;
+  std::vector<std::vector<int>> origins_;
+  bool velocity_model_ = false;
+  std::shared_ptr<ceres::LossFunction> loss_;
+  std::shared_ptr<ceres::LossFunction> tentative_loss_;
+  Mat2 measurement_whitening_ = Mat2::Identity();
+
+  std::size_t step_index_ = 0;
+  Pose anchor_ = Pose::Zero();
+  std::deque<WindowPose> poses_;
+  std::map<int, WindowLandmark> landmarks_;
+  int next_label_ = 0;  ///< own association: label of the next new landmark
+  std::optional<GraphFactor> prior_;
+  FixedPoints fixed_points_;
+  int steps_since_solve_ = 0;
+  WindowReport report_;
+};
+
+}  // namespace phdslam::reference

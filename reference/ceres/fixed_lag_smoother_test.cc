@@ -1,0 +1,198 @@
+#include "reference/ceres/fixed_lag_smoother.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+#include <string>
+
+#include "reference/ceres/test_scenario.h"
+#include "reference/ceres/window_params_json.h"
+#include "src/testing/jacobian_check.h"
+
+namespace phdslam::reference {
+namespace {
+
+using testing::CircleScenarioOptions;
+using testing::MakeCircleScenario;
+using testing::PositionRmse;
+
+std::vector<std::vector<int>> Origins(const datasets::Scenario& s) {
+  std::vector<std::vector<int>> o;
+  for (const datasets::ScenarioStep& step : s.steps) o.push_back(step.origin);
+  return o;
+}
+
+struct WindowRun {
+  std::vector<Pose> filtered;  ///< the newest pose after each step
+  std::vector<Pose> window;    ///< the window after the last step
+  filters::MapEstimate map;
+  WindowReport report;
+};
+
+WindowRun RunWindow(const datasets::Scenario& s, const WindowParams& p) {
+  FixedLagSmoother smoother(s.PublicContext(), p,
+                            p.known_association ? Origins(s) : std::vector<std::vector<int>>{},
+                            s.steps.size());
+  WindowRun r;
+  for (const datasets::ScenarioStep& step : s.steps)
+    r.filtered.push_back(smoother.Step(step.data).pose);
+  r.window = smoother.WindowPoses();
+  r.map = smoother.Map();
+  r.report = smoother.report();
+  return r;
+}
+
+WindowParams Tight(int window_length) {
+  WindowParams p;
+  p.window_length = window_length;
+  p.max_iterations = 100;
+  p.function_tolerance = 1e-14;
+  return p;
+}
+
+TEST(FixedLagSmoother, WindowAsLongAsTheRunIsTheBatchSmoother) {
+  CircleScenarioOptions o;
+  o.steps = 60;
+  const datasets::Scenario s = MakeCircleScenario(o);
+  const WindowRun w = RunWindow(s, Tight(60));
+  SmootherOptions batch_options;
+  batch_options.compute_covariances = false;
+  batch_options.function_tolerance = 1e-14;
+  BatchSmoother batch(batch_options);
+  const datasets::BatchResult b = batch.Solve(s);
+  ASSERT_EQ(w.window.size(), b.poses.size());
+  EXPECT_EQ(w.report.marginalised_poses, 0);
+  EXPECT_EQ(w.report.unconverged_solves, 0);
+  for (std::size_t k = 0; k < b.poses.size(); ++k) {
+    EXPECT_LT((w.window[k] - b.poses[k]).norm(), 1e-6) << "step " << k;
+  }
+  ASSERT_EQ(w.map.size(), b.map.size());
+  for (std::size_t i = 0; i < b.map.size(); ++i) {
+    EXPECT_LT((w.map.means[i] - b.map.means[i]).norm(), 1e-6) << "landmark " << i;
+  }
+  // The filtered answer of the last step is the smoothed last pose; earlier ones are not.
+  EXPECT_LT((w.filtered.back() - b.poses.back()).norm(), 1e-6);
+  EXPECT_GT((w.filtered[30] - b.poses[30]).norm(), 1e-4);
+}
+
+TEST(FixedLagSmoother, NoiseFreeDataAreRecoveredThroughMarginalisation) {
+  for (const bool car : {false, true}) {
+    CircleScenarioOptions o;
+    o.noise = false;
+    o.detection_probability = 1.0;
+    if (car) {
+      o.motion = datasets::MotionKind::kCar;
+      o.sub_intervals = 4;
+      o.first_step_propagates = true;
+    }
+    const datasets::Scenario s = MakeCircleScenario(o);
+    const WindowRun w = RunWindow(s, Tight(5));
+    EXPECT_EQ(w.report.marginalised_poses, 95) << "car " << car;
+    for (std::size_t k = 0; k < w.filtered.size(); ++k) {
+      EXPECT_LT((w.filtered[k] - s.truth.poses[k]).norm(), 1e-6) << "car " << car << " step " << k;
+    }
+    ASSERT_EQ(w.map.size(), 20u);
+    for (std::size_t i = 0; i < 20; ++i) {
+      EXPECT_LT((w.map.means[i] - s.truth.landmarks[i]).norm(), 1e-6);
+      phdslam::testing::ExpectSymmetricPositiveDefinite(w.map.covs[i]);
+    }
+  }
+}
+
+TEST(FixedLagSmoother, MarginalisationKeepsTheNoisyEstimateCloseToTheBatchOne) {
+  CircleScenarioOptions o;
+  o.steps = 200;
+  const datasets::Scenario s = MakeCircleScenario(o);
+  BatchSmoother batch(SmootherOptions{});
+  const double batch_rmse = PositionRmse(s, batch.Solve(s).poses);
+  const WindowRun w = RunWindow(s, WindowParams{});
+  const double window_rmse = PositionRmse(s, w.filtered);
+  std::cout << "batch " << batch_rmse << " m, window (filtered) " << window_rmse << " m\n";
+  // A filtered estimate is no better than the smoothed one, and marginalisation must not
+  // break it: within a factor 3 of the batch smoother on this short loop.
+  EXPECT_GE(window_rmse, 0.9 * batch_rmse);
+  EXPECT_LT(window_rmse, 3.0 * batch_rmse);
+  EXPECT_EQ(w.map.size(), 20u);
+}
+
+TEST(FixedLagSmoother, OwnAssociationFindsTheLandmarksAmongClutter) {
+  CircleScenarioOptions o;
+  o.steps = 200;
+  o.clutter_rate = 5.0;
+  const datasets::Scenario s = MakeCircleScenario(o);
+  WindowParams known;
+  const double known_rmse = PositionRmse(s, RunWindow(s, known).filtered);
+  WindowParams own;
+  own.known_association = false;
+  const WindowRun w = RunWindow(s, own);
+  const double own_rmse = PositionRmse(s, w.filtered);
+  std::cout << "known " << known_rmse << " m, own " << own_rmse << " m, map " << w.map.size()
+            << ", deleted " << w.report.deleted_landmarks << "\n";
+  EXPECT_LT(own_rmse, 1.5 * known_rmse + 0.1);
+  EXPECT_GT(w.report.deleted_landmarks, 0);  // clutter started tentative landmarks
+  // Every true landmark once, at most a few false ones.
+  int matched = 0;
+  for (const Landmark& t : s.truth.landmarks) {
+    for (const Landmark& m : w.map.means) matched += (m - t).norm() < 3.0 ? 1 : 0;
+  }
+  EXPECT_EQ(matched, 20);
+  EXPECT_LE(w.map.size(), 22u);
+}
+
+TEST(FixedLagSmoother, BadWindowLengthsAreRejectedNamingTheParameter) {
+  const datasets::Scenario s = MakeCircleScenario(CircleScenarioOptions{});
+  for (const int length : {0, -3, 101}) {
+    WindowParams p;
+    p.window_length = length;
+    try {
+      FixedLagSmoother smoother(s.PublicContext(), p, Origins(s), s.steps.size());
+      ADD_FAILURE() << "window_length " << length << " accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("window_length"), std::string::npos) << e.what();
+    }
+  }
+  WindowParams p;
+  p.window_length = 100;  // exactly the run: accepted
+  EXPECT_NO_THROW(FixedLagSmoother(s.PublicContext(), p, Origins(s), s.steps.size()));
+  p.solve_every = 0;
+  EXPECT_THROW(FixedLagSmoother(s.PublicContext(), p, Origins(s), s.steps.size()),
+               std::invalid_argument);
+  // Through the parameter table: the key is named, the parameters unchanged.
+  WindowParams q;
+  try {
+    ApplyJson(nlohmann::json{{"window_length", 0}}, q);
+    ADD_FAILURE() << "window_length 0 accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("window_length"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(q.window_length, 20);
+  EXPECT_THROW(ApplyJson(nlohmann::json{{"association", "unknown"}}, q), std::invalid_argument);
+  EXPECT_THROW(ApplyJson(nlohmann::json{{"robust_loss", "tukey"}}, q), std::invalid_argument);
+}
+
+TEST(FixedLagSmoother, UnconvergedSolvesAreCounted) {
+  const datasets::Scenario s = MakeCircleScenario(CircleScenarioOptions{});
+  WindowParams p;
+  p.max_iterations = 1;
+  p.function_tolerance = 1e-300;
+  FixedLagSmoother smoother(s.PublicContext(), p, Origins(s), s.steps.size());
+  for (const datasets::ScenarioStep& step : s.steps) smoother.Step(step.data);
+  const filters::SolveCounts counts = smoother.Solves();
+  EXPECT_EQ(counts.solves, 100);  // one per step
+  EXPECT_GT(counts.unconverged, 0);
+  EXPECT_EQ(counts.unconverged, smoother.report().unconverged_solves);
+}
+
+TEST(WindowParamsJson, RoundTrips) {
+  WindowParams p;
+  p.window_length = 7;
+  p.solve_every = 3;
+  p.robust_loss = "huber";
+  WindowParams q;
+  ApplyJson(ToJson(p), q);
+  EXPECT_EQ(ToJson(q), ToJson(p));
+}
+
+}  // namespace
+}  // namespace phdslam::reference
