@@ -2,7 +2,6 @@
 
 #include <ceres/ceres.h>
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <array>
 #include <limits>
@@ -10,6 +9,7 @@
 #include <string>
 #include <utility>
 
+#include "reference/ceres/landmark_covariance_floor.h"
 #include "reference/ceres/linear_prior.h"
 #include "reference/ceres/odometry_factor.h"
 #include "reference/ceres/range_bearing_factor.h"
@@ -35,18 +35,6 @@ ceres::SparseLinearAlgebraLibraryType WindowSparseLibrary() {
 
 /// Fallback pose covariance for gating when the window's information cannot be inverted.
 Mat3 FallbackPoseCovariance() { return Vec3(1.0, 1.0, 0.01).asDiagonal(); }
-
-/// A landmark covariance made symmetric positive definite: its eigenvalues floored at
-/// (1e-4 m)^2 (a marginal from a near-singular window can be indefinite by rounding); the identity
-/// when it is not finite.
-Mat2 PositiveDefiniteCovariance(const Mat2& cov) {
-  if (!cov.allFinite()) return Mat2::Identity();
-  const Eigen::SelfAdjointEigenSolver<Mat2> eig(0.5 * (cov + cov.transpose()));
-  const Vec2 l = eig.eigenvalues().cwiseMax(1e-8);
-  Mat2 out = eig.eigenvectors() * l.asDiagonal() * eig.eigenvectors().transpose();
-  Symmetrize(out);
-  return out;
-}
 
 }  // namespace
 
@@ -137,7 +125,7 @@ void FixedLagSmoother::Observe(WindowPose& pose, int label, std::size_t j, const
     WindowLandmark& lm = it->second;
     lm.active = true;
     const LinearPrior prior =
-        GaussianPrior(lm.mean.data(), lm.mean, PositiveDefiniteCovariance(lm.cov));
+        GaussianPrior(lm.mean.data(), lm.mean, FlooredLandmarkCovariance(lm.cov));
     lm.reentry_prior =
         GraphFactor{std::shared_ptr<ceres::CostFunction>(LinearPriorFactor::Create(prior)),
                     nullptr,
@@ -426,7 +414,7 @@ void FixedLagSmoother::MarginaliseOldest() {
       const DenseSystem s = Linearize(own, {lm.mean.data()}, fixed_points_);
       lm.cov = s.h.rows() == 2 ? Mat2(s.h.inverse()) : Mat2(Mat2::Identity());
     }
-    lm.cov = PositiveDefiniteCovariance(lm.cov);
+    lm.cov = FlooredLandmarkCovariance(lm.cov);
     lm.active = false;
     lm.reentry_prior.reset();
   }
