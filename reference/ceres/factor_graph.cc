@@ -100,7 +100,7 @@ FactorGraph::FactorGraph(const datasets::Scenario& scenario, const OdometrySpec&
   if (held_priors != nullptr) {
     for (std::size_t i = 0; i < landmarks->size(); ++i) {
       if (!active[i] || !held_priors->Has(i)) continue;
-      ceres::CostFunction* prior = held_priors->MakeFactor(i);
+      ceres::CostFunction* prior = held_priors->MakeFactor(i, (*landmarks)[i].data());
       if (prior == nullptr) continue;
       problem_->AddResidualBlock(prior, nullptr, (*landmarks)[i].data());
       ++priors_;

@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "reference/ceres/linear_prior.h"
 #include "reference/ceres/odometry_increment.h"
 #include "src/core/angles.h"
 #include "src/core/gaussian.h"
@@ -62,12 +63,17 @@ Landmark HeldMeasurementPriors::Mean(std::size_t i) const {
   return information_[i].ldlt().solve(vector_[i]);
 }
 
-ceres::CostFunction* HeldMeasurementPriors::MakeFactor(std::size_t i) const {
+ceres::CostFunction* HeldMeasurementPriors::MakeFactor(std::size_t i, double* block) const {
   Mat2 info = information_[i];
   Symmetrize(info);
   const auto lower = CholeskyLower<2>(info);
   if (!lower) return nullptr;
-  return LandmarkPriorFactor::Create(Mean(i), lower->transpose());
+  LinearPrior prior;
+  prior.blocks = {block};
+  prior.linearization_points = {Mean(i)};
+  prior.a = lower->transpose();
+  prior.b = Eigen::Vector2d::Zero();
+  return LinearPriorFactor::Create(prior);
 }
 
 }  // namespace phdslam::reference

@@ -21,33 +21,6 @@
 
 namespace phdslam::reference {
 
-/// Gaussian prior r = U (m - mean) on one landmark block (U upper triangular, U^T U the
-/// information). Automatically differentiated, as the odometry factors.
-class LandmarkPriorFactor {
- public:
-  LandmarkPriorFactor(const Landmark& mean, const Mat2& sqrt_information)
-      : mean_(mean), sqrt_information_(sqrt_information) {}
-
-  template <typename T>
-  bool operator()(const T* const m, T* residuals_ptr) const {
-    Eigen::Matrix<T, 2, 1> d;
-    d(0) = m[0] - static_cast<T>(mean_(0));
-    d(1) = m[1] - static_cast<T>(mean_(1));
-    Eigen::Map<Eigen::Matrix<T, 2, 1>> residuals(residuals_ptr);
-    residuals = sqrt_information_.template cast<T>() * d;
-    return true;
-  }
-
-  static ceres::CostFunction* Create(const Landmark& mean, const Mat2& sqrt_information) {
-    return new ceres::AutoDiffCostFunction<LandmarkPriorFactor, 2, 2>(
-        new LandmarkPriorFactor(mean, sqrt_information));
-  }
-
- private:
-  Landmark mean_;
-  Mat2 sqrt_information_;
-};
-
 /// The folded measurements of the held steps [0, folded()) per landmark.
 class HeldMeasurementPriors {
  public:
@@ -66,9 +39,10 @@ class HeldMeasurementPriors {
   [[nodiscard]] const Mat2& information(std::size_t i) const { return information_[i]; }
   /// Lambda^-1 b.
   [[nodiscard]] Landmark Mean(std::size_t i) const;
-  /// The prior factor of landmark i (Has(i) must hold); nullptr when its information is not
-  /// positive definite.
-  [[nodiscard]] ceres::CostFunction* MakeFactor(std::size_t i) const;
+  /// The prior factor r = U (m - Lambda^-1 b), U^T U = Lambda, of landmark i on its parameter
+  /// block `block` (Has(i) must hold): a LinearPrior (linear_prior.h) with A = U, b = 0;
+  /// nullptr when its information is not positive definite.
+  [[nodiscard]] ceres::CostFunction* MakeFactor(std::size_t i, double* block) const;
 
  private:
   const datasets::Scenario& scenario_;
