@@ -17,7 +17,10 @@ build=build/fuzz
 targets=(mat_file victoria_park tum_trajectory map_csv experiment_file mrclam scenario_options
   ingest_readers)
 
-cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++-14 \
+# -O1 with line tables only, as fuzzing builds usually are: about a quarter quicker to compile than
+# RelWithDebInfo's -O2 -g, and a sanitizer's stack trace still names file and line.
+cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only -DNDEBUG" -DCMAKE_CXX_COMPILER=clang++-14 \
   -DPHDSLAM_FUZZ=ON -DPHDSLAM_BUILD_TESTS=OFF -DPHDSLAM_BUILD_BENCHMARKS=OFF \
   -DPHDSLAM_WITH_CERES=OFF -DPHDSLAM_WITH_MRPT=OFF >/dev/null
 cmake --build "$build" -j "$(nproc 2>/dev/null || echo 2)" --target "${targets[@]/#/fuzz_}" >/dev/null

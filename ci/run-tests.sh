@@ -12,29 +12,37 @@
 #                                job on one seed under valgrind (ci/run-valgrind.sh)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-ci/install-deps.sh --browser --slurm
+# Each stage prints its wall time, so a slow CI run shows where the time went.
+stage() {
+  local name=$1 start=$SECONDS
+  shift
+  "$@"
+  echo "run-tests: $name took $((SECONDS - start)) s" >&2
+}
+stage install ci/install-deps.sh --browser --slurm
 # The report-rendering test runs in headless Chromium; here a missing browser is a failure.
 export PHDSLAM_REQUIRE_CHROMIUM=1
 
 jobs=$(nproc 2>/dev/null || echo 2)
 cmake --preset release >/dev/null
-cmake --build --preset release -j "$jobs"
-ci/run-lint.sh build/release
-ctest --preset release
+stage build cmake --build --preset release -j "$jobs"
+stage lint ci/run-lint.sh build/release
+stage ctest ctest --preset release
 # A single-node Slurm cluster runs an experiment as a job array (needs root to start daemons).
 if [[ "$(id -u)" -eq 0 ]]; then
-  ci/run-slurm-test.sh build/release/apps/phdslam
+  stage slurm ci/run-slurm-test.sh build/release/apps/phdslam
 else
   echo "run-tests: not root, Slurm test skipped (ci/run-slurm-test.sh)" >&2
 fi
 
 if [[ "${1:-}" == "--sanitize" ]]; then
   cmake --preset sanitize >/dev/null
-  cmake --build --preset sanitize -j "$jobs"
-  ctest --preset sanitize
-  ci/run-valgrind.sh
+  stage sanitize-build cmake --build --preset sanitize -j "$jobs"
+  stage sanitize-ctest ctest --preset sanitize
+  stage valgrind ci/run-valgrind.sh
 fi
 
-ci/check-gates.sh build/release
-PHDSLAM_GATES_THRESHOLDS=ci/thresholds_glmb.yaml ci/check-gates.sh build/release
-ci/run-fuzz.sh 20
+stage gates ci/check-gates.sh build/release
+PHDSLAM_GATES_THRESHOLDS=ci/thresholds_glmb.yaml stage gates-glmb ci/check-gates.sh build/release
+stage fuzz ci/run-fuzz.sh 20
+echo "run-tests: all stages passed in $SECONDS s" >&2
