@@ -6,6 +6,7 @@
 
 #include "reference/ceres/held_measurement_prior.h"
 #include "reference/ceres/odometry_factor.h"
+#include "reference/ceres/ordered_covariance.h"
 #include "reference/ceres/range_bearing_factor.h"
 #include "reference/ceres/velocity_odometry_factor.h"
 #include "src/core/gaussian.h"
@@ -159,7 +160,7 @@ bool FactorGraph::Covariances(int num_threads, std::vector<std::optional<Mat3>>*
   co.algorithm_type = ceres::SPARSE_QR;
   co.sparse_linear_algebra_library_type = SparseLibrary();
   co.num_threads = num_threads;
-  ceres::Covariance covariance(co);
+  OrderedCovariance covariance(co);
   std::vector<std::pair<const double*, const double*>> blocks;
   for (std::size_t k = 0; k < steps_; ++k) {
     if (PoseVariable(k)) blocks.emplace_back((*poses_)[k].data(), (*poses_)[k].data());
@@ -200,7 +201,7 @@ bool FactorGraph::NewestCovariances(const std::vector<int>& indices, Mat3* pose_
   ceres::Covariance::Options co;
   co.algorithm_type = ceres::SPARSE_QR;
   co.sparse_linear_algebra_library_type = SparseLibrary();
-  ceres::Covariance covariance(co);
+  OrderedCovariance covariance(co);
   const double* newest = (*poses_)[steps_ - 1].data();
   const bool pose_variable = PoseVariable(steps_ - 1);
   std::vector<std::pair<const double*, const double*>> blocks;
