@@ -100,6 +100,7 @@ class AssociationPass {
         AssociateScan(x, px_, view, zs, options_.measurement_cov, options_.gate);
     const Mat2& r = options_.measurement_cov;
     for (std::size_t j = 0; j < zs.size(); ++j) {
+      if (options_.skip_ambiguous && a.gated[j] > 1) continue;
       if (a.landmark[j] != kUnassociated) {
         const int id = ids[static_cast<std::size_t>(a.landmark[j])];
         PassLandmark& l = state_[static_cast<std::size_t>(id)];
@@ -108,7 +109,7 @@ class AssociationPass {
           UpdateTentative(x, px_, zs[j], r, &landmarks_[static_cast<std::size_t>(id)], &l.cov);
         }
         association_[k][j] = id;
-      } else {
+      } else if (!options_.birth_outside_gates || a.gated[j] == 0) {
         association_[k][j] = static_cast<int>(landmarks_.size());
         ids.push_back(association_[k][j]);
         landmarks_.push_back(models::InverseMeasurement(x, zs[j]));
@@ -145,11 +146,19 @@ class AssociationPass {
     FactorGraph graph(scenario_, odometry, partial, loss, &poses_, &landmarks_, held,
                       priors_ ? &*priors_ : nullptr);
     ceres::Solver::Summary summary = graph.Optimise(settings.solve);
+    // A landmark collapsed onto a pose is left out of the marginals' graph: its Jacobian (1/range)
+    // would dwarf every other column and make the covariance's rank test fail for all of them.
+    std::optional<FactorGraph> pruned;
+    if (options_.delete_collapsed && DeleteCollapsed(partial, held) > 0) {
+      pruned.emplace(scenario_, odometry, SolveAssociation(end), loss, &poses_, &landmarks_, held,
+                     priors_ ? &*priors_ : nullptr);
+    }
+    FactorGraph& solved = pruned ? *pruned : graph;
     std::vector<int> near;
     NearLandmarks(poses_[end - 1], &near);
     near.erase(
         std::remove_if(near.begin(), near.end(),
-                       [&](int i) { return !graph.HasLandmark(static_cast<std::size_t>(i)); }),
+                       [&](int i) { return !solved.HasLandmark(static_cast<std::size_t>(i)); }),
         near.end());
     Mat3 px;
     std::vector<Mat2> covs;
@@ -159,10 +168,10 @@ class AssociationPass {
     // singular (ceres::Covariance then fails and the gate would keep a stale pose covariance).
     std::optional<FactorGraph> squared;
     if (loss != nullptr && options_.squared_loss_marginals) {
-      squared.emplace(scenario_, odometry, partial, nullptr, &poses_, &landmarks_, held,
-                      priors_ ? &*priors_ : nullptr);
+      squared.emplace(scenario_, odometry, SolveAssociation(end), nullptr, &poses_, &landmarks_,
+                      held, priors_ ? &*priors_ : nullptr);
     }
-    if ((squared ? *squared : graph).NewestCovariances(near, &px, &covs)) {
+    if ((squared ? *squared : solved).NewestCovariances(near, &px, &covs)) {
       px_ = px;
       for (std::size_t n = 0; n < near.size(); ++n) {
         state_[static_cast<std::size_t>(near[n])].cov = covs[n];
@@ -192,7 +201,20 @@ class AssociationPass {
     return out;
   }
 
+  [[nodiscard]] int collapsed() const { return collapsed_; }
+
  private:
+  /// Deletes the landmarks of `partial` (deleted ones are unassociated there) that lie within one
+  /// range standard deviation of a free pose they are associated from (CollapsedLandmarks).
+  /// Returns how many were deleted.
+  int DeleteCollapsed(const Association& partial, std::size_t held) {
+    const std::vector<int> collapsed = CollapsedLandmarks(
+        partial, poses_, landmarks_, held, std::sqrt(options_.measurement_cov(0, 0)));
+    for (int i : collapsed) state_[static_cast<std::size_t>(i)].status = LandmarkStatus::kDeleted;
+    collapsed_ += static_cast<int>(collapsed.size());
+    return static_cast<int>(collapsed.size());
+  }
+
   [[nodiscard]] bool Deleted(int i) const {
     return state_[static_cast<std::size_t>(i)].status == LandmarkStatus::kDeleted;
   }
@@ -217,6 +239,7 @@ class AssociationPass {
   Association association_;
   Mat3 px_ = Mat3::Zero();
   int born_ = 0;
+  int collapsed_ = 0;
   std::optional<HeldMeasurementPriors> priors_;  ///< with IncrementalSettings::held_prior
 };
 
@@ -262,7 +285,8 @@ AssociatedMap IncrementalAssociation(const datasets::Scenario& scenario,
                                      const OdometrySpec& odometry, ceres::LossFunction* loss,
                                      const IncrementalSettings& settings,
                                      const IncrementalAssociationOptions& options,
-                                     const SolveObserver& observer, double* association_seconds) {
+                                     const SolveObserver& observer, double* association_seconds,
+                                     int* collapsed) {
   Validate(settings);
   AssociationPass pass(scenario, odometry, options);
   const std::size_t steps = scenario.steps.size();
@@ -276,6 +300,7 @@ AssociatedMap IncrementalAssociation(const datasets::Scenario& scenario,
     if (observer) observer(summary, SecondsSince(t));
     done = end;
   }
+  if (collapsed != nullptr) *collapsed = pass.collapsed();
   return pass.Confirmed();
 }
 

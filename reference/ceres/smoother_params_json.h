@@ -13,6 +13,7 @@ namespace phdslam::reference {
 /// Every option by name except the data fields (filter_association, initial_poses):
 /// association ("known" | "filter" | "unknown"), initialisation, incremental_chunk_steps,
 /// incremental_active_steps, incremental_held_prior, incremental_squared_marginals,
+/// incremental_delete_collapsed, incremental_skip_ambiguous, incremental_birth_outside_gates,
 /// known_outlier_chi2, max_iterations,
 /// function_tolerance, intermediate_function_tolerance, compute_covariances, linear_solver
 /// ("sparse_normal_cholesky" | "sparse_schur"), num_threads, odometry_residual
