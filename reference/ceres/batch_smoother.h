@@ -63,10 +63,12 @@ struct SmootherOptions {
   /// graph at each chunk's solution instead of the robust one (README.md, "Own association along
   /// the incremental solve").
   bool incremental_squared_marginals = false;
-  /// Incremental solve, own association: a landmark that a chunk solve leaves within one range
-  /// standard deviation of a pose it is associated from is deleted (README.md, "Collapsed
-  /// landmarks"); false keeps it.
-  bool incremental_delete_collapsed = true;
+  /// Incremental solve, own association: when the gate's marginal covariances fail, they are
+  /// computed again without the landmarks collapsed onto a pose (within one range standard
+  /// deviation of a pose they are associated from; README.md, "Collapsed landmarks").
+  bool incremental_marginals_without_collapsed = true;
+  /// Incremental solve, own association: such a landmark is also deleted after every chunk solve.
+  bool incremental_delete_collapsed = false;
   /// Incremental solve, own association: a measurement inside the gates of two or more
   /// landmarks is left unassociated and starts none (README.md, "Ambiguous measurements").
   bool incremental_skip_ambiguous = false;

@@ -146,36 +146,12 @@ class AssociationPass {
     FactorGraph graph(scenario_, odometry, partial, loss, &poses_, &landmarks_, held,
                       priors_ ? &*priors_ : nullptr);
     ceres::Solver::Summary summary = graph.Optimise(settings.solve);
-    // A landmark collapsed onto a pose is left out of the marginals' graph: its Jacobian (1/range)
-    // would dwarf every other column and make the covariance's rank test fail for all of them.
-    std::optional<FactorGraph> pruned;
     if (options_.delete_collapsed && DeleteCollapsed(partial, held) > 0) {
-      pruned.emplace(scenario_, odometry, SolveAssociation(end), loss, &poses_, &landmarks_, held,
-                     priors_ ? &*priors_ : nullptr);
-    }
-    FactorGraph& solved = pruned ? *pruned : graph;
-    std::vector<int> near;
-    NearLandmarks(poses_[end - 1], &near);
-    near.erase(
-        std::remove_if(near.begin(), near.end(),
-                       [&](int i) { return !solved.HasLandmark(static_cast<std::size_t>(i)); }),
-        near.end());
-    Mat3 px;
-    std::vector<Mat2> covs;
-    // The marginals of the gate come from the squared-loss graph at the solution: with a robust
-    // loss Ceres' corrected Jacobian drops the residual direction of every measurement beyond the
-    // loss scale, and the covariance of a landmark seen by one or two such measurements is
-    // singular (ceres::Covariance then fails and the gate would keep a stale pose covariance).
-    std::optional<FactorGraph> squared;
-    if (loss != nullptr && options_.squared_loss_marginals) {
-      squared.emplace(scenario_, odometry, SolveAssociation(end), nullptr, &poses_, &landmarks_,
-                      held, priors_ ? &*priors_ : nullptr);
-    }
-    if ((squared ? *squared : solved).NewestCovariances(near, &px, &covs)) {
-      px_ = px;
-      for (std::size_t n = 0; n < near.size(); ++n) {
-        state_[static_cast<std::size_t>(near[n])].cov = covs[n];
-      }
+      FactorGraph pruned(scenario_, odometry, SolveAssociation(end), loss, &poses_, &landmarks_,
+                         held, priors_ ? &*priors_ : nullptr);
+      RefreshMarginals(end, held, odometry, loss, &pruned);
+    } else {
+      RefreshMarginals(end, held, odometry, loss, &graph);
     }
     return summary;
   }
@@ -204,6 +180,53 @@ class AssociationPass {
   [[nodiscard]] int collapsed() const { return collapsed_; }
 
  private:
+  /// Refreshes the gate's marginals (newest pose, landmarks near it) from `graph`, or from the
+  /// squared-loss graph with options_.squared_loss_marginals. When ceres::Covariance fails and
+  /// options_.marginals_without_collapsed, they are computed again from the graph without the
+  /// measurements of the landmarks collapsed onto a free pose (CollapsedLandmarks), which stay in
+  /// the map. Otherwise the gate keeps the propagated pose covariance.
+  void RefreshMarginals(std::size_t end, std::size_t held, const OdometrySpec& odometry,
+                        ceres::LossFunction* loss, FactorGraph* graph) {
+    ceres::LossFunction* marginal_loss = options_.squared_loss_marginals ? nullptr : loss;
+    std::optional<FactorGraph> squared;
+    if (loss != nullptr && options_.squared_loss_marginals) {
+      squared.emplace(scenario_, odometry, SolveAssociation(end), nullptr, &poses_, &landmarks_,
+                      held, priors_ ? &*priors_ : nullptr);
+    }
+    if (Marginals(end, squared ? &*squared : graph) || !options_.marginals_without_collapsed)
+      return;
+    Association without = SolveAssociation(end);
+    const std::vector<int> collapsed = CollapsedLandmarks(
+        without, poses_, landmarks_, held, std::sqrt(options_.measurement_cov(0, 0)));
+    if (collapsed.empty()) return;
+    for (auto& step : without) {
+      for (int& a : step) {
+        if (std::binary_search(collapsed.begin(), collapsed.end(), a)) a = kUnassociated;
+      }
+    }
+    FactorGraph pruned(scenario_, odometry, without, marginal_loss, &poses_, &landmarks_, held,
+                       priors_ ? &*priors_ : nullptr);
+    Marginals(end, &pruned);
+  }
+
+  /// The gate's marginals from `graph`; false (nothing changed) when ceres::Covariance fails.
+  bool Marginals(std::size_t end, FactorGraph* graph) {
+    std::vector<int> near;
+    NearLandmarks(poses_[end - 1], &near);
+    near.erase(
+        std::remove_if(near.begin(), near.end(),
+                       [&](int i) { return !graph->HasLandmark(static_cast<std::size_t>(i)); }),
+        near.end());
+    Mat3 px;
+    std::vector<Mat2> covs;
+    if (!graph->NewestCovariances(near, &px, &covs)) return false;
+    px_ = px;
+    for (std::size_t n = 0; n < near.size(); ++n) {
+      state_[static_cast<std::size_t>(near[n])].cov = covs[n];
+    }
+    return true;
+  }
+
   /// Deletes the landmarks of `partial` (deleted ones are unassociated there) that lie within one
   /// range standard deviation of a free pose they are associated from (CollapsedLandmarks).
   /// Returns how many were deleted.

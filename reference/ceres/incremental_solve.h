@@ -53,10 +53,12 @@ struct IncrementalAssociationOptions {
   /// chunk's robust graph, whose covariance is singular when a landmark's few measurements lie
   /// beyond the loss scale).
   bool squared_loss_marginals = false;
-  /// A landmark that a chunk solve leaves within one range standard deviation (sqrt R(0,0)) of
-  /// a pose it is associated from is deleted, its measurements unassociated (README.md,
-  /// "Collapsed landmarks"). false keeps it.
-  bool delete_collapsed = true;
+  /// When ceres::Covariance fails on a chunk's graph, the gate's marginals are computed again
+  /// without the measurements of the landmarks within one range standard deviation (sqrt R(0,0))
+  /// of a free pose they are associated from (README.md, "Collapsed landmarks").
+  bool marginals_without_collapsed = true;
+  /// Such a landmark is also deleted after every chunk solve, its measurements unassociated.
+  bool delete_collapsed = false;
   /// A measurement inside the gates of two or more landmarks is left unassociated and starts no
   /// landmark (README.md, "Ambiguous measurements"). false: nearest neighbour decides.
   bool skip_ambiguous = false;

@@ -135,8 +135,9 @@ TEST(CollapsedLandmarks, OnlyNearAPoseThatObservesIt) {
 
 // One landmark collapsed onto a pose that observes it (0.1 nm away: a Jacobian of ~1e12 against
 // ~1e4 for the rest) makes ceres::Covariance fail for the whole graph; with its measurements
-// unassociated, as the incremental own association does, the marginals are computed again.
-TEST(CollapsedLandmarks, BreakTheGateMarginalsUntilDeleted) {
+// left out, as the incremental own association does when the covariance fails, the marginals
+// are computed again.
+TEST(CollapsedLandmarks, BreakTheGateMarginalsUntilTheirMeasurementsAreLeftOut) {
   testing::CircleScenarioOptions o;
   o.noise = false;
   o.detection_probability = 1.0;

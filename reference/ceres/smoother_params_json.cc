@@ -48,6 +48,9 @@ const params::ParameterTable<SmootherOptions>& SmootherOptionsTable() {
           "incremental_delete_collapsed",
           [](auto& o) -> auto& { return o.incremental_delete_collapsed; }),
       params::BoolField<O>(
+          "incremental_marginals_without_collapsed",
+          [](auto& o) -> auto& { return o.incremental_marginals_without_collapsed; }),
+      params::BoolField<O>(
           "incremental_skip_ambiguous",
           [](auto& o) -> auto& { return o.incremental_skip_ambiguous; }),
       params::BoolField<O>(
