@@ -349,6 +349,10 @@ datasets::BatchResult BatchSmoother::Solve(const datasets::Scenario& scenario) {
         io.sensor = scenario.sensor;
         io.measurement_cov = scenario.sensor.noise_cov;
         io.squared_loss_marginals = options_.incremental_squared_marginals;
+        io.delete_collapsed = options_.incremental_delete_collapsed;
+        io.marginals_without_collapsed = options_.incremental_marginals_without_collapsed;
+        io.skip_ambiguous = options_.incremental_skip_ambiguous;
+        io.birth_outside_gates = options_.incremental_birth_outside_gates;
         AssociatedMap map =
             IncrementalAssociation(scenario, loose_odometry, robust.get(), incremental_settings, io,
                                    record, &report_.association_seconds);

@@ -63,6 +63,17 @@ struct SmootherOptions {
   /// graph at each chunk's solution instead of the robust one (README.md, "Own association along
   /// the incremental solve").
   bool incremental_squared_marginals = false;
+  /// Incremental solve, own association: when the gate's marginal covariances fail, they are
+  /// computed again without the landmarks collapsed onto a pose (within one range standard
+  /// deviation of a pose they are associated from; README.md, "Collapsed landmarks").
+  bool incremental_marginals_without_collapsed = true;
+  /// Incremental solve, own association: such a landmark is also deleted after every chunk solve.
+  bool incremental_delete_collapsed = false;
+  /// Incremental solve, own association: a measurement inside the gates of two or more
+  /// landmarks is left unassociated and starts none (README.md, "Ambiguous measurements").
+  bool incremental_skip_ambiguous = false;
+  /// Incremental solve, own association: only measurements outside every gate start landmarks.
+  bool incremental_birth_outside_gates = false;
   /// Known association: a labelled measurement whose squared whitened residual (chi-square, 2
   /// dof) at the warm-started estimate exceeds this is left out of the final solves as a
   /// mislabelled detection (README.md, "Outliers in the known association"); the incremental

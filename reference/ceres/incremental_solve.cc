@@ -100,6 +100,7 @@ class AssociationPass {
         AssociateScan(x, px_, view, zs, options_.measurement_cov, options_.gate);
     const Mat2& r = options_.measurement_cov;
     for (std::size_t j = 0; j < zs.size(); ++j) {
+      if (options_.skip_ambiguous && a.gated[j] > 1) continue;
       if (a.landmark[j] != kUnassociated) {
         const int id = ids[static_cast<std::size_t>(a.landmark[j])];
         PassLandmark& l = state_[static_cast<std::size_t>(id)];
@@ -108,7 +109,7 @@ class AssociationPass {
           UpdateTentative(x, px_, zs[j], r, &landmarks_[static_cast<std::size_t>(id)], &l.cov);
         }
         association_[k][j] = id;
-      } else {
+      } else if (!options_.birth_outside_gates || a.gated[j] == 0) {
         association_[k][j] = static_cast<int>(landmarks_.size());
         ids.push_back(association_[k][j]);
         landmarks_.push_back(models::InverseMeasurement(x, zs[j]));
@@ -145,28 +146,12 @@ class AssociationPass {
     FactorGraph graph(scenario_, odometry, partial, loss, &poses_, &landmarks_, held,
                       priors_ ? &*priors_ : nullptr);
     ceres::Solver::Summary summary = graph.Optimise(settings.solve);
-    std::vector<int> near;
-    NearLandmarks(poses_[end - 1], &near);
-    near.erase(
-        std::remove_if(near.begin(), near.end(),
-                       [&](int i) { return !graph.HasLandmark(static_cast<std::size_t>(i)); }),
-        near.end());
-    Mat3 px;
-    std::vector<Mat2> covs;
-    // The marginals of the gate come from the squared-loss graph at the solution: with a robust
-    // loss Ceres' corrected Jacobian drops the residual direction of every measurement beyond the
-    // loss scale, and the covariance of a landmark seen by one or two such measurements is
-    // singular (ceres::Covariance then fails and the gate would keep a stale pose covariance).
-    std::optional<FactorGraph> squared;
-    if (loss != nullptr && options_.squared_loss_marginals) {
-      squared.emplace(scenario_, odometry, partial, nullptr, &poses_, &landmarks_, held,
-                      priors_ ? &*priors_ : nullptr);
-    }
-    if ((squared ? *squared : graph).NewestCovariances(near, &px, &covs)) {
-      px_ = px;
-      for (std::size_t n = 0; n < near.size(); ++n) {
-        state_[static_cast<std::size_t>(near[n])].cov = covs[n];
-      }
+    if (options_.delete_collapsed && DeleteCollapsed(partial, held) > 0) {
+      FactorGraph pruned(scenario_, odometry, SolveAssociation(end), loss, &poses_, &landmarks_,
+                         held, priors_ ? &*priors_ : nullptr);
+      RefreshMarginals(end, held, odometry, loss, &pruned);
+    } else {
+      RefreshMarginals(end, held, odometry, loss, &graph);
     }
     return summary;
   }
@@ -192,7 +177,67 @@ class AssociationPass {
     return out;
   }
 
+  [[nodiscard]] int collapsed() const { return collapsed_; }
+
  private:
+  /// Refreshes the gate's marginals (newest pose, landmarks near it) from `graph`, or from the
+  /// squared-loss graph with options_.squared_loss_marginals. When ceres::Covariance fails and
+  /// options_.marginals_without_collapsed, they are computed again from the graph without the
+  /// measurements of the landmarks collapsed onto a free pose (CollapsedLandmarks), which stay in
+  /// the map. Otherwise the gate keeps the propagated pose covariance.
+  void RefreshMarginals(std::size_t end, std::size_t held, const OdometrySpec& odometry,
+                        ceres::LossFunction* loss, FactorGraph* graph) {
+    ceres::LossFunction* marginal_loss = options_.squared_loss_marginals ? nullptr : loss;
+    std::optional<FactorGraph> squared;
+    if (loss != nullptr && options_.squared_loss_marginals) {
+      squared.emplace(scenario_, odometry, SolveAssociation(end), nullptr, &poses_, &landmarks_,
+                      held, priors_ ? &*priors_ : nullptr);
+    }
+    if (Marginals(end, squared ? &*squared : graph) || !options_.marginals_without_collapsed)
+      return;
+    Association without = SolveAssociation(end);
+    const std::vector<int> collapsed = CollapsedLandmarks(
+        without, poses_, landmarks_, held, std::sqrt(options_.measurement_cov(0, 0)));
+    if (collapsed.empty()) return;
+    for (auto& step : without) {
+      for (int& a : step) {
+        if (std::binary_search(collapsed.begin(), collapsed.end(), a)) a = kUnassociated;
+      }
+    }
+    FactorGraph pruned(scenario_, odometry, without, marginal_loss, &poses_, &landmarks_, held,
+                       priors_ ? &*priors_ : nullptr);
+    Marginals(end, &pruned);
+  }
+
+  /// The gate's marginals from `graph`; false (nothing changed) when ceres::Covariance fails.
+  bool Marginals(std::size_t end, FactorGraph* graph) {
+    std::vector<int> near;
+    NearLandmarks(poses_[end - 1], &near);
+    near.erase(
+        std::remove_if(near.begin(), near.end(),
+                       [&](int i) { return !graph->HasLandmark(static_cast<std::size_t>(i)); }),
+        near.end());
+    Mat3 px;
+    std::vector<Mat2> covs;
+    if (!graph->NewestCovariances(near, &px, &covs)) return false;
+    px_ = px;
+    for (std::size_t n = 0; n < near.size(); ++n) {
+      state_[static_cast<std::size_t>(near[n])].cov = covs[n];
+    }
+    return true;
+  }
+
+  /// Deletes the landmarks of `partial` (deleted ones are unassociated there) that lie within one
+  /// range standard deviation of a free pose they are associated from (CollapsedLandmarks).
+  /// Returns how many were deleted.
+  int DeleteCollapsed(const Association& partial, std::size_t held) {
+    const std::vector<int> collapsed = CollapsedLandmarks(
+        partial, poses_, landmarks_, held, std::sqrt(options_.measurement_cov(0, 0)));
+    for (int i : collapsed) state_[static_cast<std::size_t>(i)].status = LandmarkStatus::kDeleted;
+    collapsed_ += static_cast<int>(collapsed.size());
+    return static_cast<int>(collapsed.size());
+  }
+
   [[nodiscard]] bool Deleted(int i) const {
     return state_[static_cast<std::size_t>(i)].status == LandmarkStatus::kDeleted;
   }
@@ -217,6 +262,7 @@ class AssociationPass {
   Association association_;
   Mat3 px_ = Mat3::Zero();
   int born_ = 0;
+  int collapsed_ = 0;
   std::optional<HeldMeasurementPriors> priors_;  ///< with IncrementalSettings::held_prior
 };
 
@@ -262,7 +308,8 @@ AssociatedMap IncrementalAssociation(const datasets::Scenario& scenario,
                                      const OdometrySpec& odometry, ceres::LossFunction* loss,
                                      const IncrementalSettings& settings,
                                      const IncrementalAssociationOptions& options,
-                                     const SolveObserver& observer, double* association_seconds) {
+                                     const SolveObserver& observer, double* association_seconds,
+                                     int* collapsed) {
   Validate(settings);
   AssociationPass pass(scenario, odometry, options);
   const std::size_t steps = scenario.steps.size();
@@ -276,6 +323,7 @@ AssociatedMap IncrementalAssociation(const datasets::Scenario& scenario,
     if (observer) observer(summary, SecondsSince(t));
     done = end;
   }
+  if (collapsed != nullptr) *collapsed = pass.collapsed();
   return pass.Confirmed();
 }
 

@@ -53,16 +53,31 @@ struct IncrementalAssociationOptions {
   /// chunk's robust graph, whose covariance is singular when a landmark's few measurements lie
   /// beyond the loss scale).
   bool squared_loss_marginals = false;
+  /// When ceres::Covariance fails on a chunk's graph, the gate's marginals are computed again
+  /// without the measurements of the landmarks within one range standard deviation (sqrt R(0,0))
+  /// of a free pose they are associated from (README.md, "Collapsed landmarks").
+  bool marginals_without_collapsed = true;
+  /// Such a landmark is also deleted after every chunk solve, its measurements unassociated.
+  bool delete_collapsed = false;
+  /// A measurement inside the gates of two or more landmarks is left unassociated and starts no
+  /// landmark (README.md, "Ambiguous measurements"). false: nearest neighbour decides.
+  bool skip_ambiguous = false;
+  /// Only a measurement outside every landmark's gate starts a landmark; one that lost its
+  /// nearest landmark to a closer measurement of the scan stays unassociated. false: every
+  /// unassociated measurement starts one.
+  bool birth_outside_gates = false;
 };
 
 /// Own association: scan-to-map association, confirmation and deletion along the incremental
 /// solve (robust `loss` in every chunk solve). Returns the confirmed landmarks (renumbered
 /// 0..n-1 in order of creation) with the association and the poses of the last chunk solve.
-/// `association_seconds` accumulates the time spent outside the solves.
+/// `association_seconds` accumulates the time spent outside the solves; `collapsed`, when given,
+/// counts the landmarks deleted as collapsed onto a pose.
 AssociatedMap IncrementalAssociation(const datasets::Scenario& scenario,
                                      const OdometrySpec& odometry, ceres::LossFunction* loss,
                                      const IncrementalSettings& settings,
                                      const IncrementalAssociationOptions& options,
-                                     const SolveObserver& observer, double* association_seconds);
+                                     const SolveObserver& observer, double* association_seconds,
+                                     int* collapsed = nullptr);
 
 }  // namespace phdslam::reference

@@ -63,6 +63,8 @@ ScanAssociation AssociateScan(const Pose& pose, const Mat3& pose_cov,
   ScanAssociation out;
   out.landmark.assign(scan.size(), kUnassociated);
   out.mahalanobis2.assign(scan.size(), 0.0);
+  out.gated.assign(scan.size(), 0);
+  for (const Pair& p : pairs) ++out.gated[static_cast<std::size_t>(p.measurement)];
   std::vector<bool> used(map.size(), false);
   for (const Pair& p : pairs) {
     const auto j = static_cast<std::size_t>(p.measurement);
@@ -82,6 +84,24 @@ LandmarkStatus ClassifyLandmark(const LandmarkSupport& support,
   }
   return support.detections >= options.min_observations ? LandmarkStatus::kConfirmed
                                                         : LandmarkStatus::kTentative;
+}
+
+std::vector<int> CollapsedLandmarks(const Association& association, const std::vector<Pose>& poses,
+                                    const std::vector<Landmark>& landmarks, std::size_t first_step,
+                                    double min_range) {
+  std::vector<bool> collapsed(landmarks.size(), false);
+  for (std::size_t k = first_step; k < association.size(); ++k) {
+    for (int i : association[k]) {
+      if (i == kUnassociated) continue;
+      const auto li = static_cast<std::size_t>(i);
+      if ((landmarks.at(li) - poses.at(k).head<2>()).norm() < min_range) collapsed[li] = true;
+    }
+  }
+  std::vector<int> out;
+  for (std::size_t i = 0; i < collapsed.size(); ++i) {
+    if (collapsed[i]) out.push_back(static_cast<int>(i));
+  }
+  return out;
 }
 
 }  // namespace phdslam::reference

@@ -41,11 +41,12 @@ struct ScanAssociationOptions {
 };
 
 /// Per measurement of the scan: the map index (kUnassociated when no landmark passed the gate or
-/// the nearest one went to a closer measurement) and the squared Mahalanobis distance (0 when
-/// unassociated).
+/// the nearest one went to a closer measurement), the squared Mahalanobis distance (0 when
+/// unassociated) and how many landmarks passed its gate.
 struct ScanAssociation {
   std::vector<int> landmark;
   std::vector<double> mahalanobis2;
+  std::vector<int> gated;  ///< landmarks inside the measurement's gate
 };
 
 /// Associates one scan with the map. Throws std::invalid_argument when gate_chi2 <= 0.
@@ -71,5 +72,14 @@ struct LandmarkSupport {
 /// kDeleted when detections < min_detection_ratio * expected; otherwise kConfirmed when
 /// detections >= min_observations, else kTentative.
 LandmarkStatus ClassifyLandmark(const LandmarkSupport& support, const ConfirmationOptions& options);
+
+/// Landmarks of `association` (steps [first_step, association.size())) that lie closer than
+/// `min_range` to a pose they are associated from, in increasing index, each once. The
+/// range-bearing model is degenerate there (its Jacobian grows as 1/range, the bearing is
+/// undefined on the pose): a solve puts a landmark there when its detections do not belong
+/// together, and its column then dwarfs every other in the covariance's rank test.
+std::vector<int> CollapsedLandmarks(const Association& association, const std::vector<Pose>& poses,
+                                    const std::vector<Landmark>& landmarks, std::size_t first_step,
+                                    double min_range);
 
 }  // namespace phdslam::reference

@@ -7,6 +7,9 @@
 #include <stdexcept>
 #include <vector>
 
+#include "reference/ceres/batch_smoother.h"
+#include "reference/ceres/factor_graph.h"
+#include "reference/ceres/test_scenario.h"
 #include "src/models/range_bearing_model.h"
 
 namespace phdslam::reference {
@@ -113,6 +116,72 @@ TEST(ScanAssociationTest, ConfirmationByRepeatedAssociation) {
   // Clutter that fell into a gate twice in the ten scans expected to see it.
   EXPECT_EQ(ClassifyLandmark({2, 9.0}, o), LandmarkStatus::kDeleted);
   EXPECT_EQ(ClassifyLandmark({3, 10.1}, o), LandmarkStatus::kDeleted);
+}
+
+// A landmark is collapsed when it lies closer than min_range to a pose it is associated from,
+// at or after first_step; a pose that does not observe it does not count.
+TEST(CollapsedLandmarks, OnlyNearAPoseThatObservesIt) {
+  const std::vector<Pose> poses = {Pose(0.0, 0.0, 0.0), Pose(1.0, 0.0, 0.0), Pose(2.0, 0.0, 0.0)};
+  const std::vector<Landmark> landmarks = {Landmark(1.5, 0.0), Landmark(2.2, 0.0),
+                                           Landmark(0.1, 0.3), Landmark(20.0, 5.0)};
+  // Step 0 sees landmark 2 (0.32 m away), step 1 sees 0 (0.5 m) and 3, step 2 sees 3 only
+  // (landmark 1 is 0.2 m from pose 2 but never associated from it).
+  const Association a = {{2}, {0, 3, kUnassociated}, {3}};
+  EXPECT_EQ(CollapsedLandmarks(a, poses, landmarks, 0, 1.0), (std::vector<int>{0, 2}));
+  EXPECT_EQ(CollapsedLandmarks(a, poses, landmarks, 1, 1.0), (std::vector<int>{0}));
+  EXPECT_EQ(CollapsedLandmarks(a, poses, landmarks, 0, 0.4), (std::vector<int>{2}));
+  EXPECT_TRUE(CollapsedLandmarks(a, poses, landmarks, 3, 1.0).empty());
+}
+
+// One landmark collapsed onto a pose that observes it (0.1 nm away: a Jacobian of ~1e12 against
+// ~1e4 for the rest) makes ceres::Covariance fail for the whole graph; with its measurements
+// left out, as the incremental own association does when the covariance fails, the marginals
+// are computed again.
+TEST(CollapsedLandmarks, BreakTheGateMarginalsUntilTheirMeasurementsAreLeftOut) {
+  testing::CircleScenarioOptions o;
+  o.noise = false;
+  o.detection_probability = 1.0;
+  const datasets::Scenario s = testing::MakeCircleScenario(o);
+  Association a;
+  for (const auto& step : s.steps) {
+    std::vector<int> labels;
+    for (int l : step.origin) labels.push_back(l >= 0 ? l : kUnassociated);
+    a.push_back(std::move(labels));
+  }
+  const std::vector<OdometryIncrement> inc = ScenarioOdometry(s, {});
+  const OdometrySpec odometry{&inc, {}, true};
+  std::vector<Pose> poses = s.truth.poses;
+  std::vector<Landmark> landmarks = s.truth.landmarks;
+  const std::size_t k = a.size() - 1;
+  ASSERT_FALSE(a[k].empty());
+  const int collapsed = a[k][0];
+  ASSERT_NE(collapsed, kUnassociated);
+  std::vector<int> in_view;
+  for (int l : a[k]) {
+    if (l != kUnassociated && l != collapsed) in_view.push_back(l);
+  }
+  Mat3 px;
+  std::vector<Mat2> covs;
+  {
+    FactorGraph graph(s, odometry, a, nullptr, &poses, &landmarks);
+    ASSERT_TRUE(graph.NewestCovariances(in_view, &px, &covs));
+  }
+  landmarks[static_cast<std::size_t>(collapsed)] = poses[k].head<2>() + Vec2(1e-10, 0.0);
+  EXPECT_EQ(CollapsedLandmarks(a, poses, landmarks, 0, 0.8), (std::vector<int>{collapsed}));
+  {
+    FactorGraph graph(s, odometry, a, nullptr, &poses, &landmarks);
+    EXPECT_FALSE(graph.NewestCovariances(in_view, &px, &covs));
+  }
+  Association pruned = a;
+  for (auto& step : pruned) {
+    for (int& l : step) {
+      if (l == collapsed) l = kUnassociated;
+    }
+  }
+  FactorGraph graph(s, odometry, pruned, nullptr, &poses, &landmarks);
+  ASSERT_TRUE(graph.NewestCovariances(in_view, &px, &covs));
+  EXPECT_GT(px.determinant(), 0.0);
+  EXPECT_EQ(covs.size(), in_view.size());
 }
 
 }  // namespace

@@ -44,6 +44,18 @@ const params::ParameterTable<SmootherOptions>& SmootherOptionsTable() {
       params::BoolField<O>(
           "incremental_squared_marginals",
           [](auto& o) -> auto& { return o.incremental_squared_marginals; }),
+      params::BoolField<O>(
+          "incremental_delete_collapsed",
+          [](auto& o) -> auto& { return o.incremental_delete_collapsed; }),
+      params::BoolField<O>(
+          "incremental_marginals_without_collapsed",
+          [](auto& o) -> auto& { return o.incremental_marginals_without_collapsed; }),
+      params::BoolField<O>(
+          "incremental_skip_ambiguous",
+          [](auto& o) -> auto& { return o.incremental_skip_ambiguous; }),
+      params::BoolField<O>(
+          "incremental_birth_outside_gates",
+          [](auto& o) -> auto& { return o.incremental_birth_outside_gates; }),
       params::NumberField<O>(
           "known_outlier_chi2", [](auto& o) -> auto& { return o.known_outlier_chi2; },
           AtLeast(0.0)),

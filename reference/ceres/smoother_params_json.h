@@ -13,7 +13,8 @@ namespace phdslam::reference {
 /// Every option by name except the data fields (filter_association, initial_poses):
 /// association ("known" | "filter" | "unknown"), initialisation, incremental_chunk_steps,
 /// incremental_active_steps, incremental_held_prior, incremental_squared_marginals,
-/// known_outlier_chi2, max_iterations,
+/// incremental_delete_collapsed, incremental_marginals_without_collapsed,
+/// incremental_skip_ambiguous, incremental_birth_outside_gates, known_outlier_chi2, max_iterations,
 /// function_tolerance, intermediate_function_tolerance, compute_covariances, linear_solver
 /// ("sparse_normal_cholesky" | "sparse_schur"), num_threads, odometry_residual
 /// ("control_space" | "pose_space"), odometry_floor and warm_start_floor
