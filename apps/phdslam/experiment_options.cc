@@ -36,7 +36,7 @@ CLI::Option* ExperimentOptionSet::Bind(CLI::App* command, Bound& b, Keys keys) {
 
 void ExperimentOptionSet::AddTo(CLI::App* command, Keys keys) {
   for (const v::ExperimentKey& key : v::ExperimentKeys()) {
-    if (key.option.empty() || (keys == Keys::kScenario && !key.scenario)) continue;
+    if (key.option.empty() || (keys == Keys::kExport && !key.export_option)) continue;
     Bound& b = bound_.emplace_back();
     b.key = &key;
     b.option = Bind(command, b, keys);

@@ -16,7 +16,8 @@ namespace phdslam::apps {
 
 class ExperimentOptionSet {
  public:
-  enum class Keys { kAll, kScenario };
+  /// kAll: the options of `run`; kExport: those of `export` and `ingest` (the scenario).
+  enum class Keys { kAll, kExport };
 
   /// Adds the options of `keys` to `command`, typed by their OptionKind, with their --help text
   /// (for kAll, the options of `run`, also the experiment-file key, when the key has one).

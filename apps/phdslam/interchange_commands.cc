@@ -24,7 +24,7 @@ void RequireScenarioOptions(const ExperimentOptionSet& options, const std::strin
                             const std::string& alternative) {
   const std::map<std::string, nlohmann::json> given = options.Given();
   for (const v::ExperimentKey& key : v::ExperimentKeys()) {
-    if (key.scenario && key.required && !given.contains(key.option)) {
+    if (key.export_option && key.required && !given.contains(key.option)) {
       throw std::invalid_argument(command + ": " + key.option + " is required" + alternative);
     }
   }
@@ -71,7 +71,7 @@ void AddExportCommand(CLI::App& app, ExportArguments& a) {
       "scenario has); export.json (format "
       "version, scenario and options, seeds) and SHA256SUMS (`sha256sum -c SHA256SUMS`). "
       "Format: validation/EXPORT_FORMAT.md.");
-  a.scenario.AddTo(command, ExperimentOptionSet::Keys::kScenario);
+  a.scenario.AddTo(command, ExperimentOptionSet::Keys::kExport);
   command->add_option("--out", a.out, "Export folder (created if needed; must be empty)")
       ->required();
 }
@@ -88,7 +88,7 @@ void AddIngestCommand(CLI::App& app, IngestArguments& a) {
       "may already hold `run` results of the same scenario and experiment name). The scenario "
       "comes from --export (the export folder the filter read; its checksums are verified) or "
       "from the scenario options, as for `run`. Format: validation/EXPORT_FORMAT.md.");
-  a.scenario.AddTo(command, ExperimentOptionSet::Keys::kScenario);
+  a.scenario.AddTo(command, ExperimentOptionSet::Keys::kExport);
   command->add_option("--from", a.from, "Folder of the external filter's outputs")
       ->required()
       ->check(CLI::ExistingDirectory);

@@ -54,7 +54,7 @@ std::vector<ExperimentKey> Rows() {
        .option = "--scenario",
        .help = "Scenario name (see `phdslam list`)",
        .required = true,
-       .scenario = true,
+       .export_option = true,
        .read_file = [](const YamlKeyValue& v, Experiment& x) { x.scenario = v.Text(); },
        .apply_option = [](const Json& v, Experiment& x) { x.scenario = v.get<std::string>(); }},
       {.file_key = "estimators",
@@ -81,7 +81,7 @@ std::vector<ExperimentKey> Rows() {
        .help = "Monte Carlo seeds: a range a-b (inclusive), a single seed, or a comma list such "
                "as 1,3,10-12",
        .required = true,
-       .scenario = true,
+       .export_option = true,
        .read_file = [](const YamlKeyValue& v, Experiment& x) { x.seeds = SeedList(v); },
        .apply_option = [](const Json& v,
                           Experiment& x) { x.seeds = ParseSeedList(v.get<std::string>()); }},
@@ -91,7 +91,7 @@ std::vector<ExperimentKey> Rows() {
        .kind = K::kCount,
        .help = "Use only the first N filter steps of the scenario (0 = all)",
        .default_text = "0",
-       .scenario = true,
+       .export_option = true,
        .read_file = [](const YamlKeyValue& v,
                        Experiment& x) { x.steps = CountFromFile(v, "0 = all"); },
        .apply_option = [](const Json& v, Experiment& x) { x.steps = v.get<int>(); },
@@ -120,7 +120,7 @@ std::vector<ExperimentKey> Rows() {
        .manifest_key = "pd",
        .kind = K::kNumber,
        .help = "Override the scenario's detection probability (0, 1]; as scenario option pd",
-       .scenario = true,
+       .export_option = true,
        .apply_option =
            [](const Json& v, Experiment& x) {
              x.pd = CheckedScenarioNumber(x, "--pd", kSweepParameterPd, v.get<double>());
@@ -132,7 +132,7 @@ std::vector<ExperimentKey> Rows() {
        .kind = K::kNumber,
        .help = "Override the scenario's mean clutter count per scan (0 to 1000); as scenario "
                "option clutter_rate",
-       .scenario = true,
+       .export_option = true,
        .apply_option =
            [](const Json& v, Experiment& x) {
              x.clutter_rate = CheckedScenarioNumber(x, "--clutter-rate", kSweepParameterClutterRate,
@@ -142,7 +142,7 @@ std::vector<ExperimentKey> Rows() {
        .read_manifest = [](const Json& v, Experiment& x) { x.clutter_rate = NumberOrNothing(v); }},
       {.option = "--data-dir",
        .help = "Data sets folder (default: $PHDSLAM_DATA, else the folder compiled in)",
-       .scenario = true,
+       .export_option = true,
        .machine_setting = true,
        .apply_option = [](const Json& v, Experiment& x) { x.data_dir = v.get<std::string>(); }},
       {.option = "--set",
@@ -160,7 +160,7 @@ std::vector<ExperimentKey> Rows() {
        .help = "Scenario option key=value (repeatable; the keys of each scenario are listed by "
                "`phdslam list`; pd and clutter_rate as --pd and --clutter-rate; the value is "
                "JSON when it parses, else a string)",
-       .scenario = true,
+       .export_option = true,
        .read_file = [](const YamlKeyValue& v, Experiment& x) { ReadScenarioOptions(v, x); },
        .apply_option =
            [](const Json& v, Experiment& x) {

@@ -37,7 +37,8 @@ struct ExperimentKey {
   std::string help{};          ///< the option's --help text
   std::string default_text{};  ///< the default --help shows; empty: none shown
   bool required = false;       ///< required in a file, and on the command line without a file
-  bool scenario = false;       ///< selects the scenario: also an option of `export` and `ingest`
+  /// The scenario, its options and seeds: also an option of `export` and `ingest`.
+  bool export_option = false;
   /// A setting of the machine (a folder): never read from files, nor recorded in config.json as
   /// overriding a file.
   bool machine_setting = false;

@@ -34,7 +34,8 @@ TEST(ExperimentKeys, EveryRowCanBeReadWhereverItIsNamed) {
     }
     if (!key.manifest_key.empty()) {
       EXPECT_TRUE(key.write_manifest && key.read_manifest) << name;
-      EXPECT_TRUE(key.scenario) << name << ": the manifest records the scenario's options only";
+      EXPECT_TRUE(key.export_option)
+          << name << ": the manifest records the scenario's options only";
       EXPECT_TRUE(manifest_keys.insert(key.manifest_key).second) << name;
     }
     // A required key is required in files and (without a file) on the command line.
