@@ -3,13 +3,13 @@
 #include <cstdint>
 #include <filesystem>
 #include <iostream>
+#include <map>
 #include <stdexcept>
 
 #include "validation/runner/experiment/experiment_runner.h"
 #include "validation/runner/experiment/option_precedence.h"
 #include "validation/runner/interchange/ingest.h"
 #include "validation/runner/interchange/scenario_export.h"
-#include "validation/runner/io/list_arguments.h"
 #include "validation/runner/io/results_layout.h"
 
 namespace phdslam::apps {
@@ -18,40 +18,22 @@ namespace v = phdslam::validation;
 
 namespace {
 
-void AddScenarioOptions(CLI::App* command, ScenarioArguments& a) {
-  a.scenario_option =
-      command->add_option("--scenario", a.scenario, "Scenario name (see `phdslam list`)");
-  a.seeds_option = command->add_option(
-      "--seeds", a.seeds, "Monte Carlo seeds: a range a-b, a single seed, or a comma list");
-  a.data_dir_option =
-      command->add_option("--data-dir", a.data_dir,
-                          "Data sets folder (default: $PHDSLAM_DATA, else the folder compiled in)");
-  a.steps_option = command
-                       ->add_option("--steps", a.steps,
-                                    "Use only the first N filter steps of each seed (0 = all)")
-                       ->check(CLI::NonNegativeNumber);
-  a.pd_option = command->add_option("--pd", a.detection_probability,
-                                    "Override the scenario's detection probability (0, 1]");
-  a.clutter_option = command->add_option("--clutter-rate", a.clutter_rate,
-                                         "Override the scenario's mean clutter count per scan");
-  command->add_option("--scenario-set", a.scenario_assignments,
-                      "Scenario option key=value (repeatable), as for `run`");
+// Throws "<command>: --scenario is required<alternative>" for the first required scenario option
+// not given.
+void RequireScenarioOptions(const ExperimentOptionSet& options, const std::string& command,
+                            const std::string& alternative) {
+  const std::map<std::string, nlohmann::json> given = options.Given();
+  for (const v::ExperimentKey& key : v::ExperimentKeys()) {
+    if (key.export_option && key.required && !given.contains(key.option)) {
+      throw std::invalid_argument(command + ": " + key.option + " is required" + alternative);
+    }
+  }
 }
 
 // The experiment holding a scenario and its options, as `run` would resolve them.
-v::Experiment ScenarioExperiment(const ScenarioArguments& a) {
+v::Experiment ScenarioExperiment(const ExperimentOptionSet& options) {
   v::Experiment x;
-  x.scenario = a.scenario;
-  if (a.seeds_option->count() > 0) x.seeds = v::ParseSeedList(a.seeds);
-  x.steps = a.steps;
-  if (a.pd_option->count() > 0) {
-    x.pd = v::CheckedScenarioNumber(x, "--pd", "pd", a.detection_probability);
-  }
-  if (a.clutter_option->count() > 0) {
-    x.clutter_rate = v::CheckedScenarioNumber(x, "--clutter-rate", "clutter_rate", a.clutter_rate);
-  }
-  if (a.data_dir_option->count() > 0) x.data_dir = a.data_dir;
-  v::ApplyScenarioAssignments(a.scenario_assignments, x);
+  v::ApplyGivenOptions(options.Given(), x);
   return x;
 }
 
@@ -62,19 +44,16 @@ v::ScenarioSource SourceOf(const v::Experiment& x) {
 // The scenario of an export folder, from its export.json: the scenario options given with
 // --export are refused; --seeds selects among its seeds, --data-dir is a machine setting.
 v::Experiment ExportedExperiment(const IngestArguments& a) {
-  const ScenarioArguments& s = a.scenario;
-  for (const CLI::Option* o : {s.scenario_option, s.steps_option, s.pd_option, s.clutter_option}) {
-    if (o->count() > 0) {
-      throw std::invalid_argument("ingest: " + o->get_name() +
+  const std::map<std::string, nlohmann::json> given = a.scenario.Given();
+  for (const v::ExperimentKey& key : v::ExperimentKeys()) {
+    const bool selects = key.option == "--seeds" || key.machine_setting;
+    if (given.contains(key.option) && !selects) {
+      throw std::invalid_argument("ingest: " + key.option +
                                   " and --export both give the scenario; give one");
     }
   }
-  if (!s.scenario_assignments.empty()) {
-    throw std::invalid_argument("ingest: --scenario-set and --export both give the scenario");
-  }
   v::Experiment x = v::ReadExportManifest(a.export_dir);
-  if (s.seeds_option->count() > 0) x.seeds = v::ParseSeedList(s.seeds);
-  if (s.data_dir_option->count() > 0) x.data_dir = s.data_dir;
+  v::ApplyGivenOptions(given, x);
   return x;
 }
 
@@ -92,7 +71,7 @@ void AddExportCommand(CLI::App& app, ExportArguments& a) {
       "scenario has); export.json (format "
       "version, scenario and options, seeds) and SHA256SUMS (`sha256sum -c SHA256SUMS`). "
       "Format: validation/EXPORT_FORMAT.md.");
-  AddScenarioOptions(command, a.scenario);
+  a.scenario.AddTo(command, ExperimentOptionSet::Keys::kExport);
   command->add_option("--out", a.out, "Export folder (created if needed; must be empty)")
       ->required();
 }
@@ -109,7 +88,7 @@ void AddIngestCommand(CLI::App& app, IngestArguments& a) {
       "may already hold `run` results of the same scenario and experiment name). The scenario "
       "comes from --export (the export folder the filter read; its checksums are verified) or "
       "from the scenario options, as for `run`. Format: validation/EXPORT_FORMAT.md.");
-  AddScenarioOptions(command, a.scenario);
+  a.scenario.AddTo(command, ExperimentOptionSet::Keys::kExport);
   command->add_option("--from", a.from, "Folder of the external filter's outputs")
       ->required()
       ->check(CLI::ExistingDirectory);
@@ -137,9 +116,7 @@ void AddIngestCommand(CLI::App& app, IngestArguments& a) {
 }
 
 int Export(const ExportArguments& a) {
-  for (const CLI::Option* o : {a.scenario.scenario_option, a.scenario.seeds_option}) {
-    if (o->count() == 0) throw std::invalid_argument("export: " + o->get_name() + " is required");
-  }
+  RequireScenarioOptions(a.scenario, "export", "");
   v::RequireEmptyExportFolder(a.out);
   const v::Experiment x = ScenarioExperiment(a.scenario);
   const v::ScenarioSource source = SourceOf(x);
@@ -159,13 +136,7 @@ int Export(const ExportArguments& a) {
 
 int Ingest(const IngestArguments& a) {
   const bool from_export = !a.export_dir.empty();
-  if (!from_export) {
-    for (const CLI::Option* o : {a.scenario.scenario_option, a.scenario.seeds_option}) {
-      if (o->count() == 0) {
-        throw std::invalid_argument("ingest: " + o->get_name() + " is required (or give --export)");
-      }
-    }
-  }
+  if (!from_export) RequireScenarioOptions(a.scenario, "ingest", " (or give --export)");
   const v::Experiment x = from_export ? ExportedExperiment(a) : ScenarioExperiment(a.scenario);
   v::IngestRequest request;
   request.from = a.from;

@@ -4,34 +4,18 @@
 
 #include <CLI/CLI.hpp>
 #include <string>
-#include <vector>
+
+#include "apps/phdslam/experiment_options.h"
 
 namespace phdslam::apps {
 
-// The scenario options of `export` and `ingest`, as `run` takes them.
-struct ScenarioArguments {
-  std::string scenario;
-  std::string seeds;
-  std::string data_dir;
-  int steps = 0;
-  double detection_probability = 0.0;
-  double clutter_rate = 0.0;
-  std::vector<std::string> scenario_assignments;
-  CLI::Option* scenario_option = nullptr;
-  CLI::Option* seeds_option = nullptr;
-  CLI::Option* data_dir_option = nullptr;
-  CLI::Option* steps_option = nullptr;
-  CLI::Option* pd_option = nullptr;
-  CLI::Option* clutter_option = nullptr;
-};
-
 struct ExportArguments {
-  ScenarioArguments scenario;
+  ExperimentOptionSet scenario;  ///< the scenario options, as `run` takes them
   std::string out;
 };
 
 struct IngestArguments {
-  ScenarioArguments scenario;
+  ExperimentOptionSet scenario;  ///< the scenario options, as `run` takes them
   std::string from;
   std::string estimator;
   std::string out;

@@ -3,6 +3,8 @@
 // did are recorded in the experiment's source (config.json "experiment_file"."command_line").
 #pragma once
 
+#include <map>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
@@ -11,21 +13,13 @@
 
 namespace phdslam::validation {
 
-/// The experiment options of `phdslam run`, each set only when it was given on the command line.
+/// The experiment options of `phdslam run`: the file and the options of the experiment key table
+/// (experiment_keys.h) that were given on the command line.
 struct ExperimentOptions {
-  std::optional<std::string> file;        ///< --experiment
-  std::optional<std::string> scenario;    ///< --scenario
-  std::optional<std::string> estimators;  ///< --estimator, a comma list of names
-  std::optional<std::string> particles;   ///< --particles, a list
-  std::optional<std::string> seeds;       ///< --seeds, a list
-  std::optional<int> steps;               ///< --steps
-  std::optional<int> jobs;                ///< --jobs
-  std::optional<std::string> name;        ///< --experiment-name
-  std::optional<double> pd;               ///< --pd
-  std::optional<double> clutter_rate;     ///< --clutter-rate
-  std::optional<std::string> data_dir;    ///< --data-dir (a machine setting, never recorded)
-  std::vector<std::string> assignments;   ///< --set [estimator:]key=value
-  std::vector<std::string> scenario_assignments;  ///< --scenario-set key=value
+  std::optional<std::string> file;  ///< --experiment
+  /// Option as typed ("--steps") -> its value, as JSON of the option's OptionKind; only the
+  /// options given.
+  std::map<std::string, nlohmann::json> given;
 };
 
 /// The experiment of `options`: the experiment file, if any, with every option given taking
@@ -33,8 +27,14 @@ struct ExperimentOptions {
 /// `set` and `particles` of those it lists; --set and --scenario-set apply after the file's
 /// values. Without a file, --scenario, --estimator and --seeds are required (std::invalid_argument
 /// "run: --scenario is required (or give --experiment)"). With a file, Experiment::source gets
-/// "command_line": the options that overrode it, in the order of the fields above.
+/// "command_line": the options that overrode it, in the order of the key table.
 Experiment ResolveExperiment(const ExperimentOptions& options);
+
+/// Applies the options of `given` (as ExperimentOptions::given) to `x` in the order of the key
+/// table, each with its row's apply_option; returns those applied that are not machine settings.
+/// Throws std::invalid_argument for an option no key has, or a value its row refuses.
+std::vector<std::string> ApplyGivenOptions(const std::map<std::string, nlohmann::json>& given,
+                                           Experiment& x);
 
 /// Applies --set assignments ([estimator:]key=value) to the experiment's estimators. Throws
 /// std::invalid_argument naming the assignment when its estimator is not in the experiment.

@@ -40,11 +40,11 @@ scenario_options: {pd: 0.8, clutter_rate: 2}
 TEST(OptionPrecedence, WithoutAFileScenarioEstimatorAndSeedsAreRequired) {
   ExperimentOptions o;
   EXPECT_EQ(ErrorOf(o), "run: --scenario is required (or give --experiment)");
-  o.scenario = "generated";
+  o.given["--scenario"] = "generated";
   EXPECT_EQ(ErrorOf(o), "run: --estimator is required (or give --experiment)");
-  o.estimators = "odometry,phd3";
+  o.given["--estimator"] = "odometry,phd3";
   EXPECT_EQ(ErrorOf(o), "run: --seeds is required (or give --experiment)");
-  o.seeds = "2,4-5";
+  o.given["--seeds"] = "2,4-5";
   const Experiment x = ResolveExperiment(o);
   EXPECT_EQ(x.scenario, "generated");
   ASSERT_EQ(x.estimators.size(), 2u);
@@ -71,17 +71,17 @@ TEST(OptionPrecedence, TheFileGivesEveryValueNoOptionGives) {
 TEST(OptionPrecedence, EveryGivenOptionWinsAndIsRecordedInOrder) {
   ExperimentOptions o;
   o.file = WriteExperimentFile();
-  o.scenario = "generated";
-  o.particles = "3";
-  o.seeds = "7";
-  o.steps = 12;
-  o.jobs = 1;
-  o.name = "other";
-  o.pd = 0.5;
-  o.clutter_rate = 4.0;
-  o.data_dir = "/data";
-  o.assignments = {"phd1:resampling=true"};
-  o.scenario_assignments = {"clutter_rate=6"};
+  o.given = {{"--scenario", "generated"},
+             {"--particles", "3"},
+             {"--seeds", "7"},
+             {"--steps", 12},
+             {"--jobs", 1},
+             {"--experiment-name", "other"},
+             {"--pd", 0.5},
+             {"--clutter-rate", 4.0},
+             {"--data-dir", "/data"},
+             {"--set", {"phd1:resampling=true"}},
+             {"--scenario-set", {"clutter_rate=6"}}};
   const Experiment x = ResolveExperiment(o);
   EXPECT_EQ(x.scenario, "generated");
   EXPECT_EQ(x.particles, (std::vector<int>{3}));
@@ -103,7 +103,7 @@ TEST(OptionPrecedence, EveryGivenOptionWinsAndIsRecordedInOrder) {
 TEST(OptionPrecedence, EstimatorSelectsAndKeepsTheFilesSettingsOfThoseItNames) {
   ExperimentOptions o;
   o.file = WriteExperimentFile();
-  o.estimators = "phd3,odometry";
+  o.given["--estimator"] = "phd3,odometry";
   const Experiment x = ResolveExperiment(o);
   ASSERT_EQ(x.estimators.size(), 2u);
   EXPECT_EQ(x.estimators[0].name, "phd3");

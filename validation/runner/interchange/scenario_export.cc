@@ -2,11 +2,11 @@
 
 #include <cmath>
 #include <fstream>
-#include <optional>
 #include <stdexcept>
 
 #include "datasets/sha256.h"
 #include "datasets/text_fields.h"
+#include "validation/runner/experiment/experiment_keys.h"
 #include "validation/runner/io/results_io.h"
 #include "validation/runner/io/results_layout.h"
 #include "validation/runner/results/results_config.h"
@@ -236,13 +236,11 @@ std::map<std::string, std::string> ReadExportChecksums(const std::filesystem::pa
 }
 
 nlohmann::json ExportRequest(const Experiment& experiment) {
-  const auto number_or_null = [](const std::optional<double>& value) {
-    return value ? nlohmann::json(*value) : nlohmann::json();
-  };
-  return {{"steps", experiment.steps},
-          {"pd", number_or_null(experiment.pd)},
-          {"clutter_rate", number_or_null(experiment.clutter_rate)},
-          {"settings", experiment.scenario_settings}};
+  nlohmann::json request = nlohmann::json::object();
+  for (const ExperimentKey& key : ExperimentKeys()) {
+    if (!key.manifest_key.empty()) request[key.manifest_key] = key.write_manifest(experiment);
+  }
+  return request;
 }
 
 Experiment ReadExportManifest(const std::filesystem::path& export_dir) {
@@ -257,12 +255,9 @@ Experiment ReadExportManifest(const std::filesystem::path& export_dir) {
     Experiment x;
     x.scenario = manifest.at("scenario").get<std::string>();
     const nlohmann::json& request = manifest.at("request");
-    x.steps = request.at("steps").get<int>();
-    if (!request.at("pd").is_null()) x.pd = request.at("pd").get<double>();
-    if (!request.at("clutter_rate").is_null()) {
-      x.clutter_rate = request.at("clutter_rate").get<double>();
+    for (const ExperimentKey& key : ExperimentKeys()) {
+      if (!key.manifest_key.empty()) key.read_manifest(request.at(key.manifest_key), x);
     }
-    x.scenario_settings = request.at("settings");
     x.seeds = manifest.at("seeds").get<std::vector<std::uint64_t>>();
     return x;
   } catch (const nlohmann::json::exception& e) {

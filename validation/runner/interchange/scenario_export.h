@@ -57,9 +57,10 @@ void WriteExport(const std::filesystem::path& out, const ExportDescription& desc
 /// std::runtime_error naming the file and line for a malformed line or a missing file.
 std::map<std::string, std::string> ReadExportChecksums(const std::filesystem::path& folder);
 
-/// export.json's `request` of an experiment: the scenario options as given (steps, pd and
-/// clutter_rate, null when not set, and the other scenario settings), from which
-/// ReadExportManifest rebuilds the same experiment.
+/// export.json's `request` of an experiment: the scenario options as given, one per key of the
+/// experiment key table with a manifest_key (steps; pd and clutter_rate, null when not set;
+/// settings, the other scenario options), from which ReadExportManifest rebuilds the same
+/// experiment.
 nlohmann::json ExportRequest(const Experiment& experiment);
 
 /// The experiment of an export folder, from its export.json (as WriteExport writes it): the
