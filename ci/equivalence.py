@@ -17,6 +17,7 @@ folder is compared in turn. For every (estimator, particles) group of BEFORE (wi
   TOST      p = max(p_lower, p_upper) of the one-sided tests of mean(d) > -margin and
               mean(d) < +margin; EQUIVALENT when p < alpha, i.e. the CI lies strictly inside
               (-margin, +margin); NOT SHOWN otherwise.
+  p_ttest   the two-sided paired t-test of mean(d) = 0 (a difference, not equivalence).
   seeds_needed  the fewest seeds with which differences of this spread would give an interval
               inside the margin if the true mean difference were 0 (a lower bound for planning).
 
@@ -141,6 +142,7 @@ class Tost:
     ci_high: float
     margin: float
     p_value: float
+    p_difference: float  # two-sided paired t-test of mean(d) = 0
     equivalent: bool
 
 
@@ -161,14 +163,16 @@ def paired_tost(before: list[float], after: list[float], margin_fraction: float,
     if se == 0.0:
         low = high = mean_d
         p_value = 0.0 if -margin < mean_d < margin else 1.0
+        p_difference = 1.0 if mean_d == 0.0 else 0.0
     else:
         half = t_quantile(1.0 - alpha, df) * se
         low, high = mean_d - half, mean_d + half
         p_lower = 1.0 - t_cdf((mean_d + margin) / se, df)  # H0: mean_d <= -margin
         p_upper = t_cdf((mean_d - margin) / se, df)  # H0: mean_d >= +margin
         p_value = max(p_lower, p_upper)
+        p_difference = 2.0 * t_cdf(-abs(mean_d) / se, df)
     return Tost(n, mean_before, mean_after, mean_d, sd, low, high, margin, p_value,
-                p_value < alpha)
+                p_difference, p_value < alpha)
 
 
 def seeds_needed(sd: float, margin: float, alpha: float) -> float:
@@ -405,7 +409,7 @@ def format_number(x: float) -> str:
 
 HEADER = ("scenario", "estimator", "N", "column", "n", "mean_before", "mean_after", "mean_diff",
           "diff_pct", "ci90_low", "ci90_high", "ci90_low_pct", "ci90_high_pct", "margin",
-          "p_tost", "seeds_needed", "verdict")
+          "p_tost", "p_ttest", "seeds_needed", "verdict")
 
 
 def percent_of(x: float, reference: float) -> float:
@@ -430,7 +434,7 @@ def cells(line: Line) -> list[str]:
     needed = "" if math.isinf(line.needed) else str(int(line.needed))
     return head + [str(t.n)] + [format_number(x) for x in (
         t.mean_before, t.mean_after, t.mean_difference, pct[0], t.ci_low, t.ci_high, pct[1],
-        pct[2], t.margin, t.p_value)] + [needed, verdict(line)]
+        pct[2], t.margin, t.p_value, t.p_difference)] + [needed, verdict(line)]
 
 
 def print_table(lines: list[Line], folder_label: str) -> None:

@@ -183,6 +183,9 @@ class PairedTost(unittest.TestCase):
         self.assertTrue(tost.equivalent)
         # p = P(T_3 >= (0.5 - 0.1) / se) for the binding upper test.
         self.assertAlmostEqual(tost.p_value, 1 - equivalence.t_cdf(0.4 / se, 3), places=12)
+        # The paired t-test of mean(d) = 0: t = 0.1 / se = 2.449 with 3 degrees of freedom.
+        self.assertAlmostEqual(tost.p_difference, 2 * equivalence.t_cdf(-0.1 / se, 3), places=12)
+        self.assertAlmostEqual(tost.p_difference, 0.0917211, places=6)  # SciPy ttest_rel
         # The verdict agrees with the interval: a margin just inside the upper end fails.
         tight = equivalence.paired_tost(before, after, (0.1 + half) / 2.5 * 0.999, 0.05)
         self.assertFalse(tight.equivalent)
