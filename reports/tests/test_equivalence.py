@@ -1,4 +1,4 @@
-"""ci/equivalence.py: paired TOST of two results folders on synthetic runs whose verdict is known."""
+"""ci/equivalence.py: paired TOST of two results folders on synthetic runs of a known verdict."""
 
 import contextlib
 import importlib.util
