@@ -245,10 +245,14 @@ class ReportBuilder:
                 return "\u2014"
             return "< 1e-4" if p < 1e-4 else format_value(p, 2)
 
-        cells = [[(self._name(r.ours), ""), (r.draws, ""), (str(r.particles), ""),
-                  (labels[r.metric], ""), (str(r.n), ""), (format_value(r.mean_authors), ""),
-                  (format_value(r.mean_ours), ""), (f"{r.diff_pct:+.2f} %", ""),
-                  (f"[{r.ci_low_pct:+.2f}, {r.ci_high_pct:+.2f}] %", ""),
+        def pct(x: float) -> str:
+            return f"{x:+.2f}" if abs(x) >= 0.1 else f"{x:+.2g}"
+
+        cells = [[(self._name(r.ours.removesuffix("-replay")), ""), (r.draws, ""),
+                  (str(r.particles), ""), (labels[r.metric], ""), (str(r.n), ""),
+                  (format_value(r.mean_authors), ""), (format_value(r.mean_ours), ""),
+                  (f"{pct(r.diff_pct)} %", ""),
+                  (f"[{pct(r.ci_low_pct)}, {pct(r.ci_high_pct)}] %", ""),
                   ("equivalent" if r.equivalent else "not shown", ""),
                   (p_text(r.p_wilcoxon), ""), (p_text(r.p_ttest), "")] for r in rows]
         body = ("<p>Paired by seed over the seeds both have: the difference is ours \u2212 the "
