@@ -1,18 +1,25 @@
 // phdslam_authors_replay: runs phdslam's phd3 or phd1 on one seed of a registered scenario with
 // the random draws another implementation recorded (src/core/draw_replay.h) in place of its
 // seeded stream, and writes the inside of every step as step-trace CSV files
-// (step_trace_writer.h), for compare_traces.py to set beside the authors' trace.
+// (step_trace_writer.h), for compare_traces.py to set beside the authors' trace; with --out, also
+// its estimate (trajectory.tum and the final map.csv) in the format `phdslam ingest` reads, so
+// that the replayed runs can be scored and compared as any other estimator's.
 //
-//   phdslam_authors_replay --draws DRAWS.csv --trace OUT [--scenario paper-synthetic] --seed S
-//                          [--steps K] [--variant phd3] [--particles N] [--map-every M]
+//   phdslam_authors_replay --draws DRAWS.csv [--trace DIR] [--out DIR] [--scenario paper-synthetic]
+//                          --seed S [--steps K] [--variant phd3] [--particles N] [--map-every M]
 //                          [--set key=value ...] [--data-dir DIR]
 #include <cstdlib>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
+#include "datasets/map_io.h"
+#include "datasets/trajectory_io.h"
 #include "reference/authors/step_trace_writer.h"
 #include "src/core/draw_replay.h"
 #include "src/filters/phd_slam_family.h"
@@ -24,16 +31,19 @@ namespace phdslam::authors {
 namespace {
 
 constexpr const char* kUsage =
-    "usage: phdslam_authors_replay --draws FILE --trace DIR --seed S [--scenario NAME] "
-    "[--steps K] [--variant phd3|phd1] [--particles N] [--map-every M] [--set key=value]... "
-    "[--data-dir DIR]\n"
+    "usage: phdslam_authors_replay --draws FILE [--trace DIR] [--out DIR] --seed S "
+    "[--scenario NAME] [--steps K] [--variant phd3|phd1] [--particles N] [--map-every M] "
+    "[--set key=value]... [--data-dir DIR]\n"
     "Runs phd3 (or phd1) with the recorded draws of FILE (step,particle,purpose,index,value) in\n"
-    "place of its seeded random stream and writes per-step traces into DIR\n"
-    "(reference/authors/README.md).\n";
+    "place of its seeded random stream. --trace DIR: per-step traces into DIR; --out DIR: the\n"
+    "estimate as DIR/trajectory.tum and the final map estimate as DIR/map.csv, the files\n"
+    "`phdslam ingest --from` reads per seed (one of the two is required;\n"
+    "reference/authors/README.md).\n";
 
 struct Options {
   std::string draws;
   std::string trace;
+  std::string out;
   std::string scenario = "paper-synthetic";
   std::string variant = "phd3";
   std::uint64_t seed = 0;
@@ -65,6 +75,8 @@ Options ParseOptions(int argc, char** argv) {
       o.draws = v;
     } else if (a == "--trace") {
       o.trace = v;
+    } else if (a == "--out") {
+      o.out = v;
     } else if (a == "--scenario") {
       o.scenario = v;
     } else if (a == "--variant") {
@@ -88,14 +100,38 @@ Options ParseOptions(int argc, char** argv) {
       throw std::invalid_argument("unknown option " + a);
     }
   }
-  if (o.draws.empty() || o.trace.empty() || o.seed == 0) {
-    throw std::invalid_argument("--draws, --trace and --seed (>= 1) are required");
+  if (o.draws.empty() || o.seed == 0) {
+    throw std::invalid_argument("--draws and --seed (>= 1) are required");
+  }
+  if (o.trace.empty() && o.out.empty()) {
+    throw std::invalid_argument("--trace DIR or --out DIR (or both) is required");
   }
   if (o.variant != "phd3" && o.variant != "phd1") {
     throw std::invalid_argument("--variant " + o.variant + ": phd3 or phd1");
   }
   if (o.particles < 1) throw std::invalid_argument("--particles must be >= 1");
   return o;
+}
+
+/// The estimate in the files `phdslam ingest --from` reads per seed (validation/EXPORT_FORMAT.md):
+/// one pose per step at the step's time stamp, and the final map estimate with its covariances.
+/// The weights are left out (written as 0, "none"), as in the authors' map.csv: the ingest format's
+/// weight is a probability in [0, 1], a PHD component's weight can exceed 1, and the scores use
+/// the means and covariances only.
+void WriteIngestFiles(const std::filesystem::path& folder,
+                      const std::vector<datasets::StampedPose>& poses,
+                      const filters::MapEstimate& map) {
+  std::filesystem::create_directories(folder);
+  datasets::WriteTumTrajectory(folder / "trajectory.tum", poses);
+  std::vector<datasets::MapPoint> points;
+  points.reserve(map.size());
+  for (std::size_t i = 0; i < map.size(); ++i) {
+    datasets::MapPoint p;
+    p.position = map.means[i];
+    if (i < map.covs.size() && map.covs[i].allFinite()) p.cov = map.covs[i];
+    points.push_back(p);
+  }
+  datasets::WriteMapCsv(folder / "map.csv", points);
 }
 
 int Run(const Options& o) {
@@ -114,11 +150,17 @@ int Run(const Options& o) {
   auto replay = std::make_shared<DrawReplay>(DrawReplay::ReadCsv(o.draws));
   filter->ReplayDraws(replay);
   const int steps = static_cast<int>(scenario.steps.size());
-  StepTraceWriter writer(o.trace, o.map_every, steps - 1);
-  filter->SetObserver(&writer);
+  std::optional<StepTraceWriter> writer;
+  if (!o.trace.empty()) {
+    writer.emplace(o.trace, o.map_every, steps - 1);
+    filter->SetObserver(&*writer);
+  }
+  std::vector<datasets::StampedPose> poses;
+  poses.reserve(scenario.steps.size());
   for (int k = 0; k < steps; ++k) {
     const filters::StepOutput out = filter->Step(scenario.steps[k].data);
-    writer.Estimated(k, out, static_cast<int>(filter->Map().means.size()));
+    if (writer) writer->Estimated(k, out, static_cast<int>(filter->Map().means.size()));
+    poses.push_back({scenario.StepTime(static_cast<std::size_t>(k)), out.pose});
   }
   if (replay->consumed() != replay->size()) {
     std::cerr << "phdslam_authors_replay: " << o.draws << ": "
@@ -126,6 +168,7 @@ int Run(const Options& o) {
               << steps << " steps\n";
     return 1;
   }
+  if (!o.out.empty()) WriteIngestFiles(o.out, poses, filter->Map());
   return 0;
 }
 

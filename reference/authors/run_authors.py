@@ -7,7 +7,8 @@ The release is not part of phdslam: give the path of your copy with --release or
 variable PHDSLAM_AUTHORS_RELEASE (the folder holding "Shared Files" and "Synthetic Data").
 
     run_authors.py --export EXPORT --out OUTPUTS [--seeds 1-3] [--variant phd3] [--particles 10]
-                   [--trace TRACES] [--map-every 100] [--ingest RESULTS --phdslam PATH]
+                   [--trace TRACES [--map-every 100 | --draws-only]]
+                   [--ingest RESULTS --phdslam PATH]
 
 Exit codes: 0 done, 1 a failure (message on stderr), 2 usage, 77 Octave, mkoctfile or the release
 missing (the message says which; CTest treats 77 as "skipped").
@@ -130,12 +131,13 @@ def octave_string(s):
     return "'" + s.replace("'", "''") + "'"
 
 
-def run_octave(octave, release, mex_dir, export, seeds, out, variant, particles, trace, map_every):
-    call = "phdslam_authors_main(%s, %s, %s, [%s], %s, %s, %d, %s, %d)" % (
+def run_octave(octave, release, mex_dir, export, seeds, out, variant, particles, trace, map_every,
+               draws_only):
+    call = "phdslam_authors_main(%s, %s, %s, [%s], %s, %s, %d, %s, %d, %d)" % (
         octave_string(release), octave_string(mex_dir), octave_string(os.path.abspath(export)),
         " ".join(str(s) for s in seeds), octave_string(os.path.abspath(out)),
         octave_string(variant), particles, octave_string(os.path.abspath(trace) if trace else ""),
-        map_every)
+        map_every, 1 if draws_only else 0)
     cmd = [octave, "--no-gui", "--norc", "--quiet", "--no-window-system",
            "--path", os.path.join(HERE, "octave"), "--eval", call]
     result = subprocess.run(cmd)
@@ -158,6 +160,9 @@ def main():
     ap.add_argument("--trace", help="also record every random draw and the per-step states here")
     ap.add_argument("--map-every", type=int, default=0,
                     help="with --trace: full maps of every particle each this many steps (0: none)")
+    ap.add_argument("--draws-only", action="store_true",
+                    help="with --trace: record only draws.csv and estimate.csv (what the replay "
+                         "needs), not the per-step particle states; for Monte Carlo campaigns")
     ap.add_argument("--ingest", help="then ingest the outputs into this results folder")
     ap.add_argument("--phdslam", default="phdslam", help="the phdslam program (for --ingest)")
     args = ap.parse_args()
@@ -167,6 +172,10 @@ def main():
         seeds = parse_seeds(args.seeds) if args.seeds else [int(s) for s in exported["seeds"]]
         if args.particles < 1:
             raise ValueError("--particles must be >= 1")
+        if args.draws_only and not args.trace:
+            raise ValueError("--draws-only needs --trace DIR")
+        if args.draws_only and args.map_every:
+            raise ValueError("--draws-only records no maps: drop --map-every")
     except (OSError, ValueError, KeyError) as e:
         print(f"run_authors.py: {e}", file=sys.stderr)
         return 2
@@ -176,7 +185,7 @@ def main():
         mex_dir = build_mex(release, mkoctfile, args.mex_cache)
         os.makedirs(args.out, exist_ok=True)
         run_octave(octave, release, mex_dir, args.export, seeds, args.out, args.variant,
-                   args.particles, args.trace, args.map_every)
+                   args.particles, args.trace, args.map_every, args.draws_only)
         if args.ingest:
             cmd = [args.phdslam, "ingest", "--from", args.out, "--export", args.export,
                    "--seeds", ",".join(str(s) for s in seeds), "--estimator",

@@ -2,7 +2,9 @@
 """CTest authors_release_adapter: exports two short seeds of paper-synthetic, runs the authors'
 release on them under Octave (run_authors.py, recording draws and states), ingests the outputs as
 authors-phd3 next to phdslam's own phd3 run, then replays phd3 on the recorded draws and checks
-every step against the authors' states (compare_traces.py, the fixture's tolerances).
+every step against the authors' states (compare_traces.py, the fixture's tolerances); the replay's
+--out files, ingested as phd3-replay, score as the authors' run does; a --draws-only recording
+writes the same draws and nothing but draws.csv and estimate.csv.
 Exit 77 (skipped, with the reason) without Octave or without PHDSLAM_AUTHORS_RELEASE."""
 import argparse
 import csv
@@ -74,7 +76,53 @@ def main():
         first = result["first_divergence"]
         print(f"seed {s}: first divergence: {first}")
         failed = failed or first is not None
+        subprocess.run([args.replay, "--draws", os.path.join(traces, f"seed-{s}", "draws.csv"),
+                        "--out", os.path.join(args.work, "replay-out", f"seed-{s}"), "--seed",
+                        str(s), "--steps", str(STEPS), "--particles", str(PARTICLES)], check=True)
+    failed = check_replay_scores(args, export, results) or failed
+    failed = check_draws_only(args, export, traces) or failed
     return 1 if failed else 0
+
+
+def check_replay_scores(args, export, results):
+    """phd3 on the authors' draws, ingested, scores as authors-phd3 (the fixture's rtol)."""
+    subprocess.run([args.phdslam, "ingest", "--from", os.path.join(args.work, "replay-out"),
+                    "--export", export, "--estimator", "phd3-replay", "--particles",
+                    str(PARTICLES), "--out", results], check=True)
+    with open(os.path.join(results, "runs.csv"), encoding="ascii") as f:
+        runs = {(r["estimator"], r["seed"]): r for r in csv.DictReader(f)}
+    failed = False
+    for s in SEEDS:
+        for column in ("pos_rmse_m", "gospa_m"):
+            a = float(runs[("authors-phd3", str(s))][column])
+            b = float(runs[("phd3-replay", str(s))][column])
+            if abs(a - b) > 1e-6 * max(abs(a), abs(b)):
+                print(f"seed {s} {column}: authors-phd3 {a}, phd3-replay {b}")
+                failed = True
+    return failed
+
+
+def check_draws_only(args, export, traces):
+    """--draws-only records the same draws and only draws.csv and estimate.csv."""
+    lean = os.path.join(args.work, "traces-draws-only")
+    code = subprocess.run([sys.executable, os.path.join(HERE, "run_authors.py"), "--export",
+                           export, "--out", os.path.join(args.work, "outputs-draws-only"),
+                           "--seeds", str(SEEDS[0]), "--particles", str(PARTICLES), "--trace",
+                           lean, "--draws-only", "--mex-cache",
+                           os.path.join(args.work, "mex")]).returncode
+    seed_dir = f"seed-{SEEDS[0]}"
+    files = sorted(os.listdir(os.path.join(lean, seed_dir))) if code == 0 else []
+    if files != ["draws.csv", "estimate.csv"]:
+        print(f"--draws-only: exit {code}, files {files}, expected draws.csv and estimate.csv")
+        return True
+    for name in files:
+        with open(os.path.join(lean, seed_dir, name), encoding="ascii") as f:
+            lean_text = f.read()
+        with open(os.path.join(traces, seed_dir, name), encoding="ascii") as f:
+            if f.read() != lean_text:
+                print(f"--draws-only: {name} differs from the full recording's")
+                return True
+    return False
 
 
 if __name__ == "__main__":

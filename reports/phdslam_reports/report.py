@@ -10,6 +10,7 @@ from typing import Sequence
 
 import numpy as np
 
+from .authors_comparison import MARGIN, METRICS, authors_rows
 from .comparison import (
     OPTIONAL_METRICS,
     Comparison,
@@ -79,8 +80,8 @@ from .tables_shared import matched_paper_tables, ours_with_se, paper_table_rows
 #: reference the particle filters' NEES is read against.
 REFERENCE_SMOOTHER = "smoother-"
 
-FOLDER_SECTIONS = ("summary", "paper-tables", "fig1", "fig2", "fig3", "smoothers", "nees",
-                   "scaling", "map-scaling", "parent-weights")
+FOLDER_SECTIONS = ("summary", "paper-tables", "authors", "fig1", "fig2", "fig3", "smoothers",
+                   "nees", "scaling", "map-scaling", "parent-weights")
 """Section ids of each results folder (prefixed by ``d<index>-`` when there are several)."""
 
 
@@ -228,6 +229,43 @@ class ReportBuilder:
             if table.notes:
                 parts.append(f"<p class=\"meta\">{escape(table.notes)}</p>")
         return Section(sid, title, body="\n".join(parts))
+
+    def authors_section(self, sid: str, folder: ResultsFolder) -> Section:
+        """phdslam against the authors' release on the same seeds (authors_comparison.py)."""
+        title = "Against the authors' implementation"
+        rows = authors_rows(folder)
+        if not rows:
+            return Section(sid, title, skipped_note=(
+                "no authors-<variant> runs (reference/authors/) beside phdslam's <variant> or "
+                "<variant>-replay on two or more common seeds"))
+        labels = dict(METRICS)
+
+        def p_text(p: float) -> str:
+            if not math.isfinite(p):
+                return "\u2014"
+            return "< 1e-4" if p < 1e-4 else format_value(p, 2)
+
+        def pct(x: float) -> str:
+            return f"{x:+.2f}" if abs(x) >= 0.1 else f"{x:+.2g}"
+
+        cells = [[(self._name(r.ours.removesuffix("-replay")), ""), (r.draws, ""),
+                  (str(r.particles), ""), (labels[r.metric], ""), (str(r.n), ""),
+                  (format_value(r.mean_authors), ""), (format_value(r.mean_ours), ""),
+                  (f"{pct(r.diff_pct)} %", ""),
+                  (f"[{pct(r.ci_low_pct)}, {pct(r.ci_high_pct)}] %", ""),
+                  ("equivalent" if r.equivalent else "not shown", ""),
+                  (p_text(r.p_wilcoxon), ""), (p_text(r.p_ttest), "")] for r in rows]
+        body = ("<p>Paired by seed over the seeds both have: the difference is ours \u2212 the "
+                "authors', in % of the authors' mean, with its 90 % t interval; "
+                f"\u00b1{100 * MARGIN:g} %: the two-one-sided test of equivalence (\u03b1 = "
+                "0.05; <code>ci/equivalence.py</code>); two-sided Wilcoxon signed-rank and paired "
+                "t p-values. With its own random draws phdslam's filter is a different random "
+                "sample of the same algorithm; replaying the authors' recorded draws it should "
+                "repeat their run up to rounding.</p>"
+                + table_html(["phdslam", "random draws", "N", "metric", "seeds",
+                              "authors' mean", "phdslam mean", "difference", "90 % interval",
+                              f"\u00b1{100 * MARGIN:g} %", "Wilcoxon p", "paired t p"], cells))
+        return Section(sid, title, body=body)
 
     def trajectory_panels(self, folder: ResultsFolder) -> list[TrajectoryPanel]:
         """Fig. 1 panels: one run per estimator (its largest N, its first seed).
@@ -811,6 +849,7 @@ class ReportBuilder:
             built = [
                 self.summary_section(f"{prefix}summary", folder, comparison),
                 self.paper_tables_section(f"{prefix}paper-tables", folder, comparison),
+                self.authors_section(f"{prefix}authors", folder),
                 self.trajectory_section(f"{prefix}fig1", prefix, folder),
                 self.metrics_over_time_section(f"{prefix}fig2", prefix, folder),
                 self.particles_section(f"{prefix}fig3", prefix, folder),

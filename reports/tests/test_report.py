@@ -32,7 +32,8 @@ class FullReportTest(unittest.TestCase):
         cls.results = make_results_folder(root / "results", FixtureSpec(
             nees=True, particles_file=True, scaling=True, parent_weights=True, steps=40,
             steps_option=4000,
-            groups=(("phd3", 1), ("phd3", 10), ("odometry", 1), ("smoother-known", 1)),
+            groups=(("phd3", 1), ("phd3", 10), ("odometry", 1), ("smoother-known", 1),
+                    ("authors-phd3", 10)),
             error_scale={"odometry": 4.0, "smoother-known": 0.2}))
         cls.out = root / "report"
         cls.report = build_report([cls.results], cls.out)

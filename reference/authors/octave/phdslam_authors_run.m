@@ -1,11 +1,12 @@
-function phdslam_authors_run(export_dir, seed, out_dir, variant, particles, trace_dir, map_every)
+function phdslam_authors_run(export_dir, seed, out_dir, variant, particles, trace_dir, map_every, draws_only)
   % Runs the authors' PHD-SLAM filter (their initialize, rbpf_phd, resample and MEX functions, on
   % the Octave path set up by phdslam_authors_main) on one seed of a `phdslam export` folder and
   % writes what `phdslam ingest` reads into out_dir/seed-<seed>/: trajectory.tum (the estimate at
   % every step), map.csv (the final map estimate with covariances) and timing.csv.
   % With a trace_dir, every random draw and the per-step particle states are written there too
   % (reference/authors/README.md describes the files); map_every > 0 records the full maps of
-  % every particle each map_every steps and at the last step.
+  % every particle each map_every steps and at the last step. draws_only: only draws.csv and
+  % estimate.csv (what the replay needs), without the per-step particle states.
   global PHDSLAM_REC
   seed_dir = fullfile(export_dir, sprintf('seed-%d', seed));
   models = jsondecode(fileread(fullfile(seed_dir, 'models.json')));
@@ -27,6 +28,8 @@ function phdslam_authors_run(export_dir, seed, out_dir, variant, particles, trac
   if recording
     if ~exist(trace_dir, 'dir'), mkdir(trace_dir); end
     PHDSLAM_REC.draws_fid = open_csv(trace_dir, 'draws.csv', 'step,particle,purpose,index,value');
+  end
+  if recording && ~draws_only
     PHDSLAM_REC.trace_fids.particles = open_csv(trace_dir, 'particles.csv', ...
         'step,particle,prior_x,prior_y,prior_theta,prior_pxx,prior_pxy,prior_pxt,prior_pyy,prior_pyt,prior_ptt,components,x,y,theta,log_weight_sampled');
     PHDSLAM_REC.trace_fids.proposals = open_csv(trace_dir, 'proposals.csv', ...
@@ -35,6 +38,8 @@ function phdslam_authors_run(export_dir, seed, out_dir, variant, particles, trac
         'step,particle,log_weight,active,passive,births');
     PHDSLAM_REC.trace_fids.maps = open_csv(trace_dir, 'maps.csv', ...
         'step,particle,list,component,log_weight,x,y,pxx,pxy,pyy');
+  end
+  if recording
     estimate_fid = open_csv(trace_dir, 'estimate.csv', 'step,x,y,theta,map_size,ess,resampled,sources');
   end
 
@@ -83,11 +88,12 @@ function phdslam_authors_run(export_dir, seed, out_dir, variant, particles, trac
   PHDSLAM_REC.active = false;
   if recording
     fclose(PHDSLAM_REC.draws_fid);
-    fclose(PHDSLAM_REC.trace_fids.particles);
-    fclose(PHDSLAM_REC.trace_fids.proposals);
-    fclose(PHDSLAM_REC.trace_fids.states);
-    fclose(PHDSLAM_REC.trace_fids.maps);
     fclose(estimate_fid);
+  end
+  for fid = struct2cell(PHDSLAM_REC.trace_fids)'
+    if fid{1} >= 0
+      fclose(fid{1});
+    end
   end
   write_outputs(fullfile(out_dir, sprintf('seed-%d', seed)), steps(:, 2), poses, est, ms);
 end
