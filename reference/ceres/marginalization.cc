@@ -4,6 +4,10 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <optional>
+
+#include "src/core/gaussian.h"
 
 namespace phdslam::reference {
 namespace {
@@ -104,6 +108,42 @@ DenseSystem Linearize(const std::vector<const GraphFactor*>& factors,
   return s;
 }
 
+namespace {
+
+/// The linearised system of every non-constant block the factors touch (first-seen order) and the
+/// LDLT factor of its information matrix.
+struct FactoredSystem {
+  std::vector<double*> order;
+  DenseSystem system;
+  Eigen::LDLT<Eigen::MatrixXd> ldlt;
+
+  /// Index of block b in `order`, -1 when the factors do not make it free.
+  std::ptrdiff_t IndexOf(const double* b) const {
+    const auto it = std::find(order.begin(), order.end(), b);
+    return it == order.end() ? -1 : it - order.begin();
+  }
+  /// H^-1 restricted to the columns of block i.
+  Eigen::MatrixXd ColumnBlock(std::size_t i) const {
+    return ldlt.solve(Eigen::MatrixXd::Identity(system.h.rows(), system.h.cols())
+                          .middleCols(system.offsets[i], system.sizes[i]));
+  }
+};
+
+/// Null when the information matrix is not positive definite.
+std::optional<FactoredSystem> FactorFreeBlocks(const std::vector<const GraphFactor*>& factors,
+                                               const std::set<const double*>& constant) {
+  FactoredSystem f;
+  for (const auto& [block, size] : TouchedBlocks(factors)) {
+    if (constant.count(block) == 0) f.order.push_back(block);
+  }
+  f.system = Linearize(factors, f.order, {});
+  f.ldlt.compute(f.system.h);
+  if (f.ldlt.info() != Eigen::Success || !f.ldlt.isPositive()) return std::nullopt;
+  return f;
+}
+
+}  // namespace
+
 LinearPrior Marginalize(const std::vector<const GraphFactor*>& factors,
                         const std::vector<double*>& marginalized,
                         const std::set<const double*>& constant, const FixedPoints& fixed_points) {
@@ -125,7 +165,7 @@ LinearPrior Marginalize(const std::vector<const GraphFactor*>& factors,
       PseudoInverse(s.h.topLeftCorner(nm, nm), kRelativeEigenvalueFloor);
   const Eigen::MatrixXd hkm = s.h.bottomLeftCorner(nk, nm);
   Eigen::MatrixXd hs = s.h.bottomRightCorner(nk, nk) - hkm * hmm_inv * hkm.transpose();
-  hs = 0.5 * (hs + hs.transpose()).eval();
+  Symmetrize(hs);
   const Eigen::VectorXd gs = s.g.tail(nk) - hkm * hmm_inv * s.g.head(nm);
 
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(hs);
@@ -157,22 +197,15 @@ LinearPrior Marginalize(const std::vector<const GraphFactor*>& factors,
 std::vector<Eigen::MatrixXd> MarginalCovariances(const std::vector<const GraphFactor*>& factors,
                                                  const std::set<const double*>& constant,
                                                  const std::vector<const double*>& wanted) {
-  std::vector<double*> order;
-  for (const auto& [block, size] : TouchedBlocks(factors)) {
-    if (constant.count(block) == 0) order.push_back(block);
-  }
-  const DenseSystem s = Linearize(factors, order, {});
-  const Eigen::LDLT<Eigen::MatrixXd> ldlt(s.h);
-  if (ldlt.info() != Eigen::Success || !ldlt.isPositive()) return {};
+  const std::optional<FactoredSystem> f = FactorFreeBlocks(factors, constant);
+  if (!f) return {};
   std::vector<Eigen::MatrixXd> out;
   for (const double* w : wanted) {
-    const auto it = std::find(order.begin(), order.end(), w);
-    if (it == order.end()) return {};
-    const auto i = static_cast<std::size_t>(it - order.begin());
-    const Eigen::MatrixXd e =
-        Eigen::MatrixXd::Identity(s.h.rows(), s.h.cols()).middleCols(s.offsets[i], s.sizes[i]);
-    Eigen::MatrixXd c = ldlt.solve(e).middleRows(s.offsets[i], s.sizes[i]);
-    c = 0.5 * (c + c.transpose()).eval();
+    const std::ptrdiff_t k = f->IndexOf(w);
+    if (k < 0) return {};
+    const auto i = static_cast<std::size_t>(k);
+    Eigen::MatrixXd c = f->ColumnBlock(i).middleRows(f->system.offsets[i], f->system.sizes[i]);
+    Symmetrize(c);
     if (!c.allFinite()) return {};
     out.push_back(c);
   }
@@ -183,36 +216,23 @@ AnchoredCovariances AnchoredMarginalCovariances(const std::vector<const GraphFac
                                                 const std::set<const double*>& constant,
                                                 const double* anchor,
                                                 const std::vector<const double*>& wanted) {
-  std::vector<double*> order;
-  for (const auto& [block, size] : TouchedBlocks(factors)) {
-    if (constant.count(block) == 0) order.push_back(block);
-  }
-  const DenseSystem s = Linearize(factors, order, {});
-  const Eigen::LDLT<Eigen::MatrixXd> ldlt(s.h);
-  if (ldlt.info() != Eigen::Success || !ldlt.isPositive()) return {};
-  const auto index_of = [&order](const double* b) -> std::ptrdiff_t {
-    const auto it = std::find(order.begin(), order.end(), b);
-    return it == order.end() ? -1 : it - order.begin();
-  };
-  const auto column_block = [&](std::size_t i) {
-    return Eigen::MatrixXd(ldlt.solve(
-        Eigen::MatrixXd::Identity(s.h.rows(), s.h.cols()).middleCols(s.offsets[i], s.sizes[i])));
-  };
-  const std::ptrdiff_t a = index_of(anchor);
+  const std::optional<FactoredSystem> f = FactorFreeBlocks(factors, constant);
+  if (!f) return {};
+  const std::ptrdiff_t a = f->IndexOf(anchor);
   if (a < 0) return {};
   const auto ai = static_cast<std::size_t>(a);
-  const Eigen::MatrixXd anchor_columns = column_block(ai);
+  const Eigen::MatrixXd anchor_columns = f->ColumnBlock(ai);
   AnchoredCovariances out;
-  out.anchor = anchor_columns.middleRows(s.offsets[ai], s.sizes[ai]);
-  out.anchor = 0.5 * (out.anchor + out.anchor.transpose()).eval();
+  out.anchor = anchor_columns.middleRows(f->system.offsets[ai], f->system.sizes[ai]);
+  Symmetrize(out.anchor);
   if (!out.anchor.allFinite()) return {};
   for (const double* w : wanted) {
-    const std::ptrdiff_t k = index_of(w);
+    const std::ptrdiff_t k = f->IndexOf(w);
     if (k < 0) return {};
     const auto ki = static_cast<std::size_t>(k);
-    Eigen::MatrixXd c = column_block(ki).middleRows(s.offsets[ki], s.sizes[ki]);
-    c = 0.5 * (c + c.transpose()).eval();
-    Eigen::MatrixXd x = anchor_columns.middleRows(s.offsets[ki], s.sizes[ki]);
+    Eigen::MatrixXd c = f->ColumnBlock(ki).middleRows(f->system.offsets[ki], f->system.sizes[ki]);
+    Symmetrize(c);
+    Eigen::MatrixXd x = anchor_columns.middleRows(f->system.offsets[ki], f->system.sizes[ki]);
     if (!c.allFinite() || !x.allFinite()) return {};
     out.marginal.push_back(std::move(c));
     out.cross.push_back(std::move(x));
