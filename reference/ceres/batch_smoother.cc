@@ -174,6 +174,8 @@ void SmootherOptions::Validate() const {
   require(incremental_chunk_steps >= 1, "incremental_chunk_steps: expected >= 1");
   require(incremental_active_steps >= 0, "incremental_active_steps: expected >= 0");
   require(gate_chi2 > 0.0, "gate_chi2: expected > 0");
+  require(incremental_new_landmark_intensity >= 0.0,
+          "incremental_new_landmark_intensity: expected >= 0");
   require(min_observations >= 1, "min_observations: expected >= 1");
   require(merge_position_std >= 0.0, "merge_position_std: expected >= 0");
   require(min_detection_ratio >= 0.0 && min_detection_ratio <= 1.0,
@@ -353,6 +355,8 @@ datasets::BatchResult BatchSmoother::Solve(const datasets::Scenario& scenario) {
         io.marginals_without_collapsed = options_.incremental_marginals_without_collapsed;
         io.skip_ambiguous = options_.incremental_skip_ambiguous;
         io.birth_outside_gates = options_.incremental_birth_outside_gates;
+        io.pose_landmark_cross = options_.incremental_pose_landmark_cross;
+        io.gate.new_landmark_intensity = options_.incremental_new_landmark_intensity;
         AssociatedMap map =
             IncrementalAssociation(scenario, loose_odometry, robust.get(), incremental_settings, io,
                                    record, &report_.association_seconds);

@@ -74,6 +74,13 @@ struct SmootherOptions {
   bool incremental_skip_ambiguous = false;
   /// Incremental solve, own association: only measurements outside every gate start landmarks.
   bool incremental_birth_outside_gates = false;
+  /// Incremental solve, own association: the gate uses each landmark's cross-covariance with the
+  /// pose (README.md, "Own association along the incremental solve"); false leaves it out.
+  bool incremental_pose_landmark_cross = false;
+  /// Incremental solve, own association: a pair inside the gate is admissible only when
+  /// pD N(nu; 0, S) reaches this intensity (per m per rad of range-bearing space), the
+  /// likelihood of a new landmark or clutter; 0 turns the test off.
+  double incremental_new_landmark_intensity = 0.0;
   /// Known association: a labelled measurement whose squared whitened residual (chi-square, 2
   /// dof) at the warm-started estimate exceeds this is left out of the final solves as a
   /// mislabelled detection (README.md, "Outliers in the known association"); the incremental

@@ -196,7 +196,8 @@ bool FactorGraph::Covariances(int num_threads, std::vector<std::optional<Mat3>>*
 }
 
 bool FactorGraph::NewestCovariances(const std::vector<int>& indices, Mat3* pose_cov,
-                                    std::vector<Mat2>* landmark_covs) {
+                                    std::vector<Mat2>* landmark_covs,
+                                    std::vector<Eigen::Matrix<double, 2, 3>>* pose_cross) {
   if (steps_ == 0) return false;
   ceres::Covariance::Options co;
   co.algorithm_type = ceres::SPARSE_QR;
@@ -210,6 +211,7 @@ bool FactorGraph::NewestCovariances(const std::vector<int>& indices, Mat3* pose_
     const double* m = (*landmarks_)[static_cast<std::size_t>(i)].data();
     if (!problem_->HasParameterBlock(m)) return false;
     blocks.emplace_back(m, m);
+    if (pose_cross != nullptr && pose_variable) blocks.emplace_back(m, newest);
   }
   if (!covariance.Compute(blocks, problem_.get())) return false;
   *pose_cov = Mat3::Zero();
@@ -227,6 +229,15 @@ bool FactorGraph::NewestCovariances(const std::vector<int>& indices, Mat3* pose_
     Mat2 p = c;
     Symmetrize(p);
     landmark_covs->push_back(p);
+  }
+  if (pose_cross == nullptr) return true;
+  pose_cross->assign(indices.size(), Eigen::Matrix<double, 2, 3>::Zero());
+  if (!pose_variable) return true;
+  for (std::size_t n = 0; n < indices.size(); ++n) {
+    const double* m = (*landmarks_)[static_cast<std::size_t>(indices[n])].data();
+    Eigen::Matrix<double, 2, 3, Eigen::RowMajor> c;
+    if (!covariance.GetCovarianceBlock(m, newest, c.data())) return false;
+    (*pose_cross)[n] = c;
   }
   return true;
 }

@@ -65,9 +65,12 @@ class FactorGraph {
                    std::vector<Mat2>* landmark_covs);
 
   /// Marginal covariance of the newest pose and of the landmarks `indices` in this graph (which
-  /// is conditional on the held poses). False when ceres::Covariance fails.
+  /// is conditional on the held poses); with `pose_cross`, also each landmark's
+  /// cross-covariance with the newest pose, Cov(m, x) (zero when that pose is held). False when
+  /// ceres::Covariance fails.
   bool NewestCovariances(const std::vector<int>& indices, Mat3* pose_cov,
-                         std::vector<Mat2>* landmark_covs);
+                         std::vector<Mat2>* landmark_covs,
+                         std::vector<Eigen::Matrix<double, 2, 3>>* pose_cross = nullptr);
 
   /// Range-bearing residual blocks (associated measurements in the problem).
   [[nodiscard]] std::size_t residuals() const { return residuals_; }

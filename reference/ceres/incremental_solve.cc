@@ -39,21 +39,48 @@ void Validate(const IncrementalSettings& settings) {
   }
 }
 
+using Mat23 = Eigen::Matrix<double, 2, 3>;
+
 /// A landmark of the own-association pass.
 struct PassLandmark {
   Mat2 cov;
   LandmarkSupport support;
   LandmarkStatus status = LandmarkStatus::kTentative;
+  Mat23 cross = Mat23::Zero();  ///< Cov(m, x) with the pass's current pose (pose_landmark_cross)
 };
+
+/// d m / d x of the inverse model m = g(x, z).
+Mat23 InverseModelPoseJacobian(const Pose& x, const Measurement& z) {
+  const double a = x(2) + z(1);
+  Mat23 jx;
+  jx << 1.0, 0.0, -z(0) * std::sin(a), 0.0, 1.0, z(0) * std::cos(a);
+  return jx;
+}
 
 /// Landmark started at the inverse model of z from (x, px): covariance from R and the pose.
 Mat2 StartCovariance(const Pose& x, const Mat3& px, const Measurement& z, const Mat2& r) {
-  const double a = x(2) + z(1);
-  Eigen::Matrix<double, 2, 3> jx;
-  jx << 1.0, 0.0, -z(0) * std::sin(a), 0.0, 1.0, z(0) * std::cos(a);
+  const Mat23 jx = InverseModelPoseJacobian(x, z);
   Mat2 p = models::BirthCovariance(x, z, r) + jx * px * jx.transpose();
   Symmetrize(p);
   return p;
+}
+
+/// Update of a tentative landmark (m, p) with cross-covariance c = Cov(m, x) by z taken at
+/// (x, px), the pose not updated (a Schmidt update: the pose keeps its estimate and covariance,
+/// the landmark's gain and its cross-covariance account for their correlation).
+void UpdateTentativeCorrelated(const Pose& x, const Mat3& px, const Measurement& z, const Mat2& r,
+                               Landmark* m, Mat2* p, Mat23* c) {
+  if ((*m - x.head<2>()).squaredNorm() < 1e-18) return;
+  const models::PredictionWithJacobians h = models::PredictWithJacobians(x, *m);
+  const Mat2 u = (*p) * h.j.hm.transpose() + (*c) * h.j.hx.transpose();  // Cov(m, z)
+  Mat2 s =
+      h.j.hm * u + h.j.hx * (c->transpose() * h.j.hm.transpose() + px * h.j.hx.transpose()) + r;
+  Symmetrize(s);
+  const Mat2 k = u * s.inverse();
+  *m += k * Vec2(z(0) - h.z_hat(0), WrapAngle(z(1) - h.z_hat(1)));
+  *p -= k * u.transpose();
+  Symmetrize(*p);
+  *c -= k * (h.j.hm * (*c) + h.j.hx * px);
 }
 
 /// EKF update of a tentative landmark (m, p) by z taken at (x, px), the pose not updated.
@@ -82,8 +109,9 @@ class AssociationPass {
 
   /// Predicts, associates and starts landmarks for step k.
   void Step(std::size_t k) {
-    px_ = PropagatePoseCovariance(k == 0 ? scenario_.initial_pose : poses_[k - 1], increments_[k],
-                                  px_);
+    const Pose& base = k == 0 ? scenario_.initial_pose : poses_[k - 1];
+    if (options_.pose_landmark_cross) PropagateCross(base, increments_[k]);
+    px_ = PropagatePoseCovariance(base, increments_[k], px_);
     Symmetrize(px_);
     poses_[k] = PredictPose(scenario_, increments_, poses_, k);
     const Pose& x = poses_[k];
@@ -91,9 +119,14 @@ class AssociationPass {
     std::vector<MapLandmark> view;
     NearLandmarks(x, &ids);
     view.reserve(ids.size());
+    const bool with_pd = options_.gate.new_landmark_intensity > 0.0;
     for (int i : ids) {
       const auto li = static_cast<std::size_t>(i);
-      view.push_back({landmarks_[li], state_[li].cov});
+      MapLandmark v{landmarks_[li], state_[li].cov};
+      if (options_.pose_landmark_cross) v.pose_cross = state_[li].cross;
+      if (with_pd)
+        v.detection_probability = options_.sensor.DetectionProbability(x, landmarks_[li]);
+      view.push_back(v);
     }
     const std::vector<Measurement>& zs = scenario_.steps[k].data.measurements;
     const ScanAssociation a =
@@ -106,7 +139,12 @@ class AssociationPass {
         PassLandmark& l = state_[static_cast<std::size_t>(id)];
         ++l.support.detections;
         if (l.status == LandmarkStatus::kTentative) {
-          UpdateTentative(x, px_, zs[j], r, &landmarks_[static_cast<std::size_t>(id)], &l.cov);
+          Landmark* m = &landmarks_[static_cast<std::size_t>(id)];
+          if (options_.pose_landmark_cross) {
+            UpdateTentativeCorrelated(x, px_, zs[j], r, m, &l.cov, &l.cross);
+          } else {
+            UpdateTentative(x, px_, zs[j], r, m, &l.cov);
+          }
         }
         association_[k][j] = id;
       } else if (!options_.birth_outside_gates || a.gated[j] == 0) {
@@ -114,6 +152,9 @@ class AssociationPass {
         ids.push_back(association_[k][j]);
         landmarks_.push_back(models::InverseMeasurement(x, zs[j]));
         state_.push_back({StartCovariance(x, px_, zs[j], r), {1, 0.0}});
+        if (options_.pose_landmark_cross) {
+          state_.back().cross = InverseModelPoseJacobian(x, zs[j]) * px_;
+        }
         ++born_;
       }
     }
@@ -180,6 +221,15 @@ class AssociationPass {
   [[nodiscard]] int collapsed() const { return collapsed_; }
 
  private:
+  /// Carries every landmark's Cov(m, x) from pose k-1 (`base`) to pose k = base (+) inc.delta.
+  void PropagateCross(const Pose& base, const OdometryIncrement& inc) {
+    if (!inc.propagated) return;
+    const Mat3 jt = PoseCompositionJacobian(base, inc).transpose();
+    for (PassLandmark& l : state_) {
+      if (l.status != LandmarkStatus::kDeleted) l.cross = l.cross * jt;
+    }
+  }
+
   /// Refreshes the gate's marginals (newest pose, landmarks near it) from `graph`, or from the
   /// squared-loss graph with options_.squared_loss_marginals. When ceres::Covariance fails and
   /// options_.marginals_without_collapsed, they are computed again from the graph without the
@@ -219,10 +269,20 @@ class AssociationPass {
         near.end());
     Mat3 px;
     std::vector<Mat2> covs;
-    if (!graph->NewestCovariances(near, &px, &covs)) return false;
+    std::vector<Mat23> cross;
+    if (!graph->NewestCovariances(near, &px, &covs,
+                                  options_.pose_landmark_cross ? &cross : nullptr)) {
+      return false;
+    }
     px_ = px;
+    if (options_.pose_landmark_cross) {
+      // Landmarks outside `near` are not gated before the next refresh; their correlation with
+      // the newest pose is not computed.
+      for (PassLandmark& l : state_) l.cross = Mat23::Zero();
+    }
     for (std::size_t n = 0; n < near.size(); ++n) {
       state_[static_cast<std::size_t>(near[n])].cov = covs[n];
+      if (options_.pose_landmark_cross) state_[static_cast<std::size_t>(near[n])].cross = cross[n];
     }
     return true;
   }

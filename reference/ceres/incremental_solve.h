@@ -66,6 +66,10 @@ struct IncrementalAssociationOptions {
   /// nearest landmark to a closer measurement of the scan stays unassociated. false: every
   /// unassociated measurement starts one.
   bool birth_outside_gates = false;
+  /// Gate with each landmark's cross-covariance with the pose, Cov(m, x): from the chunk's graph
+  /// after each solve, and for a landmark started or refined since then as the pass propagates
+  /// it (README.md, "Own association along the incremental solve"). false: C = 0.
+  bool pose_landmark_cross = false;
 };
 
 /// Own association: scan-to-map association, confirmation and deletion along the incremental

@@ -13,6 +13,17 @@
 
 namespace phdslam::reference {
 
+/// Jx = d(x (+) inc.delta)/dx at x (the identity when the step does not propagate).
+inline Mat3 PoseCompositionJacobian(const Pose& x, const OdometryIncrement& inc) {
+  Mat3 jx = Mat3::Identity();
+  if (!inc.propagated) return jx;
+  const double c = std::cos(x(2));
+  const double s = std::sin(x(2));
+  jx(0, 2) = -s * inc.delta(0) - c * inc.delta(1);
+  jx(1, 2) = c * inc.delta(0) - s * inc.delta(1);
+  return jx;
+}
+
 /// Covariance of x (+) inc.delta given that of x (px) and inc.covariance (in the frame of x);
 /// px itself when the step does not propagate. Not symmetrized: a caller that stores the result
 /// symmetrizes it where it keeps its covariances.
@@ -21,9 +32,7 @@ inline Mat3 PropagatePoseCovariance(const Pose& x, const OdometryIncrement& inc,
   if (!inc.propagated) return px;
   const double c = std::cos(x(2));
   const double s = std::sin(x(2));
-  Mat3 jx = Mat3::Identity();
-  jx(0, 2) = -s * inc.delta(0) - c * inc.delta(1);
-  jx(1, 2) = c * inc.delta(0) - s * inc.delta(1);
+  const Mat3 jx = PoseCompositionJacobian(x, inc);
   Mat3 jd = Mat3::Identity();
   jd.topLeftCorner<2, 2>() << c, -s, s, c;
   return jx * px * jx.transpose() + jd * inc.covariance * jd.transpose();

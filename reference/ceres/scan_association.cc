@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 
 #include "src/core/angles.h"
@@ -24,6 +25,9 @@ std::vector<Pair> GatedPairs(const Pose& pose, const Mat3& pose_cov,
                              const ScanAssociationOptions& options) {
   std::vector<Pair> pairs;
   const double max_d2 = options.max_landmark_distance * options.max_landmark_distance;
+  std::optional<double> log_intensity;
+  if (options.new_landmark_intensity > 0.0)
+    log_intensity = std::log(options.new_landmark_intensity);
   for (std::size_t i = 0; i < map.size(); ++i) {
     const Landmark& m = map[i].mean;
     const double q = (m - pose.head<2>()).squaredNorm();
@@ -36,10 +40,12 @@ std::vector<Pair> GatedPairs(const Pose& pose, const Mat3& pose_cov,
     Symmetrize(s);
     for (std::size_t j = 0; j < scan.size(); ++j) {
       const Vec2 nu(scan[j](0) - p.z_hat(0), WrapAngle(scan[j](1) - p.z_hat(1)));
-      const double d2 = EvalGaussian2(nu, s).mahalanobis2;
-      if (std::isfinite(d2) && d2 >= 0.0 && d2 < options.gate_chi2) {
-        pairs.push_back({static_cast<int>(j), static_cast<int>(i), d2});
-      }
+      const Gaussian2Eval g = EvalGaussian2(nu, s);
+      const double d2 = g.mahalanobis2;
+      if (!(std::isfinite(d2) && d2 >= 0.0 && d2 < options.gate_chi2)) continue;
+      if (log_intensity && !(std::log(map[i].detection_probability) + g.log_pdf >= *log_intensity))
+        continue;
+      pairs.push_back({static_cast<int>(j), static_cast<int>(i), d2});
     }
   }
   return pairs;
@@ -53,6 +59,9 @@ ScanAssociation AssociateScan(const Pose& pose, const Mat3& pose_cov,
                               const ScanAssociationOptions& options) {
   if (!(options.gate_chi2 > 0.0)) {
     throw std::invalid_argument("ScanAssociationOptions.gate_chi2: expected > 0");
+  }
+  if (!(options.new_landmark_intensity >= 0.0)) {
+    throw std::invalid_argument("ScanAssociationOptions.new_landmark_intensity: expected >= 0");
   }
   std::vector<Pair> pairs = GatedPairs(pose, pose_cov, map, scan, measurement_cov, options);
   std::sort(pairs.begin(), pairs.end(), [](const Pair& a, const Pair& b) {

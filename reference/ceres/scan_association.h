@@ -8,6 +8,12 @@
 //   when the caller knows it (the fixed-lag smoother's window) and zero otherwise; leaving it out
 //   makes S larger (more conservative) for a landmark seen recently from a pose correlated with
 //   the current one.
+// * Likelihood against a new landmark (new_landmark_intensity > 0): a gated pair is admissible
+//   only when pD N(nu; 0, S) >= new_landmark_intensity, i.e. when the landmark explains z better
+//   than a new landmark or clutter of that intensity (per m per rad of measurement space) would.
+//   Under a wide pose covariance (after a long stretch of dead reckoning) S spreads the
+//   likelihood so thin that no landmark qualifies, however small its Mahalanobis distance, and
+//   the measurement starts a landmark instead of re-localising the pose on one nearest neighbour.
 // * Assignment: gated nearest neighbour over the whole scan (greedy global nearest neighbour):
 //   candidate pairs in increasing Mahalanobis distance, ties broken by measurement then landmark
 //   index, each measurement and each landmark used at most once. The solver then applies a robust
@@ -31,6 +37,8 @@ struct MapLandmark {
   Landmark mean = Landmark::Zero();
   Mat2 cov = Mat2::Identity();
   Eigen::Matrix<double, 2, 3> pose_cross = Eigen::Matrix<double, 2, 3>::Zero();
+  /// pD at the pose (the likelihood test against a new landmark; 1 when unknown).
+  double detection_probability = 1.0;
 };
 
 struct ScanAssociationOptions {
@@ -38,18 +46,22 @@ struct ScanAssociationOptions {
   /// Landmarks farther than this from the pose are skipped before gating (m); <= 0: none
   /// skipped. Set it to the sensor range plus a few gate widths.
   double max_landmark_distance = 0.0;
+  /// A gated pair is admissible only when pD N(nu; 0, S) reaches this intensity (per m per
+  /// rad); 0: every pair inside the gate is.
+  double new_landmark_intensity = 0.0;
 };
 
 /// Per measurement of the scan: the map index (kUnassociated when no landmark passed the gate or
 /// the nearest one went to a closer measurement), the squared Mahalanobis distance (0 when
-/// unassociated) and how many landmarks passed its gate.
+/// unassociated) and how many landmarks passed its gate (and the likelihood test when on).
 struct ScanAssociation {
   std::vector<int> landmark;
   std::vector<double> mahalanobis2;
   std::vector<int> gated;  ///< landmarks inside the measurement's gate
 };
 
-/// Associates one scan with the map. Throws std::invalid_argument when gate_chi2 <= 0.
+/// Associates one scan with the map. Throws std::invalid_argument when gate_chi2 <= 0 or
+/// new_landmark_intensity < 0.
 ScanAssociation AssociateScan(const Pose& pose, const Mat3& pose_cov,
                               const std::vector<MapLandmark>& map,
                               const std::vector<Measurement>& scan, const Mat2& measurement_cov,

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -95,6 +96,57 @@ TEST(ScanAssociationTest, GateUsesThePoseLandmarkCrossCovariance) {
   EXPECT_EQ(AssociateScan(x, px, {drifting}, exact, SensorNoise(), {}).landmark[0], 0);
 }
 
+/// After a long stretch of dead reckoning (pose known to +-2 m, +-50 deg) a detection of a
+/// landmark that is not mapped falls inside the gate of a mapped neighbour 1.5 m away, and the
+/// nearest neighbour takes it. Against a new landmark of intensity 1 per m per rad the match is
+/// too vague (pD N(nu; 0, S) ~ 0.02): the detection stays unassociated and starts a landmark. The
+/// same detection from a well-known pose still matches the landmark it comes from.
+TEST(ScanAssociationTest, NewLandmarkIntensityRejectsMatchesUnderAWidePose) {
+  const Pose x(0.0, 0.0, 0.0);
+  const Mat2 pm = 0.05 * 0.05 * Mat2::Identity();
+  const std::vector<MapLandmark> map{
+      {Landmark(2.0, 1.5), pm, Eigen::Matrix<double, 2, 3>::Zero(), 0.4}};  // mapped neighbour
+  const Landmark unmapped(2.5, 0.0);
+  const std::vector<Measurement> scan{Observe(x, unmapped, 0.0, 0.0)};
+  const Mat3 wide = Vec3(2.0 * 2.0, 2.0 * 2.0, std::pow(50.0 * kDeg, 2)).asDiagonal();
+  ScanAssociationOptions lr;
+  lr.new_landmark_intensity = 1.0;
+  const ScanAssociation nn = AssociateScan(x, wide, map, scan, SensorNoise(), {});
+  EXPECT_EQ(nn.landmark[0], 0);
+  EXPECT_EQ(nn.gated[0], 1);
+  const ScanAssociation tested = AssociateScan(x, wide, map, scan, SensorNoise(), lr);
+  EXPECT_EQ(tested.landmark[0], kUnassociated);
+  EXPECT_EQ(tested.gated[0], 0);
+  const Mat3 tight = Vec3(1e-3, 1e-3, 1e-5).asDiagonal();
+  const std::vector<MapLandmark> mapped{{unmapped, pm, Eigen::Matrix<double, 2, 3>::Zero(), 0.4}};
+  EXPECT_EQ(AssociateScan(x, tight, mapped, scan, SensorNoise(), lr).landmark[0], 0);
+  lr.new_landmark_intensity = -1.0;
+  EXPECT_THROW(AssociateScan(x, tight, mapped, scan, SensorNoise(), lr), std::invalid_argument);
+}
+
+/// A landmark started from the current (wide) pose carries that pose's uncertainty: without its
+/// cross-covariance with the pose the innovation covariance counts it twice and the likelihood
+/// test refuses the landmark's own second detection; with it (C = Jx Px) the pose's part cancels
+/// and the detection is associated.
+TEST(ScanAssociationTest, CrossCovarianceKeepsALandmarkStartedFromTheSamePose) {
+  const Pose x(1.0, -1.0, 0.4);
+  const Mat3 px = Vec3(2.0 * 2.0, 2.0 * 2.0, std::pow(50.0 * kDeg, 2)).asDiagonal();
+  const Measurement first(3.0, 0.2);
+  const Landmark m = models::InverseMeasurement(x, first);
+  const double a = x(2) + first(1);
+  Eigen::Matrix<double, 2, 3> jx;
+  jx << 1.0, 0.0, -first(0) * std::sin(a), 0.0, 1.0, first(0) * std::cos(a);
+  MapLandmark started{m,
+                      models::BirthCovariance(x, first, SensorNoise()) + jx * px * jx.transpose(),
+                      Eigen::Matrix<double, 2, 3>::Zero(), 0.4};
+  const std::vector<Measurement> again{Measurement(3.05, 0.2 + 0.3 * kDeg)};
+  ScanAssociationOptions lr;
+  lr.new_landmark_intensity = 1.0;
+  EXPECT_EQ(AssociateScan(x, px, {started}, again, SensorNoise(), lr).landmark[0], kUnassociated);
+  started.pose_cross = jx * px;
+  EXPECT_EQ(AssociateScan(x, px, {started}, again, SensorNoise(), lr).landmark[0], 0);
+}
+
 TEST(ScanAssociationTest, LandmarksBeyondTheDistanceLimitAreSkipped) {
   const Pose x(0.0, 0.0, 0.0);
   const std::vector<MapLandmark> map{{Landmark(30.0, 0.0), 1e-4 * Mat2::Identity()}};
@@ -182,6 +234,49 @@ TEST(CollapsedLandmarks, BreakTheGateMarginalsUntilTheirMeasurementsAreLeftOut) 
   ASSERT_TRUE(graph.NewestCovariances(in_view, &px, &covs));
   EXPECT_GT(px.determinant(), 0.0);
   EXPECT_EQ(covs.size(), in_view.size());
+}
+
+/// The cross-covariances of the landmarks in view with the newest pose: requested alongside, the
+/// marginals are unchanged, and each joint covariance [Px C^T; C Pm] is positive definite with a
+/// non-zero C (the landmarks are seen from that pose).
+TEST(NewestCovariances, PoseCrossCovariances) {
+  testing::CircleScenarioOptions o;
+  o.noise = false;
+  o.detection_probability = 1.0;
+  const datasets::Scenario s = testing::MakeCircleScenario(o);
+  Association a;
+  for (const auto& step : s.steps) {
+    std::vector<int> labels;
+    for (int l : step.origin) labels.push_back(l >= 0 ? l : kUnassociated);
+    a.push_back(std::move(labels));
+  }
+  const std::vector<OdometryIncrement> inc = ScenarioOdometry(s, {});
+  const OdometrySpec odometry{&inc, {}, true};
+  std::vector<Pose> poses = s.truth.poses;
+  std::vector<Landmark> landmarks = s.truth.landmarks;
+  std::vector<int> in_view;
+  for (int l : a.back()) {
+    if (l != kUnassociated) in_view.push_back(l);
+  }
+  ASSERT_FALSE(in_view.empty());
+  FactorGraph graph(s, odometry, a, nullptr, &poses, &landmarks);
+  Mat3 px;
+  std::vector<Mat2> covs;
+  ASSERT_TRUE(graph.NewestCovariances(in_view, &px, &covs));
+  Mat3 px2;
+  std::vector<Mat2> covs2;
+  std::vector<Eigen::Matrix<double, 2, 3>> cross;
+  ASSERT_TRUE(graph.NewestCovariances(in_view, &px2, &covs2, &cross));
+  ASSERT_EQ(cross.size(), in_view.size());
+  EXPECT_LT((px2 - px).norm(), 1e-9 * px.norm());
+  for (std::size_t n = 0; n < in_view.size(); ++n) {
+    EXPECT_LT((covs2[n] - covs[n]).norm(), 1e-9 * covs[n].norm());
+    EXPECT_GT(cross[n].norm(), 0.0);
+    Eigen::Matrix<double, 5, 5> joint;
+    joint << px, cross[n].transpose(), cross[n], covs[n];
+    using Solver = Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 5, 5>>;
+    EXPECT_GT(Solver(joint).eigenvalues().minCoeff(), 0.0);
+  }
 }
 
 }  // namespace

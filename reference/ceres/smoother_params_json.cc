@@ -56,6 +56,12 @@ const params::ParameterTable<SmootherOptions>& SmootherOptionsTable() {
       params::BoolField<O>(
           "incremental_birth_outside_gates",
           [](auto& o) -> auto& { return o.incremental_birth_outside_gates; }),
+      params::BoolField<O>(
+          "incremental_pose_landmark_cross",
+          [](auto& o) -> auto& { return o.incremental_pose_landmark_cross; }),
+      params::NumberField<O>(
+          "incremental_new_landmark_intensity",
+          [](auto& o) -> auto& { return o.incremental_new_landmark_intensity; }, AtLeast(0.0)),
       params::NumberField<O>(
           "known_outlier_chi2", [](auto& o) -> auto& { return o.known_outlier_chi2; },
           AtLeast(0.0)),

@@ -57,6 +57,7 @@ TEST(SmootherParamsJson, WritesEveryOptionWithItsType) {
       "incremental_active_steps": 500, "incremental_chunk_steps": 25,
       "incremental_birth_outside_gates": false, "incremental_delete_collapsed": false,
       "incremental_held_prior": true, "incremental_marginals_without_collapsed": true,
+      "incremental_new_landmark_intensity": 0.0, "incremental_pose_landmark_cross": false,
       "incremental_skip_ambiguous": false,
       "incremental_squared_marginals": false,
       "initial_pass_solve_steps": 200, "initialisation": "batch",
@@ -82,6 +83,9 @@ void ExpectRejected(const std::string& overrides, const std::string& message_par
 }
 
 TEST(SmootherParamsJson, RejectsBadOverridesAndLeavesTheOptionsUnchanged) {
+  ExpectRejected(R"({"incremental_new_landmark_intensity": -0.5})",
+                 "incremental_new_landmark_intensity");
+  ExpectRejected(R"({"incremental_pose_landmark_cross": 1})", "incremental_pose_landmark_cross");
   ExpectRejected(R"({"max_iterations": 50, "gate": 3})",
                  "unknown parameter 'gate' (known: association, initialisation, ");
   ExpectRejected(R"({"association": "unknown"})",
