@@ -18,7 +18,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libyaml-cpp-dev nlohmann-json3-dev libcli11-dev zlib1g-dev libtcmalloc-minimal4
   python3 python3-matplotlib python3-numpy python3-scipy python3-yaml
-  clang-format clang-tidy
+  clang-format clang-tidy lld
   clang-14 libclang-rt-14-dev valgrind
 )
 for option in "$@"; do

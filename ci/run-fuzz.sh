@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets of fuzz/ with clang under AddressSanitizer + UndefinedBehavior-
-# Sanitizer (build/fuzz, PHDSLAM_FUZZ=ON) and runs each for SECONDS (default 20) on a seed corpus
-# made at run time from the data folder ($PHDSLAM_DATA, else ../shared/datasets; nothing of it is
-# kept in the repository) and the experiment files. Prints each target's executions per second and
-# total executions; exits non-zero when a target crashes, leaks or trips a sanitizer (the input
-# is kept as build/fuzz/artifacts/<target>-crash-*; turn it into a regression test).
+# Sanitizer (build/fuzz, PHDSLAM_FUZZ=ON) and runs each for SECONDS (default 20), as many at once
+# as there are cores, on a seed corpus made at run time from the data folder ($PHDSLAM_DATA, else
+# ../shared/datasets; nothing of it is kept in the repository) and the experiment files. Prints
+# each target's executions per second and total executions; exits non-zero when a target crashes,
+# leaks or trips a sanitizer (the input is kept as build/fuzz/artifacts/<target>-crash-*; turn it
+# into a regression test).
 #
 #   ci/run-fuzz.sh          20 s per target (what ci/run-tests.sh runs)
 #   ci/run-fuzz.sh 600      longer, on demand
@@ -65,17 +66,36 @@ mkdir -p "$build/artifacts"
 # The targets write their input to files under $TMPDIR (fuzz/fuzz_input_file.h): keep them here.
 export TMPDIR=$root/$build/tmp
 rm -rf "$TMPDIR" && mkdir -p "$TMPDIR"
+# libFuzzer runs on one core: the targets run side by side, one per core (each for its full
+# SECONDS), and the table lists them in the order above once all have finished.
+jobs=$(nproc 2>/dev/null || echo 2)
+run_target() {
+  local t=$1 result=ok
+  if ! "$build/fuzz/fuzz_$t" "$corpus/$t" -max_total_time="$seconds" -print_final_stats=1 \
+      -max_len=262144 -rss_limit_mb=2048 -timeout=10 \
+      -artifact_prefix="$build/artifacts/$t-" >"$build/fuzz_$t.log" 2>&1; then
+    result=FAILED
+  fi
+  echo "$result" >"$build/fuzz_$t.result"
+}
+running=0
+for t in "${targets[@]}"; do
+  rm -f "$build/fuzz_$t.result"
+  if ((running >= jobs)); then
+    wait -n || true
+    running=$((running - 1))
+  fi
+  run_target "$t" &
+  running=$((running + 1))
+done
+wait
+
 status=0
 printf '%-16s %10s %12s %8s\n' target "execs/s" "total execs" result
 for t in "${targets[@]}"; do
   log=$build/fuzz_$t.log
-  result=ok
-  if ! "$build/fuzz/fuzz_$t" "$corpus/$t" -max_total_time="$seconds" -print_final_stats=1 \
-      -max_len=262144 -rss_limit_mb=2048 -timeout=10 \
-      -artifact_prefix="$build/artifacts/$t-" >"$log" 2>&1; then
-    result=FAILED
-    status=1
-  fi
+  result=$(cat "$build/fuzz_$t.result" 2>/dev/null || echo FAILED)
+  [[ $result == ok ]] || status=1
   execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
   rate=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$log" | tail -1)
   printf '%-16s %10s %12s %8s\n' "$t" "${rate:-?}" "${execs:-?}" "$result"
