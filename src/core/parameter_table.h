@@ -23,20 +23,46 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
+#include "src/core/utf8.h"
+
 namespace phdslam::params {
 
-/// `v` as JSON text for an error message. Bytes that are not UTF-8 (a string read from a
-/// hostile file) are shown as U+FFFD instead of making the message itself throw.
+/// `s` as a JSON string literal for an error message, except that each byte that is not part of
+/// well-formed UTF-8 (a string read from a hostile file) is written \xNN: the message stays UTF-8
+/// and shows the bytes, and cannot be confused with the text's own backslashes (written \\).
+inline std::string ShownString(std::string_view s) {
+  std::string out = "\"";
+  ForEachUtf8Run(
+      s,
+      [&](std::string_view run) {
+        const std::string literal = nlohmann::json(std::string(run)).dump();
+        out.append(literal, 1, literal.size() - 2);
+      },
+      [&](char byte) { out += EscapedByte(byte); });
+  return out + "\"";
+}
+
+/// `v` as compact JSON text for an error message, its strings (and keys) quoted by ShownString,
+/// so that building the message never throws on bytes that are not UTF-8.
 inline std::string Shown(const nlohmann::json& v) {
-  return v.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+  if (v.is_string()) return ShownString(v.get_ref<const std::string&>());
+  if (!v.is_array() && !v.is_object()) return v.dump();
+  std::string out;
+  for (auto it = v.begin(); it != v.end(); ++it) {
+    if (it != v.begin()) out += ",";
+    if (v.is_object()) out += ShownString(it.key()) + ":";
+    out += Shown(*it);
+  }
+  return v.is_array() ? "[" + out + "]" : "{" + out + "}";
 }
 
 /// Thrown for a bad parameter value or an unknown key; the message names the key.
 inline void Fail(const std::string& key, const std::string& what) {
-  throw std::invalid_argument("parameter '" + key + "': " + what);
+  throw std::invalid_argument("parameter '" + EscapeNonUtf8(key) + "': " + what);
 }
 
 /// The closed or open interval a number must lie in.
@@ -130,7 +156,8 @@ class ParameterTable {
     for (const auto& [key, value] : overrides.items()) {
       const Field<T>* field = Find(key);
       if (field == nullptr) {
-        throw std::invalid_argument("unknown parameter '" + key + "' (known: " + KnownKeys() + ")");
+        throw std::invalid_argument("unknown parameter '" + EscapeNonUtf8(key) +
+                                    "' (known: " + KnownKeys() + ")");
       }
       field->read(value, params);
     }
@@ -222,12 +249,16 @@ Field<T> DiagonalField(std::string key, Access access, Bounds bounds = {}) {
           }};
 }
 
-/// A free-form string (its values, if restricted, are checked by the struct's own validation).
+/// A free-form UTF-8 string (its values, if restricted, are checked by the struct's own
+/// validation). Text that is not UTF-8 is refused here: it could not be written back as JSON.
 template <class T, class Access>
 Field<T> StringField(std::string key, Access access) {
   return {key, "a string", [access](const T& p) { return nlohmann::json(access(p)); },
           [access, key](const nlohmann::json& v, T& p) {
             if (!v.is_string()) Fail(key, "expected a string, got " + Shown(v));
+            if (!IsUtf8(v.get_ref<const std::string&>())) {
+              Fail(key, "expected UTF-8 text, got " + Shown(v));
+            }
             access(p) = v.get<std::string>();
           }};
 }

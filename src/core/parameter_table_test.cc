@@ -110,17 +110,30 @@ TEST(ParameterTable, ErrorsNameTheKeyAndTheRule) {
             "parameter 'count': expected an integer, got 1000000000000.0");
 }
 
-TEST(ParameterTable, ErrorsShowBytesThatAreNotUtf8AsReplacementCharacters) {
-  // A string value read from a hostile file may hold bytes that are not UTF-8; the error
-  // message must still be built (and name the key) instead of throwing while printing it.
-  const std::string bad_bytes = "\xff\xfe";
+TEST(ParameterTable, ErrorsShowBytesThatAreNotUtf8AsHexEscapes) {
+  // A string read from a hostile file may hold bytes that are not UTF-8; the error message must
+  // still be built, name the key, show the bytes and be UTF-8 itself (so that it can be written
+  // into a JSON results file), instead of throwing nlohmann's type_error while printing them.
+  const std::string bad_bytes = "a\xff\xfe\\x";
   EXPECT_EQ(ErrorOf({{"count", bad_bytes}}),
-            "parameter 'count': expected an integer, got \"\xEF\xBF\xBD\xEF\xBF\xBD\"");
+            R"(parameter 'count': expected an integer, got "a\xFF\xFE\\x")");
   EXPECT_EQ(ErrorOf({{"mode", bad_bytes}}),
-            "parameter 'mode': expected one of \"fast\", \"exact\", got "
-            "\"\xEF\xBF\xBD\xEF\xBF\xBD\"");
+            R"(parameter 'mode': expected one of "fast", "exact", got "a\xFF\xFE\\x")");
   EXPECT_EQ(ErrorOf(nlohmann::json(bad_bytes)),
-            "parameters: expected an object, got \"\xEF\xBF\xBD\xEF\xBF\xBD\"");
+            R"(parameters: expected an object, got "a\xFF\xFE\\x")");
+  EXPECT_EQ(ErrorOf({{"noise", {"\xc3\xa9", "\xc3"}}}),
+            "parameter 'noise': expected an array of 3 numbers, got [\"\xc3\xa9\",\"\\xC3\"]");
+  EXPECT_EQ(ErrorOf({{"co\x80unt", 1}}),
+            R"(unknown parameter 'co\x80unt' (known: count, rate, mode, noise, threshold, gate, )"
+            "strict)");
+  EXPECT_EQ(ErrorOf(nlohmann::json::array({nlohmann::json::object({{"k\xe0", "v\xed\xa0\x80"}})})),
+            R"(parameters: expected an object, got [{"k\xE0":"v\xED\xA0\x80"}])");
+  for (const nlohmann::json& overrides :
+       {nlohmann::json{{"count", bad_bytes}}, nlohmann::json{{"co\x80unt", 1}},
+        nlohmann::json(bad_bytes)}) {
+    const std::string message = ErrorOf(overrides);
+    EXPECT_NO_THROW((void)nlohmann::json(message).dump()) << message;
+  }
 }
 
 TEST(ParameterTable, RejectsNonFiniteNumbers) {
@@ -222,6 +235,19 @@ TEST(ParameterTable, ExtrasErrorsNameTheKeyAndLeaveTheValueUnchanged) {
             "parameter 'floor': expected [position_std, heading_std], got [0.5]");
   EXPECT_EQ(ExtrasErrorOf({{"floor", {0.5, 0}}}, e), "parameter 'floor': must be > 0, got 0");
   EXPECT_EQ(ExtrasTable().ToJson(e), ExtrasTable().ToJson(Extras{}));
+}
+
+TEST(ParameterTable, StringRowRefusesTextThatIsNotUtf8) {
+  // Accepted, such a string would make the table's own ToJson (a run's config.json) throw later.
+  Extras e;
+  EXPECT_EQ(ExtrasErrorOf({{"loss", "hub\xe9r"}}, e),
+            R"(parameter 'loss': expected UTF-8 text, got "hub\xE9r")");
+  EXPECT_EQ(e.loss, "cauchy");
+  EXPECT_NO_THROW((void)ExtrasTable().ToJson(e).dump());
+  EXPECT_EQ(ExtrasErrorOf({{"loss", "gr\xc3\xbcn"}}, e), "");
+  EXPECT_EQ(e.loss, "gr\xc3\xbcn");
+  EXPECT_EQ(ExtrasErrorOf({{"mode", "\xff"}}, e),
+            R"(parameter 'mode': expected one of "fast", "exact", got "\xFF")");
 }
 
 }  // namespace
