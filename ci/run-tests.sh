@@ -13,10 +13,14 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 # Each stage prints its wall time, so a slow CI run shows where the time went.
+# A stage that fails ends the run and says which stage it was.
 stage() {
   local name=$1 start=$SECONDS
   shift
-  "$@"
+  if ! "$@"; then
+    echo "run-tests: stage '$name' failed after $((SECONDS - start)) s" >&2
+    exit 1
+  fi
   echo "run-tests: $name took $((SECONDS - start)) s" >&2
 }
 stage install ci/install-deps.sh --browser --slurm
@@ -24,7 +28,7 @@ stage install ci/install-deps.sh --browser --slurm
 export PHDSLAM_REQUIRE_CHROMIUM=1
 
 jobs=$(nproc 2>/dev/null || echo 2)
-cmake --preset release >/dev/null
+stage configure cmake --preset release >/dev/null
 stage build cmake --build --preset release -j "$jobs"
 stage lint ci/run-lint.sh build/release
 stage ctest ctest --preset release
@@ -36,7 +40,7 @@ else
 fi
 
 if [[ "${1:-}" == "--sanitize" ]]; then
-  cmake --preset sanitize >/dev/null
+  stage sanitize-configure cmake --preset sanitize >/dev/null
   stage sanitize-build cmake --build --preset sanitize -j "$jobs"
   stage sanitize-ctest ctest --preset sanitize
   stage valgrind ci/run-valgrind.sh
