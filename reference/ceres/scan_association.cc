@@ -38,13 +38,13 @@ std::vector<Pair> GatedPairs(const Pose& pose, const Mat3& pose_cov,
     Mat2 s = p.j.hm * map[i].cov * p.j.hm.transpose() + p.j.hx * pose_cov * p.j.hx.transpose() +
              cross + cross.transpose() + r;
     Symmetrize(s);
+    const double log_pd = log_intensity ? std::log(map[i].detection_probability) : 0.0;
     for (std::size_t j = 0; j < scan.size(); ++j) {
       const Vec2 nu(scan[j](0) - p.z_hat(0), WrapAngle(scan[j](1) - p.z_hat(1)));
       const Gaussian2Eval g = EvalGaussian2(nu, s);
       const double d2 = g.mahalanobis2;
       if (!(std::isfinite(d2) && d2 >= 0.0 && d2 < options.gate_chi2)) continue;
-      if (log_intensity && !(std::log(map[i].detection_probability) + g.log_pdf >= *log_intensity))
-        continue;
+      if (log_intensity && !(log_pd + g.log_pdf >= *log_intensity)) continue;
       pairs.push_back({static_cast<int>(j), static_cast<int>(i), d2});
     }
   }

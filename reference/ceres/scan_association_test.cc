@@ -185,21 +185,32 @@ TEST(CollapsedLandmarks, OnlyNearAPoseThatObservesIt) {
   EXPECT_TRUE(CollapsedLandmarks(a, poses, landmarks, 3, 1.0).empty());
 }
 
-// One landmark collapsed onto a pose that observes it (0.1 nm away: a Jacobian of ~1e12 against
-// ~1e4 for the rest) makes ceres::Covariance fail for the whole graph; with its measurements
-// left out, as the incremental own association does when the covariance fails, the marginals
-// are computed again.
-TEST(CollapsedLandmarks, BreakTheGateMarginalsUntilTheirMeasurementsAreLeftOut) {
+/// The circle scenario without noise and with every landmark in view detected.
+datasets::Scenario NoiseFreeCircle() {
   testing::CircleScenarioOptions o;
   o.noise = false;
   o.detection_probability = 1.0;
-  const datasets::Scenario s = testing::MakeCircleScenario(o);
+  return testing::MakeCircleScenario(o);
+}
+
+/// The generator's labels as an association, clutter unassociated.
+Association TrueAssociation(const datasets::Scenario& s) {
   Association a;
   for (const auto& step : s.steps) {
     std::vector<int> labels;
     for (int l : step.origin) labels.push_back(l >= 0 ? l : kUnassociated);
     a.push_back(std::move(labels));
   }
+  return a;
+}
+
+// One landmark collapsed onto a pose that observes it (0.1 nm away: a Jacobian of ~1e12 against
+// ~1e4 for the rest) makes ceres::Covariance fail for the whole graph; with its measurements
+// left out, as the incremental own association does when the covariance fails, the marginals
+// are computed again.
+TEST(CollapsedLandmarks, BreakTheGateMarginalsUntilTheirMeasurementsAreLeftOut) {
+  const datasets::Scenario s = NoiseFreeCircle();
+  const Association a = TrueAssociation(s);
   const std::vector<OdometryIncrement> inc = ScenarioOdometry(s, {});
   const OdometrySpec odometry{&inc, {}, true};
   std::vector<Pose> poses = s.truth.poses;
@@ -240,16 +251,8 @@ TEST(CollapsedLandmarks, BreakTheGateMarginalsUntilTheirMeasurementsAreLeftOut) 
 /// marginals are unchanged, and each joint covariance [Px C^T; C Pm] is positive definite with a
 /// non-zero C (the landmarks are seen from that pose).
 TEST(NewestCovariances, PoseCrossCovariances) {
-  testing::CircleScenarioOptions o;
-  o.noise = false;
-  o.detection_probability = 1.0;
-  const datasets::Scenario s = testing::MakeCircleScenario(o);
-  Association a;
-  for (const auto& step : s.steps) {
-    std::vector<int> labels;
-    for (int l : step.origin) labels.push_back(l >= 0 ? l : kUnassociated);
-    a.push_back(std::move(labels));
-  }
+  const datasets::Scenario s = NoiseFreeCircle();
+  const Association a = TrueAssociation(s);
   const std::vector<OdometryIncrement> inc = ScenarioOdometry(s, {});
   const OdometrySpec odometry{&inc, {}, true};
   std::vector<Pose> poses = s.truth.poses;
