@@ -1,6 +1,8 @@
 # Installation as a CMake package: `cmake --install BUILD --prefix PREFIX` puts the libraries in
 # PREFIX/lib, the headers in PREFIX/include/phdslam (paths as in the repository, e.g.
-# "src/filters/estimator.h"), the phdslam program in PREFIX/bin and phdslamConfig.cmake with the
+# "src/filters/estimator.h"), the phdslam program in PREFIX/bin, the MRPT baselines' plugin
+# libphdslam_mrpt_baselines.so in PREFIX/lib (reference/mrpt/CMakeLists.txt; the program opens it
+# from ../lib when an MRPT estimator is constructed) and phdslamConfig.cmake with the
 # exported targets (phdslam::<library>) in PREFIX/lib/cmake/phdslam, so that another project can
 #   find_package(phdslam REQUIRED)
 #   target_link_libraries(my_program PRIVATE phdslam::phdslam_validation)

@@ -37,4 +37,18 @@ if [[ "$rows" != "$expected" ]]; then
 fi
 "$prefix/bin/phdslam" compare --out "$work/results" --metric gospa_m,pos_rmse_m
 grep -q "^gospa_m,nearest-landmark,1,odometry,1,2," "$work/results/comparison.csv"
+# The MRPT baselines' plugin (when built): installed beside the libraries, not linked by the
+# program, and opened from there by the installed program when it runs an MRPT baseline.
+if [[ -f "$build_dir/apps/libphdslam_mrpt_baselines.so" ]]; then
+  plugin=$prefix/lib/libphdslam_mrpt_baselines.so
+  test -f "$plugin"
+  if ldd "$prefix/bin/phdslam" | grep -q libmrpt; then
+    echo "the installed phdslam links MRPT" >&2
+    exit 1
+  fi
+  LD_DEBUG=files "$prefix/bin/phdslam" run --scenario paper-synthetic --estimator mrpt-ekf \
+    --seeds 1 --steps 20 --jobs 1 --quiet --out "$work/mrpt" 2> "$work/mrpt.log"
+  grep -q "file=$plugin " "$work/mrpt.log"
+  test -f "$work/mrpt/runs/mrpt-ekf-N1/seed-1/steps.csv"
+fi
 echo "out-of-tree example built against $prefix and run"

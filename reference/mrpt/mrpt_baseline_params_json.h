@@ -4,8 +4,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "reference/mrpt/fastslam.h"
-#include "reference/mrpt/mrpt_ekf_slam.h"
+#include "reference/mrpt/fastslam_options.h"
+#include "reference/mrpt/mrpt_ekf_slam_options.h"
 #include "src/core/parameter_table.h"
 
 namespace phdslam::reference {

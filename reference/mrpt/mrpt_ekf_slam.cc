@@ -106,22 +106,6 @@ class MrptEkfSlam::Filter final : public mrpt::slam::CRangeBearingKFSLAM2D {
   bool kdtree_candidates_;
 };
 
-void MrptEkfSlamOptions::Validate() const {
-  ValidateChi2Quantile(ic_chi2_quantile, "mrpt-ekf ic_chi2_quantile");
-  if (prune_after_steps < 0) {
-    throw std::invalid_argument("mrpt-ekf prune_after_steps: expected >= 0, got " +
-                                std::to_string(prune_after_steps));
-  }
-  if (prune_min_associations < 1) {
-    throw std::invalid_argument("mrpt-ekf prune_min_associations: expected >= 1, got " +
-                                std::to_string(prune_min_associations));
-  }
-  if (min_associations < 0) {
-    throw std::invalid_argument("mrpt-ekf min_associations: expected >= 0, got " +
-                                std::to_string(min_associations));
-  }
-}
-
 namespace {
 
 mrpt::math::CMatrixDouble33 ToMrpt(const Mat3& m) {

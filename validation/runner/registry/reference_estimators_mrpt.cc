@@ -1,11 +1,13 @@
-// Registry entries of the MRPT baselines (built only when phdslam_reference_mrpt exists).
+// Registry entries of the MRPT baselines (built only when phdslam_reference_mrpt exists). Names,
+// descriptions and parameters need no MRPT; only make_online constructs an estimator, through the
+// plugin (reference/mrpt/mrpt_baselines_loader.h), so MRPT is loaded by the first such call only.
 #include <memory>
 #include <stdexcept>
-#include <utility>
 
-#include "reference/mrpt/fastslam.h"
+#include "reference/mrpt/fastslam_options.h"
 #include "reference/mrpt/mrpt_baseline_params_json.h"
-#include "reference/mrpt/mrpt_ekf_slam.h"
+#include "reference/mrpt/mrpt_baselines_loader.h"
+#include "reference/mrpt/mrpt_ekf_slam_options.h"
 #include "src/core/parameter_table.h"
 #include "validation/runner/registry/estimator_registry.h"
 
@@ -42,7 +44,8 @@ EstimatorEntry MrptEkfEntry() {
     return reference::ToJson(ResolveMrptEkf(r));
   };
   e.make_online = [](const EstimatorRequest& r) -> std::unique_ptr<filters::OnlineEstimator> {
-    return std::make_unique<reference::MrptEkfSlam>(RequireContext(r), ResolveMrptEkf(r));
+    return reference::MakeMrptEkfSlam(RequireContext(r), ResolveMrptEkf(r),
+                                      /*post_processed_map=*/false);
   };
   return e;
 }
@@ -50,16 +53,6 @@ EstimatorEntry MrptEkfEntry() {
 // The same EKF-SLAM run, reporting PostProcessedMap() (landmarks MRPT associated at least
 // min_associations times) as its map: a post-processing step that is not part of MRPT's filter,
 // under its own name so that no table mistakes it for the raw filter.
-class PostProcessedMrptEkf final : public filters::OnlineEstimator {
- public:
-  explicit PostProcessedMrptEkf(std::unique_ptr<reference::MrptEkfSlam> ekf)
-      : ekf_(std::move(ekf)) {}
-  filters::StepOutput Step(const datasets::StepData& step) override { return ekf_->Step(step); }
-  [[nodiscard]] filters::MapEstimate Map() const override { return ekf_->PostProcessedMap(); }
-
- private:
-  std::unique_ptr<reference::MrptEkfSlam> ekf_;
-};
 
 EstimatorEntry MrptEkfPostProcessedEntry() {
   EstimatorEntry e = MrptEkfEntry();
@@ -68,8 +61,8 @@ EstimatorEntry MrptEkfPostProcessedEntry() {
       "mrpt-ekf with a POST-PROCESSED map: only landmarks associated at least min_associations "
       "times (not part of MRPT's filter; trajectory identical to mrpt-ekf)";
   e.make_online = [](const EstimatorRequest& r) -> std::unique_ptr<filters::OnlineEstimator> {
-    return std::make_unique<PostProcessedMrptEkf>(
-        std::make_unique<reference::MrptEkfSlam>(RequireContext(r), ResolveMrptEkf(r)));
+    return reference::MakeMrptEkfSlam(RequireContext(r), ResolveMrptEkf(r),
+                                      /*post_processed_map=*/true);
   };
   return e;
 }
@@ -104,8 +97,8 @@ EstimatorEntry FastSlamEntry(const std::string& name, reference::FastSlamProposa
   };
   e.make_online =
       [proposal](const EstimatorRequest& r) -> std::unique_ptr<filters::OnlineEstimator> {
-    return std::make_unique<reference::FastSlam>(RequireContext(r), r.particles, r.stream_seed,
-                                                 ResolveFastSlam(r, proposal));
+    return reference::MakeFastSlam(RequireContext(r), r.particles, r.stream_seed,
+                                   ResolveFastSlam(r, proposal));
   };
   return e;
 }
