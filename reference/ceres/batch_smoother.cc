@@ -178,6 +178,8 @@ void SmootherOptions::Validate() const {
           "incremental_new_landmark_intensity: expected >= 0");
   require(incremental_static_point_chi2 >= 0.0,
           "incremental_static_point_chi2: expected >= 0 (0: off)");
+  require(incremental_static_point_heading_std > 0.0,
+          "incremental_static_point_heading_std: expected > 0");
   require(min_observations >= 1, "min_observations: expected >= 1");
   require(merge_position_std >= 0.0, "merge_position_std: expected >= 0");
   require(min_detection_ratio >= 0.0 && min_detection_ratio <= 1.0,
@@ -361,6 +363,7 @@ datasets::BatchResult BatchSmoother::Solve(const datasets::Scenario& scenario) {
         io.pose_landmark_cross = options_.incremental_pose_landmark_cross;
         io.gate.new_landmark_intensity = options_.incremental_new_landmark_intensity;
         io.static_point_chi2 = options_.incremental_static_point_chi2;
+        io.static_point_heading_std = options_.incremental_static_point_heading_std;
         io.model_increments = &increments;
         AssociatedMap map =
             IncrementalAssociation(scenario, loose_odometry, robust.get(), incremental_settings, io,

@@ -49,10 +49,10 @@ struct PassLandmark {
   LandmarkSupport support;
   LandmarkStatus status = LandmarkStatus::kTentative;
   Mat23 cross = Mat23::Zero();  ///< Cov(m, x) with the pass's current pose (pose_landmark_cross)
-  StaticPointAnchor anchor =
-      {};                       ///< its first detection and the odometry since (static_point_chi2)
-  StaticPointAnchor last = {};  ///< its latest detection and the odometry since
-  bool moving = false;          ///< deleted by the static-point check
+  /// Its first and its latest detection, each with the odometry since (static_point_chi2).
+  StaticPointAnchor anchor = {};
+  StaticPointAnchor last = {};
+  bool moving = false;  ///< deleted by the static-point check
 };
 
 /// Landmark started at the inverse model of z from (x, px): covariance from R and the pose.
@@ -104,7 +104,7 @@ class AssociationPass {
          options.model_increments->size() != scenario.steps.size())) {
       throw std::invalid_argument(
           "IncrementalAssociationOptions.model_increments: one per step needed for the "
-          "static-point test");
+          "static-point check");
     }
     poses_.assign(scenario.steps.size(), Pose::Zero());
     for (const auto& step : scenario.steps) {
@@ -263,6 +263,8 @@ class AssociationPass {
     PassLandmark& l = state_[static_cast<std::size_t>(id)];
     const Mat2& r = options_.measurement_cov;
     const double chi2 = options_.static_point_chi2;
+    const double sd = options_.static_point_heading_std;
+    if (l.anchor.relative_cov(2, 2) > sd * sd) l.anchor = l.last;
     if (StaticPointChi2(l.anchor, z, r) > chi2 && StaticPointChi2(l.last, z, r) <= chi2) {
       l.status = LandmarkStatus::kDeleted;
       l.moving = true;
@@ -375,7 +377,7 @@ class AssociationPass {
   Mat3 px_ = Mat3::Zero();
   int born_ = 0;
   int collapsed_ = 0;
-  int moving_ = 0;                               ///< landmarks deleted by the static-point test
+  int moving_ = 0;                               ///< landmarks deleted by the static-point check
   std::optional<HeldMeasurementPriors> priors_;  ///< with IncrementalSettings::held_prior
 };
 

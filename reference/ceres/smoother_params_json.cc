@@ -66,6 +66,9 @@ const params::ParameterTable<SmootherOptions>& SmootherOptionsTable() {
           "incremental_static_point_chi2",
           [](auto& o) -> auto& { return o.incremental_static_point_chi2; }, AtLeast(0.0)),
       params::NumberField<O>(
+          "incremental_static_point_heading_std",
+          [](auto& o) -> auto& { return o.incremental_static_point_heading_std; }, Above(0.0)),
+      params::NumberField<O>(
           "known_outlier_chi2", [](auto& o) -> auto& { return o.known_outlier_chi2; },
           AtLeast(0.0)),
       params::IntField<O>(

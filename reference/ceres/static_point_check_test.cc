@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "reference/ceres/batch_smoother.h"
+#include "reference/ceres/test_scenario.h"
 #include "src/models/range_bearing_model.h"
 
 namespace phdslam::reference {
@@ -127,6 +128,24 @@ TEST(StaticPointCheck, AMovingPointDetectedRepeatedlyYieldsNoLandmarkAndAStaticO
   EXPECT_EQ(unchecked.report().moving_landmarks, 0);
   EXPECT_GT(LargestPoseError(u), 0.2);
   for (const Landmark& m : u.map.means) EXPECT_GT((m - Landmark(4.0, 1.0)).norm(), 0.3);
+}
+
+TEST(StaticPointCheck, MapsEveryLandmarkOfAStaticWorld) {
+  // The circle of 20 landmarks with clutter (5 per scan), 100 steps: every landmark is static,
+  // so the check may delete clutter-born landmarks only.
+  testing::CircleScenarioOptions c;
+  c.clutter_rate = 5.0;
+  const datasets::Scenario s = testing::MakeCircleScenario(c);
+  SmootherOptions o = OwnIncrementalAssociation(13.8);
+  o.min_detection_ratio = 0.3;
+  BatchSmoother smoother(o);
+  const datasets::BatchResult r = smoother.Solve(s);
+  int near_truth = 0;
+  for (const Landmark& m : s.truth.landmarks) {
+    for (const Landmark& e : r.map.means) near_truth += (e - m).norm() < 1.0;
+  }
+  EXPECT_EQ(near_truth, 20);
+  EXPECT_LE(r.map.means.size(), 21u);
 }
 
 TEST(StaticPointCheck, RejectsANegativeThreshold) {
