@@ -176,6 +176,10 @@ void SmootherOptions::Validate() const {
   require(gate_chi2 > 0.0, "gate_chi2: expected > 0");
   require(incremental_new_landmark_intensity >= 0.0,
           "incremental_new_landmark_intensity: expected >= 0");
+  require(incremental_static_point_chi2 >= 0.0,
+          "incremental_static_point_chi2: expected >= 0 (0: off)");
+  require(incremental_static_point_heading_std > 0.0,
+          "incremental_static_point_heading_std: expected > 0");
   require(min_observations >= 1, "min_observations: expected >= 1");
   require(merge_position_std >= 0.0, "merge_position_std: expected >= 0");
   require(min_detection_ratio >= 0.0 && min_detection_ratio <= 1.0,
@@ -335,6 +339,7 @@ datasets::BatchResult BatchSmoother::Solve(const datasets::Scenario& scenario) {
     }
     case AssociationMode::kUnknown: {
       AssociationOptions ao;
+      std::vector<std::vector<bool>> moving_detections;  // left out of the rounds (ao.excluded)
       ao.gate_chi2 = options_.gate_chi2;
       ao.min_observations = options_.min_observations;
       ao.merge_position_std = options_.merge_position_std;
@@ -357,9 +362,15 @@ datasets::BatchResult BatchSmoother::Solve(const datasets::Scenario& scenario) {
         io.birth_outside_gates = options_.incremental_birth_outside_gates;
         io.pose_landmark_cross = options_.incremental_pose_landmark_cross;
         io.gate.new_landmark_intensity = options_.incremental_new_landmark_intensity;
+        io.static_point_chi2 = options_.incremental_static_point_chi2;
+        io.static_point_heading_std = options_.incremental_static_point_heading_std;
+        io.model_increments = &increments;
         AssociatedMap map =
             IncrementalAssociation(scenario, loose_odometry, robust.get(), incremental_settings, io,
                                    record, &report_.association_seconds);
+        report_.moving_landmarks = map.moving;
+        moving_detections = std::move(map.excluded);
+        ao.excluded = &moving_detections;
         association_ = std::move(map.association);
         landmarks = std::move(map.landmarks);
         poses = std::move(map.poses);

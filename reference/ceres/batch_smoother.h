@@ -81,6 +81,15 @@ struct SmootherOptions {
   /// pD N(nu; 0, S) reaches this intensity (per m per rad of range-bearing space), the
   /// likelihood of a new landmark or clutter; 0 turns the test off.
   double incremental_new_landmark_intensity = 0.0;
+  /// Incremental solve, own association: a landmark whose detection, carried to its first one by
+  /// the odometry between them, is farther from it than this chi-square (2 dof) is deleted as a
+  /// moving object (README.md, "Moving objects"); 0 turns the test off.
+  double incremental_static_point_chi2 = 0.0;
+  /// The static-point check compares a detection with the landmark's first one only while the
+  /// odometry between them has a heading standard deviation below this (rad); beyond it the
+  /// anchor moves to the latest detection. Over long stretches of dead reckoning the carried
+  /// point's first-order covariance understates its spread (README.md, "Moving objects").
+  double incremental_static_point_heading_std = 0.2;
   /// Known association: a labelled measurement whose squared whitened residual (chi-square, 2
   /// dof) at the warm-started estimate exceeds this is left out of the final solves as a
   /// mislabelled detection (README.md, "Outliers in the known association"); the incremental
@@ -159,6 +168,7 @@ struct SmootherReport {
   std::size_t landmarks = 0;
   std::size_t associated_measurements = 0;
   int outliers_dropped = 0;    ///< known association: measurements left out (known_outlier_chi2)
+  int moving_landmarks = 0;    ///< own association: landmarks deleted by the static-point check
   int unconverged_solves = 0;  ///< solves stopped by the iteration limit or a failure
   /// The final solve met a tolerance (ceres CONVERGENCE); false when it stopped at
   /// max_iterations or failed, and its estimate is then reported as not converged.

@@ -5,10 +5,12 @@
 #include <chrono>
 #include <cmath>
 #include <optional>
+#include <stdexcept>
 #include <utility>
 
 #include "reference/ceres/held_measurement_prior.h"
 #include "reference/ceres/pose_covariance_propagation.h"
+#include "reference/ceres/static_point_check.h"
 #include "src/core/gaussian.h"
 #include "src/models/range_bearing_model.h"
 
@@ -47,15 +49,11 @@ struct PassLandmark {
   LandmarkSupport support;
   LandmarkStatus status = LandmarkStatus::kTentative;
   Mat23 cross = Mat23::Zero();  ///< Cov(m, x) with the pass's current pose (pose_landmark_cross)
+  /// Its first and its latest detection, each with the odometry since (static_point_chi2).
+  StaticPointAnchor anchor = {};
+  StaticPointAnchor last = {};
+  bool moving = false;  ///< deleted by the static-point check
 };
-
-/// d m / d x of the inverse model m = g(x, z).
-Mat23 InverseModelPoseJacobian(const Pose& x, const Measurement& z) {
-  const double a = x(2) + z(1);
-  Mat23 jx;
-  jx << 1.0, 0.0, -z(0) * std::sin(a), 0.0, 1.0, z(0) * std::cos(a);
-  return jx;
-}
 
 /// Landmark started at the inverse model of z from (x, px): covariance from R and the pose.
 Mat2 StartCovariance(const Pose& x, const Mat3& px, const Measurement& z, const Mat2& r) {
@@ -101,6 +99,13 @@ class AssociationPass {
   AssociationPass(const datasets::Scenario& scenario, const OdometrySpec& odometry,
                   const IncrementalAssociationOptions& options)
       : scenario_(scenario), increments_(*odometry.increments), options_(options) {
+    if (options.static_point_chi2 > 0.0 &&
+        (options.model_increments == nullptr ||
+         options.model_increments->size() != scenario.steps.size())) {
+      throw std::invalid_argument(
+          "IncrementalAssociationOptions.model_increments: one per step needed for the "
+          "static-point check");
+    }
     poses_.assign(scenario.steps.size(), Pose::Zero());
     for (const auto& step : scenario.steps) {
       association_.emplace_back(step.data.measurements.size(), kUnassociated);
@@ -111,6 +116,7 @@ class AssociationPass {
   void Step(std::size_t k) {
     const Pose& base = k == 0 ? scenario_.initial_pose : poses_[k - 1];
     if (options_.pose_landmark_cross) PropagateCross(base, increments_[k]);
+    if (options_.static_point_chi2 > 0.0) AdvanceAnchors((*options_.model_increments)[k]);
     px_ = PropagatePoseCovariance(base, increments_[k], px_);
     Symmetrize(px_);
     poses_[k] = PredictPose(scenario_, increments_, poses_, k);
@@ -134,8 +140,10 @@ class AssociationPass {
     const Mat2& r = options_.measurement_cov;
     for (std::size_t j = 0; j < zs.size(); ++j) {
       if (options_.skip_ambiguous && a.gated[j] > 1) continue;
-      if (a.landmark[j] != kUnassociated) {
-        const int id = ids[static_cast<std::size_t>(a.landmark[j])];
+      int id = a.landmark[j] == kUnassociated ? kUnassociated
+                                              : ids[static_cast<std::size_t>(a.landmark[j])];
+      if (id != kUnassociated && DeletedAsMoving(id, zs[j])) id = kUnassociated;
+      if (id != kUnassociated) {
         PassLandmark& l = state_[static_cast<std::size_t>(id)];
         ++l.support.detections;
         if (l.status == LandmarkStatus::kTentative) {
@@ -152,6 +160,10 @@ class AssociationPass {
         ids.push_back(association_[k][j]);
         landmarks_.push_back(models::InverseMeasurement(x, zs[j]));
         state_.push_back({StartCovariance(x, px_, zs[j], r), {1, 0.0}});
+        if (options_.static_point_chi2 > 0.0) {
+          state_.back().anchor = AnchorAt(zs[j], r);
+          state_.back().last = state_.back().anchor;
+        }
         if (options_.pose_landmark_cross) {
           state_.back().cross = InverseModelPoseJacobian(x, zs[j]) * px_;
         }
@@ -160,6 +172,7 @@ class AssociationPass {
     }
     for (int i : ids) {
       PassLandmark& l = state_[static_cast<std::size_t>(i)];
+      if (l.status == LandmarkStatus::kDeleted) continue;  // a moving object, deleted above
       l.support.expected +=
           options_.sensor.DetectionProbability(x, landmarks_[static_cast<std::size_t>(i)]);
       l.status = ClassifyLandmark(l.support, options_.confirmation);
@@ -207,6 +220,15 @@ class AssociationPass {
       out.landmarks.push_back(landmarks_[i]);
     }
     out.association = association_;
+    if (moving_ > 0) {
+      for (const std::vector<int>& step : association_) {
+        std::vector<bool>& excluded = out.excluded.emplace_back(step.size(), false);
+        for (std::size_t j = 0; j < step.size(); ++j) {
+          excluded[j] =
+              step[j] != kUnassociated && state_[static_cast<std::size_t>(step[j])].moving;
+        }
+      }
+    }
     for (auto& step : out.association) {
       for (int& a : step) {
         if (a != kUnassociated) a = index[static_cast<std::size_t>(a)];
@@ -214,6 +236,7 @@ class AssociationPass {
     }
     out.poses = poses_;
     out.born = born_;
+    out.moving = moving_;
     out.dropped = static_cast<int>(landmarks_.size() - out.landmarks.size());
     return out;
   }
@@ -221,6 +244,37 @@ class AssociationPass {
   [[nodiscard]] int collapsed() const { return collapsed_; }
 
  private:
+  /// Carries every live landmark's static-point anchor by one step's odometry.
+  void AdvanceAnchors(const OdometryIncrement& increment) {
+    for (PassLandmark& l : state_) {
+      if (l.status == LandmarkStatus::kDeleted) continue;
+      AdvanceAnchor(increment, &l.anchor);
+      AdvanceAnchor(increment, &l.last);
+    }
+  }
+
+  /// With the static-point check on, whether landmark `id`, associated with z, is deleted as a
+  /// moving object: z fails the check against the landmark's first detection but passes it
+  /// against the latest one, i.e. the detections drift away from their first one step by step,
+  /// as a moving object's do. A z that fails against both is kept (a misassociation the robust
+  /// loss and the re-association deal with, not evidence that the landmark moves).
+  bool DeletedAsMoving(int id, const Measurement& z) {
+    if (options_.static_point_chi2 <= 0.0) return false;
+    PassLandmark& l = state_[static_cast<std::size_t>(id)];
+    const Mat2& r = options_.measurement_cov;
+    const double chi2 = options_.static_point_chi2;
+    const double sd = options_.static_point_heading_std;
+    if (l.anchor.relative_cov(2, 2) > sd * sd) l.anchor = l.last;
+    if (StaticPointChi2(l.anchor, z, r) > chi2 && StaticPointChi2(l.last, z, r) <= chi2) {
+      l.status = LandmarkStatus::kDeleted;
+      l.moving = true;
+      ++moving_;
+      return true;
+    }
+    l.last = AnchorAt(z, r);
+    return false;
+  }
+
   /// Carries every landmark's Cov(m, x) from pose k-1 (`base`) to pose k = base (+) inc.delta.
   void PropagateCross(const Pose& base, const OdometryIncrement& inc) {
     if (!inc.propagated) return;
@@ -323,6 +377,7 @@ class AssociationPass {
   Mat3 px_ = Mat3::Zero();
   int born_ = 0;
   int collapsed_ = 0;
+  int moving_ = 0;                               ///< landmarks deleted by the static-point check
   std::optional<HeldMeasurementPriors> priors_;  ///< with IncrementalSettings::held_prior
 };
 

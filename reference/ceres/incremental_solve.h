@@ -70,6 +70,17 @@ struct IncrementalAssociationOptions {
   /// after each solve, and for a landmark started or refined since then as the pass propagates
   /// it (README.md, "Own association along the incremental solve"). false: C = 0.
   bool pose_landmark_cross = false;
+  /// Static-point check (static_point_check.h, README.md "Moving objects"): each detection
+  /// associated with a landmark is compared with the landmark's first detection through the
+  /// odometry between them; above this chi-square (2 dof) the landmark is deleted as a moving
+  /// object (its measurements unassociated) and the detection starts a new landmark. 0: off.
+  double static_point_chi2 = 0.0;
+  /// The first-detection anchor moves to the latest detection once the odometry since it has a
+  /// heading standard deviation above this (rad).
+  double static_point_heading_std = 0.2;
+  /// The odometry increments with the model's own floor (not the warm-start floor), one per
+  /// step, for that test; required when it is on.
+  const std::vector<OdometryIncrement>* model_increments = nullptr;
 };
 
 /// Own association: scan-to-map association, confirmation and deletion along the incremental

@@ -457,6 +457,17 @@ AssociatedMap SequentialAssociation(const datasets::Scenario& scenario,
   return associator.Finish();
 }
 
+namespace {
+
+/// Whether measurement j of step k is left out of the re-association (options.excluded).
+bool Excluded(const AssociationOptions& options, std::size_t k, std::size_t j) {
+  if (options.excluded == nullptr || k >= options.excluded->size()) return false;
+  const std::vector<bool>& step = (*options.excluded)[k];
+  return j < step.size() && step[j];
+}
+
+}  // namespace
+
 AssociatedMap Reassociate(const datasets::Scenario& scenario, const std::vector<Pose>& poses,
                           const std::vector<Landmark>& landmarks, const Association& previous,
                           const AssociationOptions& options) {
@@ -479,6 +490,7 @@ AssociatedMap Reassociate(const datasets::Scenario& scenario, const std::vector<
     const std::vector<Measurement>& zs = scenario.steps[k].data.measurements;
     std::vector<Candidate> candidates;
     for (std::size_t j = 0; j < zs.size(); ++j) {
+      if (Excluded(options, k, j)) continue;
       near.clear();
       grid.Near(models::InverseMeasurement(poses[k], zs[j]), &near);
       for (int i : near) {
@@ -500,7 +512,7 @@ AssociatedMap Reassociate(const datasets::Scenario& scenario, const std::vector<
     std::vector<int>& assigned = out.association[k];
     std::vector<Candidate> candidates;
     for (std::size_t j = 0; j < zs.size(); ++j) {
-      if (assigned[j] != kUnassociated) continue;
+      if (assigned[j] != kUnassociated || Excluded(options, k, j)) continue;
       near.clear();
       born_grid.Near(models::InverseMeasurement(poses[k], zs[j]), &near);
       for (int b : near) {
@@ -511,7 +523,7 @@ AssociatedMap Reassociate(const datasets::Scenario& scenario, const std::vector<
     }
     const std::vector<int> joined = AssignGreedy(std::move(candidates), zs.size());
     for (std::size_t j = 0; j < zs.size(); ++j) {
-      if (assigned[j] != kUnassociated) continue;
+      if (assigned[j] != kUnassociated || Excluded(options, k, j)) continue;
       int b = joined[j];
       if (b == kUnassociated) {
         b = static_cast<int>(born.size());

@@ -45,6 +45,9 @@ struct AssociationOptions {
   double min_detection_ratio = 0.3;
   models::SensorModel sensor;               ///< FOV and pD for the expected detections
   Mat2 measurement_cov = Mat2::Identity();  ///< R (normally sensor.noise_cov)
+  /// Per step and measurement, those Reassociate leaves unassociated and starts nothing from (the
+  /// detections of moving objects found by the incremental pass); null: none.
+  const std::vector<std::vector<bool>>* excluded = nullptr;
 };
 
 /// A map with its association: landmarks[i] is referenced by association entries equal to i.
@@ -55,6 +58,10 @@ struct AssociatedMap {
   int merged = 0;           ///< landmarks merged into another one
   int dropped = 0;          ///< landmarks dropped for too few observations
   int born = 0;             ///< landmarks created from unassociated measurements
+  int moving = 0;           ///< landmarks deleted as moving objects (static-point check)
+  /// Per step and measurement: a detection of a landmark deleted as a moving object (empty when
+  /// the pass does not check).
+  std::vector<std::vector<bool>> excluded;
 };
 
 /// The initial pass (stage 1), resumable: the smoother alternates AdvanceTo with a solve of the

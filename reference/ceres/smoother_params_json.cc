@@ -63,6 +63,12 @@ const params::ParameterTable<SmootherOptions>& SmootherOptionsTable() {
           "incremental_new_landmark_intensity",
           [](auto& o) -> auto& { return o.incremental_new_landmark_intensity; }, AtLeast(0.0)),
       params::NumberField<O>(
+          "incremental_static_point_chi2",
+          [](auto& o) -> auto& { return o.incremental_static_point_chi2; }, AtLeast(0.0)),
+      params::NumberField<O>(
+          "incremental_static_point_heading_std",
+          [](auto& o) -> auto& { return o.incremental_static_point_heading_std; }, Above(0.0)),
+      params::NumberField<O>(
           "known_outlier_chi2", [](auto& o) -> auto& { return o.known_outlier_chi2; },
           AtLeast(0.0)),
       params::IntField<O>(

@@ -59,7 +59,8 @@ TEST(SmootherParamsJson, WritesEveryOptionWithItsType) {
       "incremental_held_prior": true, "incremental_marginals_without_collapsed": true,
       "incremental_new_landmark_intensity": 0.0, "incremental_pose_landmark_cross": false,
       "incremental_skip_ambiguous": false,
-      "incremental_squared_marginals": false,
+      "incremental_squared_marginals": false, "incremental_static_point_chi2": 0.0,
+      "incremental_static_point_heading_std": 0.2,
       "initial_pass_solve_steps": 200, "initialisation": "batch",
       "intermediate_function_tolerance": 1e-06, "known_outlier_chi2": 1000.0,
       "linear_solver": "sparse_normal_cholesky", "max_iterations": 100,
@@ -86,6 +87,9 @@ TEST(SmootherParamsJson, RejectsBadOverridesAndLeavesTheOptionsUnchanged) {
   ExpectRejected(R"({"incremental_new_landmark_intensity": -0.5})",
                  "incremental_new_landmark_intensity");
   ExpectRejected(R"({"incremental_pose_landmark_cross": 1})", "incremental_pose_landmark_cross");
+  ExpectRejected(R"({"incremental_static_point_chi2": -1})", "incremental_static_point_chi2");
+  ExpectRejected(R"({"incremental_static_point_heading_std": 0})",
+                 "incremental_static_point_heading_std");
   ExpectRejected(R"({"max_iterations": 50, "gate": 3})",
                  "unknown parameter 'gate' (known: association, initialisation, ");
   ExpectRejected(R"({"association": "unknown"})",

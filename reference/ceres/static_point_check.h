@@ -1,0 +1,42 @@
+// Whether a landmark's detections are those of one static point (README.md, "Moving objects").
+//
+// A landmark is anchored at its first detection z_a: its inverse-model point q_a = g(0, z_a) in
+// the frame of that detection's pose, with covariance G R G^T. The pose of every later step is
+// then carried in that frame by the odometry alone, T_k = d_{a+1} (+) ... (+) d_k, with the
+// propagated covariance P_k (pose_covariance_propagation.h; the odometry model's own floor). A
+// later detection z_k of a static landmark gives the same point, q_k = g(T_k, z_k), up to
+//   C = G_k R G_k^T + J_k P_k J_k^T + G R G^T,  J_k = d g / d T_k,
+// so d = q_k - q_a has d^T C^-1 d ~ chi-square(2). A detection of a moving object does not: an
+// object that moves while the vehicle stands still implies a rotation or translation of the
+// vehicle that the odometry does not allow, which a joint solve would otherwise impose on the
+// trajectory. The test is independent of the solve (it uses only the odometry between the two
+// detections and the two measurements), so a solve that has already bent the trajectory to hold
+// the object still cannot hide it.
+#pragma once
+
+#include "reference/ceres/odometry_increment.h"
+#include "src/core/types.h"
+
+namespace phdslam::reference {
+
+/// d m / d x of the inverse model m = g(x, z).
+Eigen::Matrix<double, 2, 3> InverseModelPoseJacobian(const Pose& x, const Measurement& z);
+
+/// A landmark's anchor: its first detection's point and the odometry since.
+struct StaticPointAnchor {
+  Landmark point = Landmark::Zero();  ///< g(0, z_a), frame of the first detection's pose
+  Mat2 point_cov = Mat2::Zero();      ///< G R G^T at z_a
+  Pose relative = Pose::Zero();       ///< the current pose in that frame, by odometry
+  Mat3 relative_cov = Mat3::Zero();   ///< its covariance (the odometry's alone)
+};
+
+/// The anchor of a landmark first detected as z (noise covariance r) at the current pose.
+StaticPointAnchor AnchorAt(const Measurement& z, const Mat2& r);
+
+/// Carries the anchor's current pose by one step's odometry (kept symmetric).
+void AdvanceAnchor(const OdometryIncrement& increment, StaticPointAnchor* anchor);
+
+/// d^T C^-1 d of a detection z at the anchor's current pose against the anchored point.
+double StaticPointChi2(const StaticPointAnchor& anchor, const Measurement& z, const Mat2& r);
+
+}  // namespace phdslam::reference

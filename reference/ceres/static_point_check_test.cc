@@ -1,0 +1,157 @@
+#include "reference/ceres/static_point_check.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "reference/ceres/batch_smoother.h"
+#include "reference/ceres/test_scenario.h"
+#include "src/models/range_bearing_model.h"
+
+namespace phdslam::reference {
+namespace {
+
+const Mat2 kR = Vec2(0.01, 1e-4).asDiagonal();  // range sigma 0.1 m, bearing sigma 0.01 rad
+
+OdometryIncrement Increment(const Pose& delta, const Vec3& std) {
+  OdometryIncrement inc;
+  inc.propagated = true;
+  inc.delta = delta;
+  inc.covariance = std.cwiseAbs2().asDiagonal();
+  return inc;
+}
+
+TEST(StaticPointChi2, AStaticPointSeenAfterExactOdometryAgreesWithItsFirstDetection) {
+  const Pose x0(1.0, 2.0, 0.3);
+  const Landmark m(4.0, 5.0);
+  StaticPointAnchor anchor = AnchorAt(models::PredictMeasurement(x0, m), kR);
+  Pose x = x0;
+  for (int k = 0; k < 5; ++k) {
+    const OdometryIncrement inc = Increment(Pose(0.4, 0.05, 0.1), Vec3(0.01, 0.01, 0.01));
+    AdvanceAnchor(inc, &anchor);
+    x = ComposeRelative(x, inc.delta);
+  }
+  EXPECT_LT(StaticPointChi2(anchor, models::PredictMeasurement(x, m), kR), 1e-12);
+  // The odometry's uncertainty has entered the anchor's pose.
+  EXPECT_GT(anchor.relative_cov(2, 2), 4e-4);
+}
+
+TEST(StaticPointChi2, APointThatMovesWhileTheVehicleStandsStillFails) {
+  const Pose x(0.0, 0.0, 0.0);
+  StaticPointAnchor anchor = AnchorAt(models::PredictMeasurement(x, Landmark(3.0, 0.0)), kR);
+  // Ten steps standing still, the heading known to 0.01 rad per step (0.032 rad after ten).
+  for (int k = 0; k < 10; ++k) {
+    AdvanceAnchor(Increment(Pose::Zero(), Vec3(0.005, 0.005, 0.01)), &anchor);
+  }
+  // 0.5 m sideways at 3 m is 0.17 rad: five times what the odometry allows.
+  EXPECT_GT(StaticPointChi2(anchor, models::PredictMeasurement(x, Landmark(3.0, 0.5)), kR), 13.8);
+  // 5 cm sideways is within it.
+  EXPECT_LT(StaticPointChi2(anchor, models::PredictMeasurement(x, Landmark(3.0, 0.05)), kR), 13.8);
+}
+
+constexpr int kStaticSteps = 5;
+
+/// A vehicle standing still for `steps` 1 s steps, facing +x, that sees a static landmark at
+/// (4, 1) in the first and last kStaticSteps steps and in between only a point moving sideways
+/// across its view at 3 m (5 cm per step), each detected at every step without noise (as a
+/// robot that sees only another robot pass between two sightings of the map). The odometry is
+/// exact (zero controls) with a heading noise of 0.01 rad per step in the model.
+datasets::Scenario StandingVehicleWithAMovingPoint(int steps) {
+  datasets::Scenario s;
+  s.name = "standing-vehicle";
+  s.motion = datasets::MotionKind::kVelocity;
+  s.control_noise_cov = Vec2(1e-4, 1e-4).asDiagonal();
+  s.sensor.fov_range = 10.0;
+  s.sensor.fov_half_angle = 1.2;
+  s.sensor.noise_cov = kR;
+  s.sensor.pd_max = 0.95;
+  s.sensor.clutter_rate = 0.0;
+  s.initial_pose = Pose::Zero();
+  s.truth.landmarks = {Landmark(4.0, 1.0)};
+  for (int k = 0; k < steps; ++k) {
+    datasets::ScenarioStep step;
+    if (k == 0) {
+      step.data.times = {0.0};
+    } else {
+      step.data.times = {k - 1.0, static_cast<double>(k)};
+      step.data.controls = {Control(0.0, 0.0)};
+    }
+    s.truth.poses.push_back(Pose::Zero());
+    if (k < kStaticSteps || k >= steps - kStaticSteps) {
+      step.data.measurements.push_back(
+          models::PredictMeasurement(Pose::Zero(), Landmark(4.0, 1.0)));
+      step.origin.push_back(0);
+    } else {
+      const Landmark moving(3.0, -1.0 + 0.05 * (k - kStaticSteps));
+      step.data.measurements.push_back(models::PredictMeasurement(Pose::Zero(), moving));
+      step.origin.push_back(datasets::kClutter);
+    }
+    s.steps.push_back(std::move(step));
+  }
+  return s;
+}
+
+/// The largest position (m) or heading (rad) error of the estimated poses: the vehicle stands
+/// at the origin facing +x throughout.
+double LargestPoseError(const datasets::BatchResult& r) {
+  double e = 0.0;
+  for (const Pose& x : r.poses) e = std::max({e, x.head<2>().norm(), std::abs(x(2))});
+  return e;
+}
+
+SmootherOptions OwnIncrementalAssociation(double static_point_chi2) {
+  SmootherOptions o;
+  o.association = AssociationMode::kUnknown;
+  o.initialisation = SmootherInitialisation::kIncremental;
+  o.incremental_chunk_steps = 5;
+  o.incremental_static_point_chi2 = static_point_chi2;
+  o.compute_covariances = false;
+  // The static landmark is out of sight (occluded) for 40 of the 50 steps.
+  o.min_detection_ratio = 0.1;
+  return o;
+}
+
+TEST(StaticPointCheck, AMovingPointDetectedRepeatedlyYieldsNoLandmarkAndAStaticOneDoes) {
+  const datasets::Scenario s = StandingVehicleWithAMovingPoint(50);
+  BatchSmoother checked(OwnIncrementalAssociation(13.8));
+  const datasets::BatchResult r = checked.Solve(s);
+  EXPECT_GT(checked.report().moving_landmarks, 0);
+  ASSERT_EQ(r.map.means.size(), 1u);
+  EXPECT_LT((r.map.means[0] - Landmark(4.0, 1.0)).norm(), 0.05);
+  EXPECT_LT(LargestPoseError(r), 0.05);
+  // Without the check the moving point's detections are mapped: the vehicle is turned to hold the
+  // point still, and the static landmark is pulled away from its place.
+  BatchSmoother unchecked(OwnIncrementalAssociation(0.0));
+  const datasets::BatchResult u = unchecked.Solve(s);
+  EXPECT_EQ(unchecked.report().moving_landmarks, 0);
+  EXPECT_GT(LargestPoseError(u), 0.2);
+  for (const Landmark& m : u.map.means) EXPECT_GT((m - Landmark(4.0, 1.0)).norm(), 0.3);
+}
+
+TEST(StaticPointCheck, MapsEveryLandmarkOfAStaticWorld) {
+  // The circle of 20 landmarks with clutter (5 per scan), 100 steps: every landmark is static,
+  // so the check may delete clutter-born landmarks only.
+  testing::CircleScenarioOptions c;
+  c.clutter_rate = 5.0;
+  const datasets::Scenario s = testing::MakeCircleScenario(c);
+  SmootherOptions o = OwnIncrementalAssociation(13.8);
+  o.min_detection_ratio = 0.3;
+  BatchSmoother smoother(o);
+  const datasets::BatchResult r = smoother.Solve(s);
+  int near_truth = 0;
+  for (const Landmark& m : s.truth.landmarks) {
+    for (const Landmark& e : r.map.means) near_truth += (e - m).norm() < 1.0;
+  }
+  EXPECT_EQ(near_truth, 20);
+  EXPECT_LE(r.map.means.size(), 21u);
+}
+
+TEST(StaticPointCheck, RejectsANegativeThreshold) {
+  SmootherOptions o = OwnIncrementalAssociation(-1.0);
+  EXPECT_THROW(BatchSmoother{o}, std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace phdslam::reference
