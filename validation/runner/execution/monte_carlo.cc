@@ -87,6 +87,7 @@ std::map<ParameterKey, nlohmann::json> ResolveParameters(const MonteCarloPlan& p
       request.particles = n;
       request.overrides = s.overrides;
       request.scenario_name = plan.scenario.name;
+      request.detection_probability = NominalDetectionProbability(plan.scenario.options);
       params[{s.entry.name, n}] = s.entry.resolved_parameters
                                       ? s.entry.resolved_parameters(request)
                                       : ApplyOverrides(nlohmann::json::object(), s.overrides,
@@ -336,6 +337,7 @@ MonteCarloReport RunMonteCarlo(const MonteCarloPlan& plan, const MonteCarloSetti
       request.context = &context;
       request.steps = scenario.steps.size();
       request.scenario_name = plan.scenario.name;
+      request.detection_probability = NominalDetectionProbability(plan.scenario.options);
       request.overrides = selection.overrides;
       const RunRecord record = RunEstimator(
           selection.entry, request, scenario, [&](std::size_t n) { progress.StepsDone(n); },

@@ -12,6 +12,7 @@
 #include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -39,6 +40,9 @@ struct EstimatorRequest {
   /// Number of filter steps of the run's scenario; 0 while parameters are resolved (estimators
   /// whose parameters are bounded by the run's length check them when they are built).
   std::size_t steps = 0;
+  /// The scenario's nominal detection probability (NominalDetectionProbability of its resolved
+  /// options); scenario defaults derive from it (scenario_defaults.h). Unset: none derived.
+  std::optional<double> detection_probability = std::nullopt;
 };
 
 using OnlineFactory =
@@ -124,7 +128,9 @@ template <class Params>
 Params ResolveParameters(const EstimatorRequest& request,
                          const params::ParameterTable<Params>& table, Params defaults) {
   try {
-    table.Apply(ScenarioParameterDefaults(request.scenario_name, request.name), defaults);
+    table.Apply(ScenarioParameterDefaults(request.scenario_name, request.name,
+                                          request.detection_probability),
+                defaults);
     table.Apply(request.overrides, defaults);
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument("estimator '" + request.name + "': " + e.what());

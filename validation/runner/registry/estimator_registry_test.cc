@@ -2,12 +2,14 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <stdexcept>
 #include <string>
 #include <utility>
 
 #include "datasets/scenario_generator.h"
 #include "src/core/random.h"
+#include "validation/runner/registry/scenario_defaults.h"
 
 namespace phdslam::validation {
 namespace {
@@ -106,6 +108,61 @@ TEST(PhdSlamEntries, VictoriaParkResamplingThresholdDependsOnTheVariant) {
   request.scenario_name = "paper-synthetic";
   request.name = "phd1";
   EXPECT_EQ(FindEstimator("phd1").resolved_parameters(request).at("ess_threshold"), 0.2);
+}
+
+TEST(LabelledFilterSurvival, KeepsThePapersRatioOfDeathToMissedDetection) {
+  // (1 - p_S) / (1 - pD) = 0.05 / 0.3 at every pD.
+  EXPECT_NEAR(SurvivalProbabilityForDetection(0.95), 1.0 - 0.05 / 0.3 * 0.05, 1e-15);
+  EXPECT_NEAR(SurvivalProbabilityForDetection(0.4), 1.0 - 0.05 / 0.3 * 0.6, 1e-15);
+  EXPECT_EQ(SurvivalProbabilityForDetection(0.7), 0.95);  // the paper's point, exactly
+  EXPECT_EQ(SurvivalProbabilityForDetection(1.0), 1.0);   // never missed: no death term
+  for (const double bad : {0.0, -0.1, 1.01, std::nan("")}) {
+    EXPECT_THROW(SurvivalProbabilityForDetection(bad), std::invalid_argument) << bad;
+  }
+}
+
+TEST(LabelledFilterSurvival, NominalDetectionProbabilityOfResolvedScenarioOptions) {
+  EXPECT_EQ(NominalDetectionProbability({{"detection_probability", 0.95}, {"steps", 10}}), 0.95);
+  // A range-dependent pD (Victoria Park): the nominal value, not the maximum.
+  EXPECT_EQ(NominalDetectionProbability(
+                {{"detection_probability_max", 0.8}, {"detection_probability_nominal", 0.6}}),
+            0.6);
+  EXPECT_FALSE(NominalDetectionProbability({{"steps", 10}}).has_value());
+}
+
+TEST(LabelledFilterSurvival, FollowsTheScenarioDetectionProbabilityUnlessGivenOrGlmbSim) {
+  EstimatorRequest request;
+  request.particles = 10;
+  const auto survival = [&](const std::string& name) {
+    request.name = name;
+    return FindEstimator(name)
+        .resolved_parameters(request)
+        .at("survival_probability")
+        .get<double>();
+  };
+  request.scenario_name = "paper-synthetic";
+  request.detection_probability = 0.95;
+  for (const char* name : {"glmb2", "glmb1", "lmb"}) {
+    EXPECT_NEAR(survival(name), 1.0 - 0.05 / 0.3 * 0.05, 1e-15) << name;
+  }
+  // The delta-GLMB paper's simulation keeps the paper's 0.95 whatever its pD.
+  request.scenario_name = "glmb-sim";
+  for (const char* name : {"glmb2", "glmb1", "lmb"}) {
+    EXPECT_EQ(survival(name), 0.95) << name;
+  }
+  // An explicit value always wins.
+  request.scenario_name = "paper-synthetic";
+  request.overrides = {{"survival_probability", 0.97}};
+  EXPECT_EQ(survival("glmb2"), 0.97);
+  // No known pD: the estimator's own default.
+  request.overrides = nlohmann::json::object();
+  request.detection_probability.reset();
+  EXPECT_EQ(survival("glmb2"), 0.95);
+  // Estimators without a survival probability are unchanged by the scenario's pD.
+  request.name = "phd3";
+  const nlohmann::json without = FindEstimator("phd3").resolved_parameters(request);
+  request.detection_probability = 0.95;
+  EXPECT_EQ(FindEstimator("phd3").resolved_parameters(request), without);
 }
 
 TEST(RbPhdEntry, IsPhd1WithTheSingleFeatureWeight) {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -19,7 +20,24 @@ struct ScenarioDefaultsRow {
 /// Every row, in the order they are applied.
 const std::vector<ScenarioDefaultsRow>& ScenarioDefaultsTable();
 
-/// The merged overrides of every row for `scenario` and `estimator` (an empty object if none).
-nlohmann::json ScenarioParameterDefaults(const std::string& scenario, const std::string& estimator);
+/// The labelled filters' survival probability p_S for a scenario whose detection probability is
+/// `detection_probability` (in (0, 1]; else std::invalid_argument): the delta-GLMB paper's ratio
+/// of death to missed detection, (1 - p_S) / (1 - pD) = 0.05 / 0.3 (its p_S 0.95 at its pD 0.7),
+/// kept at every pD: p_S = 0.95 + (pD - 0.7) / 6, so pD 0.95 gives 0.991666..., pD 0.7 exactly
+/// 0.95 and pD 1 exactly 1 (a landmark in view that goes undetected then has no existence left,
+/// so a death term adds nothing). docs/algorithms/glmb-slam.md section 2.2.
+double SurvivalProbabilityForDetection(double detection_probability);
+
+/// The scenario's nominal detection probability from its resolved options (ScenarioSource::
+/// options): `detection_probability_nominal` when the scenario has one (a range-dependent pD,
+/// such as Victoria Park's), else `detection_probability`; nullopt when it has neither.
+std::optional<double> NominalDetectionProbability(const nlohmann::json& resolved_options);
+
+/// The merged overrides for `scenario` and `estimator` (an empty object if none): first the
+/// defaults derived from the scenario's nominal detection probability when it is known (the
+/// labelled filters' survival_probability, SurvivalProbabilityForDetection), then every row of
+/// ScenarioDefaultsTable() in order, so a row for the scenario overrides a derived value.
+nlohmann::json ScenarioParameterDefaults(const std::string& scenario, const std::string& estimator,
+                                         std::optional<double> detection_probability = {});
 
 }  // namespace phdslam::validation
