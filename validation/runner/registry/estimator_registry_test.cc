@@ -115,7 +115,10 @@ TEST(LabelledFilterSurvival, KeepsThePapersRatioOfDeathToMissedDetection) {
   EXPECT_NEAR(SurvivalProbabilityForDetection(0.95), 1.0 - 0.05 / 0.3 * 0.05, 1e-15);
   EXPECT_NEAR(SurvivalProbabilityForDetection(0.4), 1.0 - 0.05 / 0.3 * 0.6, 1e-15);
   EXPECT_EQ(SurvivalProbabilityForDetection(0.7), 0.95);  // the paper's point, exactly
-  EXPECT_EQ(SurvivalProbabilityForDetection(1.0), 1.0);   // never missed: no death term
+  EXPECT_NEAR(SurvivalProbabilityForDetection(0.98), 1.0 - 0.05 / 0.3 * 0.02, 1e-15);
+  // Near pD = 1 the death hypothesis keeps a weight of at least 0.002.
+  EXPECT_EQ(SurvivalProbabilityForDetection(0.99), 0.998);
+  EXPECT_EQ(SurvivalProbabilityForDetection(1.0), 0.998);
   for (const double bad : {0.0, -0.1, 1.01, std::nan("")}) {
     EXPECT_THROW(SurvivalProbabilityForDetection(bad), std::invalid_argument) << bad;
   }

@@ -44,6 +44,12 @@ namespace {
 // The delta-GLMB paper's survival and detection probabilities (its simulation).
 constexpr double kPaperSurvivalProbability = 0.95;
 constexpr double kPaperDetectionProbability = 0.7;
+// The largest derived p_S. At pD near 1 the ratio would give p_S near 1, and at p_S = pD = 1 an
+// in-view landmark with no measurement (at the edge of the field of view, or gated out by a pose
+// error) has neither a "missed" nor a "died" hypothesis: the update has no feasible hypothesis
+// at all. 1 - 0.998 keeps the death hypothesis; 0.998 is the largest value of the measured sweep
+// (validation/REPRODUCTION.md, "The labelled filters' survival probability").
+constexpr double kMaxDerivedSurvivalProbability = 0.998;
 
 bool IsLabelledFilter(const std::string& estimator) {
   return estimator == "glmb2" || estimator == "glmb1" || estimator == "lmb";
@@ -58,11 +64,10 @@ double SurvivalProbabilityForDetection(double detection_probability) {
   }
   constexpr double kDeathPerMiss =
       (1.0 - kPaperSurvivalProbability) / (1.0 - kPaperDetectionProbability);
-  // Written around the paper's point so that pD 0.7 gives 0.95 exactly; rounding may put pD 1
-  // a unit in the last place above 1.
+  // Written around the paper's point so that pD 0.7 gives 0.95 exactly.
   const double survival = kPaperSurvivalProbability +
                           kDeathPerMiss * (detection_probability - kPaperDetectionProbability);
-  return std::min(survival, 1.0);
+  return std::min(survival, kMaxDerivedSurvivalProbability);
 }
 
 std::optional<double> NominalDetectionProbability(const nlohmann::json& resolved_options) {

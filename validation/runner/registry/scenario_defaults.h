@@ -23,9 +23,9 @@ const std::vector<ScenarioDefaultsRow>& ScenarioDefaultsTable();
 /// The labelled filters' survival probability p_S for a scenario whose detection probability is
 /// `detection_probability` (in (0, 1]; else std::invalid_argument): the delta-GLMB paper's ratio
 /// of death to missed detection, (1 - p_S) / (1 - pD) = 0.05 / 0.3 (its p_S 0.95 at its pD 0.7),
-/// kept at every pD: p_S = 0.95 + (pD - 0.7) / 6, so pD 0.95 gives 0.991666..., pD 0.7 exactly
-/// 0.95 and pD 1 exactly 1 (a landmark in view that goes undetected then has no existence left,
-/// so a death term adds nothing). docs/algorithms/glmb-slam.md section 2.2.
+/// kept at every pD: p_S = min(0.95 + (pD - 0.7) / 6, 0.998), so pD 0.95 gives 0.991666...,
+/// pD 0.7 exactly 0.95, and pD above 0.988 (pD 1 included) 0.998, which keeps a hypothesis in
+/// which an unmeasured landmark in view died. docs/algorithms/glmb-slam.md section 2.2.
 double SurvivalProbabilityForDetection(double detection_probability);
 
 /// The scenario's nominal detection probability from its resolved options (ScenarioSource::
