@@ -133,7 +133,7 @@ TEST(LabelledFilterSurvival, NominalDetectionProbabilityOfResolvedScenarioOption
   EXPECT_FALSE(NominalDetectionProbability({{"steps", 10}}).has_value());
 }
 
-TEST(LabelledFilterSurvival, FollowsTheScenarioDetectionProbabilityUnlessGivenOrGlmbSim) {
+TEST(LabelledFilterSurvival, FollowsTheScenarioDetectionProbabilityUnlessGivenOrSetPerScenario) {
   EstimatorRequest request;
   request.particles = 10;
   const auto survival = [&](const std::string& name) {
@@ -153,8 +153,17 @@ TEST(LabelledFilterSurvival, FollowsTheScenarioDetectionProbabilityUnlessGivenOr
   for (const char* name : {"glmb2", "glmb1", "lmb"}) {
     EXPECT_EQ(survival(name), 0.95) << name;
   }
-  // An explicit value always wins.
+  // Victoria Park's range-dependent pD: the measured 0.998, not the rule's 0.95 at its nominal 0.7.
+  request.scenario_name = "victoria-park";
+  request.detection_probability = 0.7;
+  for (const char* name : {"glmb2", "glmb1", "lmb"}) {
+    EXPECT_EQ(survival(name), 0.998) << name;
+  }
+  // An explicit value always wins, on Victoria Park as elsewhere.
+  request.overrides = {{"survival_probability", 0.95}};
+  EXPECT_EQ(survival("lmb"), 0.95);
   request.scenario_name = "paper-synthetic";
+  request.detection_probability = 0.95;
   request.overrides = {{"survival_probability", 0.97}};
   EXPECT_EQ(survival("glmb2"), 0.97);
   // No known pD: the estimator's own default.
