@@ -1,12 +1,16 @@
 // Shared test helpers: every analytic Jacobian in phdslam is checked against central finite
-// differences with ExpectJacobianNear, and every covariance with ExpectSymmetricPositiveDefinite.
+// differences with ExpectJacobianNear, and every covariance with ExpectSymmetricPositiveDefinite
+// (src/testing/positive_definite_check.h).
 #pragma once
 
 #include <gtest/gtest.h>
 
 #include <Eigen/Core>
-#include <Eigen/Eigenvalues>
+#include <cmath>
 #include <functional>
+#include <initializer_list>
+
+#include "src/testing/positive_definite_check.h"
 
 namespace phdslam::testing {
 
@@ -47,14 +51,6 @@ void ExpectJacobianNear(
           << numeric;
     }
   }
-}
-
-/// Expects P to be symmetric (to rounding) with strictly positive eigenvalues.
-template <typename Derived>
-void ExpectSymmetricPositiveDefinite(const Eigen::MatrixBase<Derived>& p, double sym_tol = 1e-12) {
-  EXPECT_LE((p - p.transpose()).cwiseAbs().maxCoeff(), sym_tol * (1.0 + p.cwiseAbs().maxCoeff()));
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(p.eval());
-  EXPECT_GT(es.eigenvalues().minCoeff(), 0.0) << "matrix:\n" << p;
 }
 
 }  // namespace phdslam::testing
