@@ -180,6 +180,13 @@ void SmootherOptions::Validate() const {
           "incremental_static_point_chi2: expected >= 0 (0: off)");
   require(incremental_static_point_heading_std > 0.0,
           "incremental_static_point_heading_std: expected > 0");
+  require(incremental_relocalisation_std >= 0.0,
+          "incremental_relocalisation_std: expected >= 0 (0: off)");
+  require(incremental_relocalisation_scans >= 2, "incremental_relocalisation_scans: expected >= 2");
+  require(incremental_relocalisation_inlier_distance > 0.0,
+          "incremental_relocalisation_inlier_distance: expected > 0");
+  require(incremental_relocalisation_margin >= 1,
+          "incremental_relocalisation_margin: expected >= 1");
   require(min_observations >= 1, "min_observations: expected >= 1");
   require(merge_position_std >= 0.0, "merge_position_std: expected >= 0");
   require(min_detection_ratio >= 0.0 && min_detection_ratio <= 1.0,
@@ -365,6 +372,10 @@ datasets::BatchResult BatchSmoother::Solve(const datasets::Scenario& scenario) {
         io.static_point_chi2 = options_.incremental_static_point_chi2;
         io.static_point_heading_std = options_.incremental_static_point_heading_std;
         io.model_increments = &increments;
+        io.relocalisation_position_std = options_.incremental_relocalisation_std;
+        io.relocalisation_scans = options_.incremental_relocalisation_scans;
+        io.relocalisation.inlier_distance = options_.incremental_relocalisation_inlier_distance;
+        io.relocalisation.margin = options_.incremental_relocalisation_margin;
         AssociatedMap map =
             IncrementalAssociation(scenario, loose_odometry, robust.get(), incremental_settings, io,
                                    record, &report_.association_seconds);

@@ -90,6 +90,16 @@ struct SmootherOptions {
   /// anchor moves to the latest detection. Over long stretches of dead reckoning the carried
   /// point's first-order covariance understates its spread (README.md, "Moving objects").
   double incremental_static_point_heading_std = 0.2;
+  /// Incremental solve, own association: while the pose's marginal position standard deviation
+  /// exceeds this (m), the detections of the next incremental_relocalisation_scans scans are
+  /// matched with the map together and associated only on a unique match (README.md,
+  /// "Re-localisation after dead reckoning"); until then they are unassociated. 0: off.
+  double incremental_relocalisation_std = 0.0;
+  int incremental_relocalisation_scans = 5;  ///< scans with detections matched together (>= 2)
+  /// A detection within this of a landmark after the candidate correction is an inlier (m).
+  double incremental_relocalisation_inlier_distance = 0.5;
+  /// Inliers by which the best correction must beat every rival.
+  int incremental_relocalisation_margin = 2;
   /// Known association: a labelled measurement whose squared whitened residual (chi-square, 2
   /// dof) at the warm-started estimate exceeds this is left out of the final solves as a
   /// mislabelled detection (README.md, "Outliers in the known association"); the incremental

@@ -1,5 +1,6 @@
 #include "reference/ceres/incremental_solve.h"
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 #include <algorithm>
 #include <chrono>
@@ -120,6 +121,7 @@ class AssociationPass {
     px_ = PropagatePoseCovariance(base, increments_[k], px_);
     Symmetrize(px_);
     poses_[k] = PredictPose(scenario_, increments_, poses_, k);
+    if (Relocalising(k)) return;
     const Pose& x = poses_[k];
     std::vector<int> ids;
     std::vector<MapLandmark> view;
@@ -195,6 +197,7 @@ class AssociationPass {
                                ceres::LossFunction* loss, const IncrementalSettings& settings) {
     const Association partial = SolveAssociation(end);
     const std::size_t held = HeldBefore(settings, end);
+    next_held_ = HeldBefore(settings, std::min(scenario_.steps.size(), end + settings.chunk_steps));
     if (settings.held_prior && !priors_) priors_.emplace(scenario_, loss);
     if (priors_) priors_->FoldUntil(held, partial, poses_, landmarks_);
     FactorGraph graph(scenario_, odometry, partial, loss, &poses_, &landmarks_, held,
@@ -244,6 +247,106 @@ class AssociationPass {
   [[nodiscard]] int collapsed() const { return collapsed_; }
 
  private:
+  /// The detections of one scan as inverse-model points from its dead-reckoned pose.
+  struct BufferedScan {
+    std::size_t step = 0;
+    std::vector<Landmark> points;
+  };
+
+  /// With re-localisation on (options_.relocalisation_position_std > 0): whether step k is left
+  /// to it, i.e. the pose's marginal position standard deviation exceeds the threshold. Its
+  /// detections are then buffered, stay unassociated and start no landmark; once the last
+  /// relocalisation_scans scans with detections are buffered they are matched with the map
+  /// together (TryRelocalise), again at every further scan until a match is unique or
+  /// 10 x relocalisation_scans scans have passed (then scan-by-scan association resumes until
+  /// the threshold is crossed anew).
+  bool Relocalising(std::size_t k) {
+    const double sd = options_.relocalisation_position_std;
+    if (sd <= 0.0) return false;
+    const double variance = Eigen::SelfAdjointEigenSolver<Mat2>(px_.topLeftCorner<2, 2>())
+                                .eigenvalues()
+                                .maxCoeff();
+    if (!relocalising_) {
+      if (variance <= sd * sd) {
+        relocalisation_suspended_ = false;
+        return false;
+      }
+      if (relocalisation_suspended_) return false;
+      relocalising_ = true;
+      relocalisation_start_ = k;
+      buffer_.clear();
+      buffered_scans_ = 0;
+    }
+    const std::vector<Measurement>& zs = scenario_.steps[k].data.measurements;
+    if (zs.empty()) return true;
+    BufferedScan& scan = buffer_.emplace_back();
+    scan.step = k;
+    for (const Measurement& z : zs) scan.points.push_back(models::InverseMeasurement(poses_[k], z));
+    ++buffered_scans_;
+    const auto n = static_cast<std::size_t>(options_.relocalisation_scans);
+    if (buffer_.size() > n) buffer_.erase(buffer_.begin());
+    if (buffer_.size() == n) TryRelocalise(k, variance);
+    if (relocalising_ && buffered_scans_ >= 10 * options_.relocalisation_scans) {
+      relocalising_ = false;
+      relocalisation_suspended_ = true;
+    }
+    return true;
+  }
+
+  /// Matches the buffered detections with the confirmed landmarks within reach of the newest
+  /// pose k; on a unique match associates them, corrects the poses since the threshold was
+  /// crossed (the free ones: the full correction from the first buffered scan on, a growing
+  /// fraction of it before) and leaves the re-localisation mode with the pose covariance the
+  /// match supports (position std the inlier distance, heading std that over the inliers' span).
+  void TryRelocalise(std::size_t k, double position_variance) {
+    std::vector<int> ids;
+    std::vector<Landmark> map;
+    const double limit = options_.gate.max_landmark_distance;
+    const double reach = limit + 3.0 * std::sqrt(position_variance);
+    for (std::size_t i = 0; i < landmarks_.size(); ++i) {
+      if (state_[i].status != LandmarkStatus::kConfirmed) continue;
+      if (limit > 0.0 && (landmarks_[i] - poses_[k].head<2>()).norm() > reach) continue;
+      ids.push_back(static_cast<int>(i));
+      map.push_back(landmarks_[i]);
+    }
+    std::vector<Landmark> points;
+    for (const BufferedScan& scan : buffer_) {
+      points.insert(points.end(), scan.points.begin(), scan.points.end());
+    }
+    const RelocalisationMatch match =
+        MatchPointsToMap(points, map, poses_[k], px_, options_.relocalisation);
+    if (!match.found) return;
+    const std::size_t first = buffer_.front().step;
+    const std::size_t start = std::min(first, std::max(relocalisation_start_, next_held_));
+    for (std::size_t s = start; s <= k; ++s) {
+      RigidCorrection c = match.correction;
+      if (s < first) {
+        const double f = static_cast<double>(s - start + 1) / static_cast<double>(first - start + 1);
+        c.rotation *= f;
+        c.translation *= f;
+      }
+      poses_[s] = ApplyCorrection(c, poses_[s]);
+    }
+    std::size_t n = 0;
+    for (const BufferedScan& scan : buffer_) {
+      for (std::size_t j = 0; j < scan.points.size(); ++j, ++n) {
+        const int m = match.landmark[n];
+        if (m == kUnassociated) continue;
+        const int id = ids[static_cast<std::size_t>(m)];
+        association_[scan.step][j] = id;
+        ++state_[static_cast<std::size_t>(id)].support.detections;
+      }
+    }
+    const double d = options_.relocalisation.inlier_distance;
+    const double heading = d / std::max(match.baseline, d);
+    px_ = Vec3(d * d, d * d, heading * heading).asDiagonal();
+    if (options_.pose_landmark_cross) {
+      for (PassLandmark& l : state_) l.cross = Mat23::Zero();
+    }
+    relocalising_ = false;
+    buffer_.clear();
+  }
+
   /// Carries every live landmark's static-point anchor by one step's odometry.
   void AdvanceAnchors(const OdometryIncrement& increment) {
     for (PassLandmark& l : state_) {
@@ -379,6 +482,15 @@ class AssociationPass {
   int collapsed_ = 0;
   int moving_ = 0;                               ///< landmarks deleted by the static-point check
   std::optional<HeldMeasurementPriors> priors_;  ///< with IncrementalSettings::held_prior
+  std::size_t next_held_ = 0;  ///< poses before it are held in the next chunk solve
+  // Re-localisation (Relocalising): whether it is under way, the step it began at, the scans
+  // buffered, how many since it began, and whether it gave up (until the threshold is crossed
+  // again downwards).
+  bool relocalising_ = false;
+  std::size_t relocalisation_start_ = 0;
+  std::vector<BufferedScan> buffer_;
+  int buffered_scans_ = 0;
+  bool relocalisation_suspended_ = false;
 };
 
 }  // namespace
@@ -426,6 +538,10 @@ AssociatedMap IncrementalAssociation(const datasets::Scenario& scenario,
                                      const SolveObserver& observer, double* association_seconds,
                                      int* collapsed) {
   Validate(settings);
+  if (options.relocalisation_position_std > 0.0 && options.relocalisation_scans < 2) {
+    throw std::invalid_argument(
+        "IncrementalAssociationOptions.relocalisation_scans: expected >= 2");
+  }
   AssociationPass pass(scenario, odometry, options);
   const std::size_t steps = scenario.steps.size();
   for (std::size_t done = 0; done < steps;) {

@@ -19,6 +19,7 @@
 #include "datasets/scenario.h"
 #include "reference/ceres/factor_graph.h"
 #include "reference/ceres/landmark_association.h"
+#include "reference/ceres/multi_scan_relocalisation.h"
 #include "reference/ceres/scan_association.h"
 
 namespace phdslam::reference {
@@ -81,6 +82,17 @@ struct IncrementalAssociationOptions {
   /// The odometry increments with the model's own floor (not the warm-start floor), one per
   /// step, for that test; required when it is on.
   const std::vector<OdometryIncrement>* model_increments = nullptr;
+  /// Re-localisation with evidence (multi_scan_relocalisation.h, README.md "Re-localisation
+  /// after dead reckoning"): while the pose's marginal position standard deviation (the larger
+  /// axis) exceeds this (m), scans are not associated one by one; the detections of the last
+  /// relocalisation_scans scans with detections are matched with the confirmed landmarks
+  /// together, and only a unique match associates them (and corrects the poses since the
+  /// threshold was crossed). Until then they stay unassociated and start no landmark. After
+  /// 10 x relocalisation_scans scans without a match the pass associates scan by scan again.
+  /// 0: off.
+  double relocalisation_position_std = 0.0;
+  int relocalisation_scans = 5;  ///< scans with detections matched together (>= 2)
+  RelocalisationOptions relocalisation;
 };
 
 /// Own association: scan-to-map association, confirmation and deletion along the incremental

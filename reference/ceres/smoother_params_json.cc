@@ -69,6 +69,19 @@ const params::ParameterTable<SmootherOptions>& SmootherOptionsTable() {
           "incremental_static_point_heading_std",
           [](auto& o) -> auto& { return o.incremental_static_point_heading_std; }, Above(0.0)),
       params::NumberField<O>(
+          "incremental_relocalisation_std",
+          [](auto& o) -> auto& { return o.incremental_relocalisation_std; }, AtLeast(0.0)),
+      params::IntField<O>(
+          "incremental_relocalisation_scans",
+          [](auto& o) -> auto& { return o.incremental_relocalisation_scans; }, AtLeast(2)),
+      params::NumberField<O>(
+          "incremental_relocalisation_inlier_distance",
+          [](auto& o) -> auto& { return o.incremental_relocalisation_inlier_distance; },
+          Above(0.0)),
+      params::IntField<O>(
+          "incremental_relocalisation_margin",
+          [](auto& o) -> auto& { return o.incremental_relocalisation_margin; }, AtLeast(1)),
+      params::NumberField<O>(
           "known_outlier_chi2", [](auto& o) -> auto& { return o.known_outlier_chi2; },
           AtLeast(0.0)),
       params::IntField<O>(
