@@ -263,9 +263,8 @@ class AssociationPass {
   bool Relocalising(std::size_t k) {
     const double sd = options_.relocalisation_position_std;
     if (sd <= 0.0) return false;
-    const double variance = Eigen::SelfAdjointEigenSolver<Mat2>(px_.topLeftCorner<2, 2>())
-                                .eigenvalues()
-                                .maxCoeff();
+    const double variance =
+        Eigen::SelfAdjointEigenSolver<Mat2>(px_.topLeftCorner<2, 2>()).eigenvalues().maxCoeff();
     if (!relocalising_) {
       if (variance <= sd * sd) {
         relocalisation_suspended_ = false;
@@ -321,7 +320,8 @@ class AssociationPass {
     for (std::size_t s = start; s <= k; ++s) {
       RigidCorrection c = match.correction;
       if (s < first) {
-        const double f = static_cast<double>(s - start + 1) / static_cast<double>(first - start + 1);
+        const double f =
+            static_cast<double>(s - start + 1) / static_cast<double>(first - start + 1);
         c.rotation *= f;
         c.translation *= f;
       }

@@ -123,7 +123,8 @@ RelocalisationMatch MatchPointsToMap(const std::vector<Landmark>& points,
   if (!(options.inlier_distance > 0.0)) {
     throw std::invalid_argument("RelocalisationOptions.inlier_distance: expected > 0");
   }
-  if (options.margin < 1) throw std::invalid_argument("RelocalisationOptions.margin: expected >= 1");
+  if (options.margin < 1)
+    throw std::invalid_argument("RelocalisationOptions.margin: expected >= 1");
   if (!(options.pose_gate_chi2 > 0.0)) {
     throw std::invalid_argument("RelocalisationOptions.pose_gate_chi2: expected > 0");
   }

@@ -28,8 +28,8 @@
 namespace phdslam::reference {
 
 struct RelocalisationOptions {
-  double inlier_distance = 0.5;  ///< a point within this of a landmark is an inlier (m)
-  int margin = 2;                ///< inliers by which the best hypothesis must beat every rival
+  double inlier_distance = 0.5;   ///< a point within this of a landmark is an inlier (m)
+  int margin = 2;                 ///< inliers by which the best hypothesis must beat every rival
   double pose_gate_chi2 = 16.27;  ///< the implied pose within this of the dead-reckoned one (3 dof)
 };
 

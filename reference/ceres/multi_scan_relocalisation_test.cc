@@ -77,7 +77,7 @@ TEST(MultiScanRelocalisation, PicksTheRightClusterWhereOneScanPicksTheWrongOne) 
   const RelocalisationMatch five =
       MatchPointsToMap(Points(5, map), map, DeadReckoned(4), WidePoseCov(), {});
   ASSERT_TRUE(five.found);
-  EXPECT_EQ(five.best_inliers, 18);  // 2 + 4 x 4 detections
+  EXPECT_EQ(five.best_inliers, 18);   // 2 + 4 x 4 detections
   EXPECT_EQ(five.rival_inliers, 10);  // A explains the repeated pair of every scan
   std::vector<int> expected{3, 4};
   for (int k = 1; k < 5; ++k) {
