@@ -121,11 +121,16 @@ class AssociationPass {
     px_ = PropagatePoseCovariance(base, increments_[k], px_);
     Symmetrize(px_);
     poses_[k] = PredictPose(scenario_, increments_, poses_, k);
-    if (Relocalising(k)) return;
+    const bool relocalising = RelocalisationUnderWay(k);
     const Pose& x = poses_[k];
     std::vector<int> ids;
     std::vector<MapLandmark> view;
     NearLandmarks(x, &ids);
+    if (relocalising) {  // the map before the mode is left to the multi-scan match
+      ids.erase(std::remove_if(ids.begin(), ids.end(),
+                               [&](int i) { return i < relocalisation_first_landmark_; }),
+                ids.end());
+    }
     view.reserve(ids.size());
     const bool with_pd = options_.gate.new_landmark_intensity > 0.0;
     for (int i : ids) {
@@ -179,6 +184,7 @@ class AssociationPass {
           options_.sensor.DetectionProbability(x, landmarks_[static_cast<std::size_t>(i)]);
       l.status = ClassifyLandmark(l.support, options_.confirmation);
     }
+    if (relocalising) BufferAndMatch(k);
   }
 
   /// The association of steps [0, end) without the deleted landmarks.
@@ -253,56 +259,55 @@ class AssociationPass {
     std::vector<Landmark> points;
   };
 
-  /// With re-localisation on (options_.relocalisation_position_std > 0): whether step k is left
-  /// to it, i.e. the pose's marginal position standard deviation exceeds the threshold. Its
-  /// detections are then buffered, stay unassociated and start no landmark; once the last
-  /// relocalisation_scans scans with detections are buffered they are matched with the map
-  /// together (TryRelocalise), again at every further scan until a match is unique or
-  /// 10 x relocalisation_scans scans have passed (then scan-by-scan association resumes until
-  /// the threshold is crossed anew).
-  bool Relocalising(std::size_t k) {
+  /// With re-localisation on (options_.relocalisation_position_std > 0): whether the pass is
+  /// in the re-localisation mode for the current step, entered when the pose's marginal
+  /// position standard deviation (larger axis) exceeds the threshold. In the mode the landmarks
+  /// mapped before it are not gated scan by scan: their association is left to the multi-scan
+  /// match (BufferAndMatch). Landmarks started in the mode are associated as usual.
+  bool RelocalisationUnderWay(std::size_t k) {
     const double sd = options_.relocalisation_position_std;
     if (sd <= 0.0) return false;
+    if (relocalising_) return true;
     const double variance =
         Eigen::SelfAdjointEigenSolver<Mat2>(px_.topLeftCorner<2, 2>()).eigenvalues().maxCoeff();
-    if (!relocalising_) {
-      if (variance <= sd * sd) {
-        relocalisation_suspended_ = false;
-        return false;
-      }
-      if (relocalisation_suspended_) return false;
-      relocalising_ = true;
-      relocalisation_start_ = k;
-      buffer_.clear();
-      buffered_scans_ = 0;
-    }
-    const std::vector<Measurement>& zs = scenario_.steps[k].data.measurements;
-    if (zs.empty()) return true;
-    BufferedScan& scan = buffer_.emplace_back();
-    scan.step = k;
-    for (const Measurement& z : zs) scan.points.push_back(models::InverseMeasurement(poses_[k], z));
-    ++buffered_scans_;
-    const auto n = static_cast<std::size_t>(options_.relocalisation_scans);
-    if (buffer_.size() > n) buffer_.erase(buffer_.begin());
-    if (buffer_.size() == n) TryRelocalise(k, variance);
-    if (relocalising_ && buffered_scans_ >= 10 * options_.relocalisation_scans) {
-      relocalising_ = false;
-      relocalisation_suspended_ = true;
-    }
+    if (variance <= sd * sd) return false;
+    relocalising_ = true;
+    relocalisation_start_ = k;
+    relocalisation_first_landmark_ = static_cast<int>(landmarks_.size());
+    buffer_.clear();
     return true;
   }
 
-  /// Matches the buffered detections with the confirmed landmarks within reach of the newest
-  /// pose k; on a unique match associates them, corrects the poses since the threshold was
-  /// crossed (the free ones: the full correction from the first buffered scan on, a growing
-  /// fraction of it before) and leaves the re-localisation mode with the pose covariance the
-  /// match supports (position std the inlier distance, heading std that over the inliers' span).
-  void TryRelocalise(std::size_t k, double position_variance) {
+  /// Buffers step k's detections as points from its dead-reckoned pose (the last
+  /// relocalisation_scans scans with detections) and, once they are full, matches them with the
+  /// map from before the mode (TryRelocalise), again at every further scan until a match is
+  /// unique.
+  void BufferAndMatch(std::size_t k) {
+    const std::vector<Measurement>& zs = scenario_.steps[k].data.measurements;
+    if (zs.empty()) return;
+    BufferedScan& scan = buffer_.emplace_back();
+    scan.step = k;
+    for (const Measurement& z : zs) scan.points.push_back(models::InverseMeasurement(poses_[k], z));
+    const auto n = static_cast<std::size_t>(options_.relocalisation_scans);
+    if (buffer_.size() > n) buffer_.erase(buffer_.begin());
+    if (buffer_.size() == n) TryRelocalise(k);
+  }
+
+  /// Matches the buffered detections with the confirmed landmarks from before the mode within
+  /// reach of the newest pose k; on a unique match associates them (a detection associated with
+  /// a landmark started in the mode moves to the old one), corrects the poses since the mode
+  /// began (the free ones: the full correction from the first buffered scan on, a growing
+  /// fraction of it before) and the landmarks started in the mode, and leaves the mode with the
+  /// pose covariance the match supports (position std the inlier distance, heading std that over
+  /// the inliers' span).
+  void TryRelocalise(std::size_t k) {
+    const double position_variance =
+        Eigen::SelfAdjointEigenSolver<Mat2>(px_.topLeftCorner<2, 2>()).eigenvalues().maxCoeff();
     std::vector<int> ids;
     std::vector<Landmark> map;
     const double limit = options_.gate.max_landmark_distance;
     const double reach = limit + 3.0 * std::sqrt(position_variance);
-    for (std::size_t i = 0; i < landmarks_.size(); ++i) {
+    for (std::size_t i = 0; i < static_cast<std::size_t>(relocalisation_first_landmark_); ++i) {
       if (state_[i].status != LandmarkStatus::kConfirmed) continue;
       if (limit > 0.0 && (landmarks_[i] - poses_[k].head<2>()).norm() > reach) continue;
       ids.push_back(static_cast<int>(i));
@@ -327,12 +332,21 @@ class AssociationPass {
       }
       poses_[s] = ApplyCorrection(c, poses_[s]);
     }
+    for (std::size_t i = static_cast<std::size_t>(relocalisation_first_landmark_);
+         i < landmarks_.size(); ++i) {
+      landmarks_[i] =
+          ApplyCorrection(match.correction, Pose(landmarks_[i].x(), landmarks_[i].y(), 0.0))
+              .head<2>();
+    }
     std::size_t n = 0;
     for (const BufferedScan& scan : buffer_) {
       for (std::size_t j = 0; j < scan.points.size(); ++j, ++n) {
         const int m = match.landmark[n];
         if (m == kUnassociated) continue;
         const int id = ids[static_cast<std::size_t>(m)];
+        const int previous = association_[scan.step][j];
+        if (previous != kUnassociated)
+          --state_[static_cast<std::size_t>(previous)].support.detections;
         association_[scan.step][j] = id;
         ++state_[static_cast<std::size_t>(id)].support.detections;
       }
@@ -483,14 +497,12 @@ class AssociationPass {
   int moving_ = 0;                               ///< landmarks deleted by the static-point check
   std::optional<HeldMeasurementPriors> priors_;  ///< with IncrementalSettings::held_prior
   std::size_t next_held_ = 0;  ///< poses before it are held in the next chunk solve
-  // Re-localisation (Relocalising): whether it is under way, the step it began at, the scans
-  // buffered, how many since it began, and whether it gave up (until the threshold is crossed
-  // again downwards).
+  // Re-localisation (RelocalisationUnderWay): whether it is under way, the step it began at,
+  // the first landmark started in it, and the scans buffered.
   bool relocalising_ = false;
   std::size_t relocalisation_start_ = 0;
+  int relocalisation_first_landmark_ = 0;
   std::vector<BufferedScan> buffer_;
-  int buffered_scans_ = 0;
-  bool relocalisation_suspended_ = false;
 };
 
 }  // namespace

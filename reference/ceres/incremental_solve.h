@@ -83,13 +83,12 @@ struct IncrementalAssociationOptions {
   /// step, for that test; required when it is on.
   const std::vector<OdometryIncrement>* model_increments = nullptr;
   /// Re-localisation with evidence (multi_scan_relocalisation.h, README.md "Re-localisation
-  /// after dead reckoning"): while the pose's marginal position standard deviation (the larger
-  /// axis) exceeds this (m), scans are not associated one by one; the detections of the last
-  /// relocalisation_scans scans with detections are matched with the confirmed landmarks
-  /// together, and only a unique match associates them (and corrects the poses since the
-  /// threshold was crossed). Until then they stay unassociated and start no landmark. After
-  /// 10 x relocalisation_scans scans without a match the pass associates scan by scan again.
-  /// 0: off.
+  /// after dead reckoning"): once the pose's marginal position standard deviation (the larger
+  /// axis) exceeds this (m), the landmarks mapped so far are no longer gated scan by scan; the
+  /// detections of the last relocalisation_scans scans with detections are matched with them
+  /// together, and only a unique match associates them with those landmarks (and corrects the
+  /// poses and the landmarks started since the threshold was crossed). Meanwhile detections
+  /// are associated with, or start, new landmarks only. 0: off.
   double relocalisation_position_std = 0.0;
   int relocalisation_scans = 5;  ///< scans with detections matched together (>= 2)
   RelocalisationOptions relocalisation;
