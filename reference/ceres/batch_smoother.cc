@@ -187,6 +187,8 @@ void SmootherOptions::Validate() const {
           "incremental_relocalisation_inlier_distance: expected > 0");
   require(incremental_relocalisation_margin >= 1,
           "incremental_relocalisation_margin: expected >= 1");
+  require(incremental_relocalisation_prior_weight >= 0.0,
+          "incremental_relocalisation_prior_weight: expected >= 0");
   require(min_observations >= 1, "min_observations: expected >= 1");
   require(merge_position_std >= 0.0, "merge_position_std: expected >= 0");
   require(min_detection_ratio >= 0.0 && min_detection_ratio <= 1.0,
@@ -376,6 +378,7 @@ datasets::BatchResult BatchSmoother::Solve(const datasets::Scenario& scenario) {
         io.relocalisation_scans = options_.incremental_relocalisation_scans;
         io.relocalisation.inlier_distance = options_.incremental_relocalisation_inlier_distance;
         io.relocalisation.margin = options_.incremental_relocalisation_margin;
+        io.relocalisation.prior_weight = options_.incremental_relocalisation_prior_weight;
         AssociatedMap map =
             IncrementalAssociation(scenario, loose_odometry, robust.get(), incremental_settings, io,
                                    record, &report_.association_seconds);

@@ -100,6 +100,9 @@ struct SmootherOptions {
   double incremental_relocalisation_inlier_distance = 0.5;
   /// Inliers by which the best correction must beat every rival.
   int incremental_relocalisation_margin = 2;
+  /// A correction scores its inliers less this times half the squared Mahalanobis distance of
+  /// the pose it implies from the dead-reckoned one; 0: the inliers alone.
+  double incremental_relocalisation_prior_weight = 0.0;
   /// Known association: a labelled measurement whose squared whitened residual (chi-square, 2
   /// dof) at the warm-started estimate exceeds this is left out of the final solves as a
   /// mislabelled detection (README.md, "Outliers in the known association"); the incremental

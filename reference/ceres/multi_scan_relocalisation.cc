@@ -57,10 +57,11 @@ bool Rivals(const std::vector<int>& a, const std::vector<int>& b) {
 
 /// Whether the newest pose corrected by `c` lies within the gate of the dead-reckoned one.
 bool InPoseGate(const RigidCorrection& c, const Pose& x, const Eigen::LDLT<Mat3>& cov_ldlt,
-                double gate) {
+                double gate, double* mahalanobis2) {
   const Pose y = ApplyCorrection(c, x);
   const Vec3 d(y(0) - x(0), y(1) - x(1), WrapAngle(c.rotation));
   const double d2 = d.dot(cov_ldlt.solve(d));
+  *mahalanobis2 = d2;
   return std::isfinite(d2) && d2 < gate;
 }
 
@@ -108,6 +109,7 @@ struct Hypothesis {
   RigidCorrection correction;
   std::vector<int> assignment;
   int inliers = 0;
+  double score = 0.0;  ///< inliers - prior_weight * d2 / 2
 };
 
 }  // namespace
@@ -125,6 +127,9 @@ RelocalisationMatch MatchPointsToMap(const std::vector<Landmark>& points,
   }
   if (options.margin < 1)
     throw std::invalid_argument("RelocalisationOptions.margin: expected >= 1");
+  if (!(options.prior_weight >= 0.0)) {
+    throw std::invalid_argument("RelocalisationOptions.prior_weight: expected >= 0");
+  }
   if (!(options.pose_gate_chi2 > 0.0)) {
     throw std::invalid_argument("RelocalisationOptions.pose_gate_chi2: expected > 0");
   }
@@ -140,14 +145,16 @@ RelocalisationMatch MatchPointsToMap(const std::vector<Landmark>& points,
           if (i == k || std::abs((map[k] - map[i]).norm() - dp) >= tol) continue;
           Hypothesis h;
           h.correction = FromPairs(points[a], points[b], map[i], map[k]);
-          if (!InPoseGate(h.correction, newest, ldlt, options.pose_gate_chi2)) continue;
+          double d2 = 0.0;
+          if (!InPoseGate(h.correction, newest, ldlt, options.pose_gate_chi2, &d2)) continue;
           h.assignment = Assign(h.correction, points, map, tol, &h.inliers);
+          h.score = h.inliers - options.prior_weight * 0.5 * d2;
           auto same = std::find_if(kept.begin(), kept.end(), [&](const Hypothesis& g) {
             return !Rivals(g.assignment, h.assignment);
           });
           if (same == kept.end()) {
             kept.push_back(std::move(h));
-          } else if (h.inliers > same->inliers) {
+          } else if (h.score > same->score) {
             *same = std::move(h);
           }
         }
@@ -158,15 +165,17 @@ RelocalisationMatch MatchPointsToMap(const std::vector<Landmark>& points,
   out.landmark.assign(points.size(), kUnassociated);
   if (kept.empty()) return out;
   std::sort(kept.begin(), kept.end(),
-            [](const Hypothesis& x, const Hypothesis& y) { return x.inliers > y.inliers; });
+            [](const Hypothesis& x, const Hypothesis& y) { return x.score > y.score; });
   const Hypothesis& best = kept.front();
   out.best_inliers = best.inliers;
+  double rival_score = -1e300;
   for (std::size_t n = 1; n < kept.size(); ++n) {
-    if (Rivals(best.assignment, kept[n].assignment)) {
-      out.rival_inliers = std::max(out.rival_inliers, kept[n].inliers);
+    if (Rivals(best.assignment, kept[n].assignment) && kept[n].score > rival_score) {
+      rival_score = kept[n].score;
+      out.rival_inliers = kept[n].inliers;
     }
   }
-  if (best.inliers < 3 || best.inliers - out.rival_inliers < options.margin) return out;
+  if (best.inliers < 3 || best.score - rival_score < options.margin) return out;
   out.found = true;
   out.correction = Refine(points, map, best.assignment);
   int inliers = 0;

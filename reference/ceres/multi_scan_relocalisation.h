@@ -14,9 +14,10 @@
 //   within the pose gate of the dead-reckoned pose (chi-square, 3 dof, on its marginal
 //   covariance).
 // * Score: the points within the inlier distance of a landmark after the transform (each point
-//   to its nearest landmark), the inliers.
+//   to its nearest landmark), the inliers, less prior_weight times half the squared Mahalanobis
+//   distance of the implied pose from the dead-reckoned one (0: the inliers alone).
 // * Uniqueness: the best hypothesis needs at least three inliers (one beyond the pair that
-//   defines it) and must beat every rival by `margin` inliers; a rival assigns some point to a
+//   defines it) and must beat every rival by `margin` in score; a rival assigns some point to a
 //   landmark other than the best's. Otherwise the match is refused.
 // * The accepted transform is refined by least squares (2-D Procrustes) on its inliers.
 #pragma once
@@ -28,8 +29,11 @@
 namespace phdslam::reference {
 
 struct RelocalisationOptions {
-  double inlier_distance = 0.5;   ///< a point within this of a landmark is an inlier (m)
-  int margin = 2;                 ///< inliers by which the best hypothesis must beat every rival
+  double inlier_distance = 0.5;  ///< a point within this of a landmark is an inlier (m)
+  int margin = 2;                ///< inliers by which the best hypothesis must beat every rival
+  /// Score of a hypothesis: inliers - prior_weight * d2 / 2, d2 the Mahalanobis distance of
+  /// the pose it implies from the dead-reckoned one; 0: inliers alone.
+  double prior_weight = 0.0;
   double pose_gate_chi2 = 16.27;  ///< the implied pose within this of the dead-reckoned one (3 dof)
 };
 

@@ -82,6 +82,9 @@ const params::ParameterTable<SmootherOptions>& SmootherOptionsTable() {
           "incremental_relocalisation_margin",
           [](auto& o) -> auto& { return o.incremental_relocalisation_margin; }, AtLeast(1)),
       params::NumberField<O>(
+          "incremental_relocalisation_prior_weight",
+          [](auto& o) -> auto& { return o.incremental_relocalisation_prior_weight; }, AtLeast(0.0)),
+      params::NumberField<O>(
           "known_outlier_chi2", [](auto& o) -> auto& { return o.known_outlier_chi2; },
           AtLeast(0.0)),
       params::IntField<O>(

@@ -63,6 +63,7 @@ TEST(SmootherParamsJson, WritesEveryOptionWithItsType) {
       "incremental_static_point_heading_std": 0.2,
       "incremental_relocalisation_std": 0.0, "incremental_relocalisation_scans": 5,
       "incremental_relocalisation_inlier_distance": 0.5, "incremental_relocalisation_margin": 2,
+      "incremental_relocalisation_prior_weight": 0.0,
       "initial_pass_solve_steps": 200, "initialisation": "batch",
       "intermediate_function_tolerance": 1e-06, "known_outlier_chi2": 1000.0,
       "linear_solver": "sparse_normal_cholesky", "max_iterations": 100,
@@ -98,6 +99,8 @@ TEST(SmootherParamsJson, RejectsBadOverridesAndLeavesTheOptionsUnchanged) {
                  "incremental_relocalisation_inlier_distance");
   ExpectRejected(R"({"incremental_relocalisation_margin": 0})",
                  "incremental_relocalisation_margin");
+  ExpectRejected(R"({"incremental_relocalisation_prior_weight": -1})",
+                 "incremental_relocalisation_prior_weight");
   ExpectRejected(R"({"max_iterations": 50, "gate": 3})",
                  "unknown parameter 'gate' (known: association, initialisation, ");
   ExpectRejected(R"({"association": "unknown"})",
