@@ -51,8 +51,7 @@ struct PassLandmark {
   LandmarkStatus status = LandmarkStatus::kTentative;
   Mat23 cross = Mat23::Zero();  ///< Cov(m, x) with the pass's current pose (pose_landmark_cross)
   /// Its first and its latest detection, each with the odometry since (static_point_chi2).
-  StaticPointAnchor anchor = {};
-  StaticPointAnchor last = {};
+  StaticPointTrack static_point = {};
   bool moving = false;  ///< deleted by the static-point check
 };
 
@@ -168,8 +167,8 @@ class AssociationPass {
         landmarks_.push_back(models::InverseMeasurement(x, zs[j]));
         state_.push_back({StartCovariance(x, px_, zs[j], r), {1, 0.0}});
         if (options_.static_point_chi2 > 0.0) {
-          state_.back().anchor = AnchorAt(zs[j], r);
-          state_.back().last = state_.back().anchor;
+          state_.back().static_point.first = AnchorAt(zs[j], r);
+          state_.back().static_point.latest = state_.back().static_point.first;
         }
         if (options_.pose_landmark_cross) {
           state_.back().cross = InverseModelPoseJacobian(x, zs[j]) * px_;
@@ -246,6 +245,8 @@ class AssociationPass {
     out.poses = poses_;
     out.born = born_;
     out.moving = moving_;
+    out.relocalisations = relocalisations_;
+    out.relocalisations_abandoned = relocalisations_abandoned_;
     out.dropped = static_cast<int>(landmarks_.size() - out.landmarks.size());
     return out;
   }
@@ -319,6 +320,12 @@ class AssociationPass {
     }
     const RelocalisationMatch match =
         MatchPointsToMap(points, map, poses_[k], px_, options_.relocalisation);
+    if (!match.found && match.ambiguous && options_.relocalisation_leave_ambiguous) {
+      relocalising_ = false;  // the map admits several corrections: scan by scan again
+      buffer_.clear();
+      ++relocalisations_abandoned_;
+      return;
+    }
     if (!match.found) return;
     const std::size_t first = buffer_.front().step;
     const std::size_t start = std::min(first, std::max(relocalisation_start_, next_held_));
@@ -359,37 +366,31 @@ class AssociationPass {
     }
     relocalising_ = false;
     buffer_.clear();
+    ++relocalisations_;
   }
 
   /// Carries every live landmark's static-point anchor by one step's odometry.
   void AdvanceAnchors(const OdometryIncrement& increment) {
     for (PassLandmark& l : state_) {
       if (l.status == LandmarkStatus::kDeleted) continue;
-      AdvanceAnchor(increment, &l.anchor);
-      AdvanceAnchor(increment, &l.last);
+      AdvanceTrack(increment, &l.static_point);
     }
   }
 
   /// With the static-point check on, whether landmark `id`, associated with z, is deleted as a
-  /// moving object: z fails the check against the landmark's first detection but passes it
-  /// against the latest one, i.e. the detections drift away from their first one step by step,
-  /// as a moving object's do. A z that fails against both is kept (a misassociation the robust
-  /// loss and the re-association deal with, not evidence that the landmark moves).
+  /// moving object (MovingAfter: options_.static_point_failures detections in a row fail the
+  /// check against the landmark's first detection but pass it against the latest one, i.e. the
+  /// detections drift away from their first one step by step, as a moving object's do).
   bool DeletedAsMoving(int id, const Measurement& z) {
     if (options_.static_point_chi2 <= 0.0) return false;
     PassLandmark& l = state_[static_cast<std::size_t>(id)];
-    const Mat2& r = options_.measurement_cov;
-    const double chi2 = options_.static_point_chi2;
-    const double sd = options_.static_point_heading_std;
-    if (l.anchor.relative_cov(2, 2) > sd * sd) l.anchor = l.last;
-    if (StaticPointChi2(l.anchor, z, r) > chi2 && StaticPointChi2(l.last, z, r) <= chi2) {
-      l.status = LandmarkStatus::kDeleted;
-      l.moving = true;
-      ++moving_;
-      return true;
-    }
-    l.last = AnchorAt(z, r);
-    return false;
+    const StaticPointOptions check{options_.static_point_chi2, options_.static_point_heading_std,
+                                   options_.static_point_failures};
+    if (!MovingAfter(z, options_.measurement_cov, check, &l.static_point)) return false;
+    l.status = LandmarkStatus::kDeleted;
+    l.moving = true;
+    ++moving_;
+    return true;
   }
 
   /// Carries every landmark's Cov(m, x) from pose k-1 (`base`) to pose k = base (+) inc.delta.
@@ -503,6 +504,8 @@ class AssociationPass {
   std::size_t relocalisation_start_ = 0;
   int relocalisation_first_landmark_ = 0;
   std::vector<BufferedScan> buffer_;
+  int relocalisations_ = 0;            ///< unique matches applied
+  int relocalisations_abandoned_ = 0;  ///< modes left on an ambiguous match
 };
 
 }  // namespace

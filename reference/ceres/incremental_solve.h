@@ -79,6 +79,9 @@ struct IncrementalAssociationOptions {
   /// The first-detection anchor moves to the latest detection once the odometry since it has a
   /// heading standard deviation above this (rad).
   double static_point_heading_std = 0.2;
+  /// Consecutive detections that must fail against the first detection while agreeing with
+  /// the latest before the landmark is deleted (1: the first such detection).
+  int static_point_failures = 1;
   /// The odometry increments with the model's own floor (not the warm-start floor), one per
   /// step, for that test; required when it is on.
   const std::vector<OdometryIncrement>* model_increments = nullptr;
@@ -92,6 +95,10 @@ struct IncrementalAssociationOptions {
   double relocalisation_position_std = 0.0;
   int relocalisation_scans = 5;  ///< scans with detections matched together (>= 2)
   RelocalisationOptions relocalisation;
+  /// When the match is ambiguous (a rival within the margin of a best with three or more
+  /// inliers: the map admits several corrections), leave the mode without a correction and
+  /// gate scan by scan again. false: keep matching at every further scan.
+  bool relocalisation_leave_ambiguous = false;
 };
 
 /// Own association: scan-to-map association, confirmation and deletion along the incremental

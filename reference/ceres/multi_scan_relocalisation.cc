@@ -175,7 +175,11 @@ RelocalisationMatch MatchPointsToMap(const std::vector<Landmark>& points,
       out.rival_inliers = kept[n].inliers;
     }
   }
-  if (best.inliers < 3 || best.score - rival_score < options.margin) return out;
+  if (best.inliers < 3) return out;
+  if (best.score - rival_score < options.margin) {
+    out.ambiguous = true;
+    return out;
+  }
   out.found = true;
   out.correction = Refine(points, map, best.assignment);
   int inliers = 0;

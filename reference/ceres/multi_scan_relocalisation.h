@@ -47,6 +47,9 @@ Pose ApplyCorrection(const RigidCorrection& c, const Pose& x);
 
 struct RelocalisationMatch {
   bool found = false;
+  /// Not found because a rival explains the points (nearly) as well as the best, which has at
+  /// least three inliers: the map admits several corrections.
+  bool ambiguous = false;
   RigidCorrection correction;
   std::vector<int> landmark;  ///< per point: its map index, or kUnassociated
   int best_inliers = 0;

@@ -73,10 +73,12 @@ TEST(MultiScanRelocalisation, PicksTheRightClusterWhereOneScanPicksTheWrongOne) 
   EXPECT_EQ(one.best_inliers, 2);
   EXPECT_EQ(one.rival_inliers, 2);
   EXPECT_EQ(one.landmark, (std::vector<int>{kUnassociated, kUnassociated}));
+  EXPECT_FALSE(one.ambiguous);  // two inliers are too few to call the map ambiguous
 
   const RelocalisationMatch five =
       MatchPointsToMap(Points(5, map), map, DeadReckoned(4), WidePoseCov(), {});
   ASSERT_TRUE(five.found);
+  EXPECT_FALSE(five.ambiguous);
   EXPECT_EQ(five.best_inliers, 18);   // 2 + 4 x 4 detections
   EXPECT_EQ(five.rival_inliers, 10);  // A explains the repeated pair of every scan
   std::vector<int> expected{3, 4};
@@ -100,6 +102,8 @@ TEST(MultiScanRelocalisation, RefusesBetweenIdenticalClusters) {
       MatchPointsToMap(Points(5, map), map, DeadReckoned(4), WidePoseCov(), {});
   EXPECT_FALSE(m.found);
   EXPECT_EQ(m.best_inliers, m.rival_inliers);
+  EXPECT_GE(m.best_inliers, 3);
+  EXPECT_TRUE(m.ambiguous);  // what incremental_relocalisation_leave_ambiguous acts on
 }
 
 TEST(MultiScanRelocalisation, RejectsNonsenseOptions) {
