@@ -180,6 +180,17 @@ void SmootherOptions::Validate() const {
           "incremental_static_point_chi2: expected >= 0 (0: off)");
   require(incremental_static_point_heading_std > 0.0,
           "incremental_static_point_heading_std: expected > 0");
+  require(incremental_relocalisation_std >= 0.0,
+          "incremental_relocalisation_std: expected >= 0 (0: off)");
+  require(incremental_static_point_failures >= 1,
+          "incremental_static_point_failures: expected >= 1");
+  require(incremental_relocalisation_scans >= 2, "incremental_relocalisation_scans: expected >= 2");
+  require(incremental_relocalisation_inlier_distance > 0.0,
+          "incremental_relocalisation_inlier_distance: expected > 0");
+  require(incremental_relocalisation_margin >= 1,
+          "incremental_relocalisation_margin: expected >= 1");
+  require(incremental_relocalisation_prior_weight >= 0.0,
+          "incremental_relocalisation_prior_weight: expected >= 0");
   require(min_observations >= 1, "min_observations: expected >= 1");
   require(merge_position_std >= 0.0, "merge_position_std: expected >= 0");
   require(min_detection_ratio >= 0.0 && min_detection_ratio <= 1.0,
@@ -364,11 +375,20 @@ datasets::BatchResult BatchSmoother::Solve(const datasets::Scenario& scenario) {
         io.gate.new_landmark_intensity = options_.incremental_new_landmark_intensity;
         io.static_point_chi2 = options_.incremental_static_point_chi2;
         io.static_point_heading_std = options_.incremental_static_point_heading_std;
+        io.static_point_failures = options_.incremental_static_point_failures;
         io.model_increments = &increments;
+        io.relocalisation_position_std = options_.incremental_relocalisation_std;
+        io.relocalisation_scans = options_.incremental_relocalisation_scans;
+        io.relocalisation.inlier_distance = options_.incremental_relocalisation_inlier_distance;
+        io.relocalisation.margin = options_.incremental_relocalisation_margin;
+        io.relocalisation.prior_weight = options_.incremental_relocalisation_prior_weight;
+        io.relocalisation_leave_ambiguous = options_.incremental_relocalisation_leave_ambiguous;
         AssociatedMap map =
             IncrementalAssociation(scenario, loose_odometry, robust.get(), incremental_settings, io,
                                    record, &report_.association_seconds);
         report_.moving_landmarks = map.moving;
+        report_.relocalisations = map.relocalisations;
+        report_.relocalisations_abandoned = map.relocalisations_abandoned;
         moving_detections = std::move(map.excluded);
         ao.excluded = &moving_detections;
         association_ = std::move(map.association);

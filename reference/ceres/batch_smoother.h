@@ -90,6 +90,25 @@ struct SmootherOptions {
   /// anchor moves to the latest detection. Over long stretches of dead reckoning the carried
   /// point's first-order covariance understates its spread (README.md, "Moving objects").
   double incremental_static_point_heading_std = 0.2;
+  /// Consecutive detections that must move (fail against the first detection, agree with the
+  /// latest) before the static-point check deletes the landmark; 1: the first one.
+  int incremental_static_point_failures = 1;
+  /// Incremental solve, own association: while the pose's marginal position standard deviation
+  /// exceeds this (m), the detections of the next incremental_relocalisation_scans scans are
+  /// matched with the map together and associated only on a unique match (README.md,
+  /// "Re-localisation after dead reckoning"); until then they are unassociated. 0: off.
+  double incremental_relocalisation_std = 0.0;
+  int incremental_relocalisation_scans = 5;  ///< scans with detections matched together (>= 2)
+  /// A detection within this of a landmark after the candidate correction is an inlier (m).
+  double incremental_relocalisation_inlier_distance = 0.5;
+  /// Inliers by which the best correction must beat every rival.
+  int incremental_relocalisation_margin = 2;
+  /// A correction scores its inliers less this times half the squared Mahalanobis distance of
+  /// the pose it implies from the dead-reckoned one; 0: the inliers alone.
+  double incremental_relocalisation_prior_weight = 0.0;
+  /// An ambiguous match (a rival within the margin) ends the re-localisation without a
+  /// correction, and association goes on scan by scan; false: keep matching.
+  bool incremental_relocalisation_leave_ambiguous = false;
   /// Known association: a labelled measurement whose squared whitened residual (chi-square, 2
   /// dof) at the warm-started estimate exceeds this is left out of the final solves as a
   /// mislabelled detection (README.md, "Outliers in the known association"); the incremental
@@ -167,9 +186,11 @@ struct SmootherReport {
   bool covariance_ok = false;
   std::size_t landmarks = 0;
   std::size_t associated_measurements = 0;
-  int outliers_dropped = 0;    ///< known association: measurements left out (known_outlier_chi2)
-  int moving_landmarks = 0;    ///< own association: landmarks deleted by the static-point check
-  int unconverged_solves = 0;  ///< solves stopped by the iteration limit or a failure
+  int outliers_dropped = 0;  ///< known association: measurements left out (known_outlier_chi2)
+  int moving_landmarks = 0;  ///< own association: landmarks deleted by the static-point check
+  int relocalisations = 0;   ///< own association: re-localisations applied
+  int relocalisations_abandoned = 0;  ///< own association: re-localisations left as ambiguous
+  int unconverged_solves = 0;         ///< solves stopped by the iteration limit or a failure
   /// The final solve met a tolerance (ceres CONVERGENCE); false when it stopped at
   /// max_iterations or failed, and its estimate is then reported as not converged.
   bool converged = false;

@@ -1,5 +1,6 @@
 #include "reference/ceres/incremental_solve.h"
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 #include <algorithm>
 #include <chrono>
@@ -50,8 +51,7 @@ struct PassLandmark {
   LandmarkStatus status = LandmarkStatus::kTentative;
   Mat23 cross = Mat23::Zero();  ///< Cov(m, x) with the pass's current pose (pose_landmark_cross)
   /// Its first and its latest detection, each with the odometry since (static_point_chi2).
-  StaticPointAnchor anchor = {};
-  StaticPointAnchor last = {};
+  StaticPointTrack static_point = {};
   bool moving = false;  ///< deleted by the static-point check
 };
 
@@ -120,10 +120,16 @@ class AssociationPass {
     px_ = PropagatePoseCovariance(base, increments_[k], px_);
     Symmetrize(px_);
     poses_[k] = PredictPose(scenario_, increments_, poses_, k);
+    const bool relocalising = RelocalisationUnderWay(k);
     const Pose& x = poses_[k];
     std::vector<int> ids;
     std::vector<MapLandmark> view;
     NearLandmarks(x, &ids);
+    if (relocalising) {  // the map before the mode is left to the multi-scan match
+      ids.erase(std::remove_if(ids.begin(), ids.end(),
+                               [&](int i) { return i < relocalisation_first_landmark_; }),
+                ids.end());
+    }
     view.reserve(ids.size());
     const bool with_pd = options_.gate.new_landmark_intensity > 0.0;
     for (int i : ids) {
@@ -161,8 +167,8 @@ class AssociationPass {
         landmarks_.push_back(models::InverseMeasurement(x, zs[j]));
         state_.push_back({StartCovariance(x, px_, zs[j], r), {1, 0.0}});
         if (options_.static_point_chi2 > 0.0) {
-          state_.back().anchor = AnchorAt(zs[j], r);
-          state_.back().last = state_.back().anchor;
+          state_.back().static_point.first = AnchorAt(zs[j], r);
+          state_.back().static_point.latest = state_.back().static_point.first;
         }
         if (options_.pose_landmark_cross) {
           state_.back().cross = InverseModelPoseJacobian(x, zs[j]) * px_;
@@ -177,6 +183,7 @@ class AssociationPass {
           options_.sensor.DetectionProbability(x, landmarks_[static_cast<std::size_t>(i)]);
       l.status = ClassifyLandmark(l.support, options_.confirmation);
     }
+    if (relocalising) BufferAndMatch(k);
   }
 
   /// The association of steps [0, end) without the deleted landmarks.
@@ -195,6 +202,7 @@ class AssociationPass {
                                ceres::LossFunction* loss, const IncrementalSettings& settings) {
     const Association partial = SolveAssociation(end);
     const std::size_t held = HeldBefore(settings, end);
+    next_held_ = HeldBefore(settings, std::min(scenario_.steps.size(), end + settings.chunk_steps));
     if (settings.held_prior && !priors_) priors_.emplace(scenario_, loss);
     if (priors_) priors_->FoldUntil(held, partial, poses_, landmarks_);
     FactorGraph graph(scenario_, odometry, partial, loss, &poses_, &landmarks_, held,
@@ -237,6 +245,8 @@ class AssociationPass {
     out.poses = poses_;
     out.born = born_;
     out.moving = moving_;
+    out.relocalisations = relocalisations_;
+    out.relocalisations_abandoned = relocalisations_abandoned_;
     out.dropped = static_cast<int>(landmarks_.size() - out.landmarks.size());
     return out;
   }
@@ -244,35 +254,143 @@ class AssociationPass {
   [[nodiscard]] int collapsed() const { return collapsed_; }
 
  private:
+  /// The detections of one scan as inverse-model points from its dead-reckoned pose.
+  struct BufferedScan {
+    std::size_t step = 0;
+    std::vector<Landmark> points;
+  };
+
+  /// With re-localisation on (options_.relocalisation_position_std > 0): whether the pass is
+  /// in the re-localisation mode for the current step, entered when the pose's marginal
+  /// position standard deviation (larger axis) exceeds the threshold. In the mode the landmarks
+  /// mapped before it are not gated scan by scan: their association is left to the multi-scan
+  /// match (BufferAndMatch). Landmarks started in the mode are associated as usual.
+  bool RelocalisationUnderWay(std::size_t k) {
+    const double sd = options_.relocalisation_position_std;
+    if (sd <= 0.0) return false;
+    if (relocalising_) return true;
+    const double variance =
+        Eigen::SelfAdjointEigenSolver<Mat2>(px_.topLeftCorner<2, 2>()).eigenvalues().maxCoeff();
+    if (variance <= sd * sd) return false;
+    relocalising_ = true;
+    relocalisation_start_ = k;
+    relocalisation_first_landmark_ = static_cast<int>(landmarks_.size());
+    buffer_.clear();
+    return true;
+  }
+
+  /// Buffers step k's detections as points from its dead-reckoned pose (the last
+  /// relocalisation_scans scans with detections) and, once they are full, matches them with the
+  /// map from before the mode (TryRelocalise), again at every further scan until a match is
+  /// unique.
+  void BufferAndMatch(std::size_t k) {
+    const std::vector<Measurement>& zs = scenario_.steps[k].data.measurements;
+    if (zs.empty()) return;
+    BufferedScan& scan = buffer_.emplace_back();
+    scan.step = k;
+    for (const Measurement& z : zs) scan.points.push_back(models::InverseMeasurement(poses_[k], z));
+    const auto n = static_cast<std::size_t>(options_.relocalisation_scans);
+    if (buffer_.size() > n) buffer_.erase(buffer_.begin());
+    if (buffer_.size() == n) TryRelocalise(k);
+  }
+
+  /// Matches the buffered detections with the confirmed landmarks from before the mode within
+  /// reach of the newest pose k; on a unique match associates them (a detection associated with
+  /// a landmark started in the mode moves to the old one), corrects the poses since the mode
+  /// began (the free ones: the full correction from the first buffered scan on, a growing
+  /// fraction of it before) and the landmarks started in the mode, and leaves the mode with the
+  /// pose covariance the match supports (position std the inlier distance, heading std that over
+  /// the inliers' span).
+  void TryRelocalise(std::size_t k) {
+    const double position_variance =
+        Eigen::SelfAdjointEigenSolver<Mat2>(px_.topLeftCorner<2, 2>()).eigenvalues().maxCoeff();
+    std::vector<int> ids;
+    std::vector<Landmark> map;
+    const double limit = options_.gate.max_landmark_distance;
+    const double reach = limit + 3.0 * std::sqrt(position_variance);
+    for (std::size_t i = 0; i < static_cast<std::size_t>(relocalisation_first_landmark_); ++i) {
+      if (state_[i].status != LandmarkStatus::kConfirmed) continue;
+      if (limit > 0.0 && (landmarks_[i] - poses_[k].head<2>()).norm() > reach) continue;
+      ids.push_back(static_cast<int>(i));
+      map.push_back(landmarks_[i]);
+    }
+    std::vector<Landmark> points;
+    for (const BufferedScan& scan : buffer_) {
+      points.insert(points.end(), scan.points.begin(), scan.points.end());
+    }
+    const RelocalisationMatch match =
+        MatchPointsToMap(points, map, poses_[k], px_, options_.relocalisation);
+    if (!match.found && match.ambiguous && options_.relocalisation_leave_ambiguous) {
+      relocalising_ = false;  // the map admits several corrections: scan by scan again
+      buffer_.clear();
+      ++relocalisations_abandoned_;
+      return;
+    }
+    if (!match.found) return;
+    const std::size_t first = buffer_.front().step;
+    const std::size_t start = std::min(first, std::max(relocalisation_start_, next_held_));
+    for (std::size_t s = start; s <= k; ++s) {
+      RigidCorrection c = match.correction;
+      if (s < first) {
+        const double f =
+            static_cast<double>(s - start + 1) / static_cast<double>(first - start + 1);
+        c.rotation *= f;
+        c.translation *= f;
+      }
+      poses_[s] = ApplyCorrection(c, poses_[s]);
+    }
+    for (std::size_t i = static_cast<std::size_t>(relocalisation_first_landmark_);
+         i < landmarks_.size(); ++i) {
+      landmarks_[i] =
+          ApplyCorrection(match.correction, Pose(landmarks_[i].x(), landmarks_[i].y(), 0.0))
+              .head<2>();
+    }
+    std::size_t n = 0;
+    for (const BufferedScan& scan : buffer_) {
+      for (std::size_t j = 0; j < scan.points.size(); ++j, ++n) {
+        const int m = match.landmark[n];
+        if (m == kUnassociated) continue;
+        const int id = ids[static_cast<std::size_t>(m)];
+        const int previous = association_[scan.step][j];
+        if (previous != kUnassociated)
+          --state_[static_cast<std::size_t>(previous)].support.detections;
+        association_[scan.step][j] = id;
+        ++state_[static_cast<std::size_t>(id)].support.detections;
+      }
+    }
+    const double d = options_.relocalisation.inlier_distance;
+    const double heading = d / std::max(match.baseline, d);
+    px_ = Vec3(d * d, d * d, heading * heading).asDiagonal();
+    if (options_.pose_landmark_cross) {
+      for (PassLandmark& l : state_) l.cross = Mat23::Zero();
+    }
+    relocalising_ = false;
+    buffer_.clear();
+    ++relocalisations_;
+  }
+
   /// Carries every live landmark's static-point anchor by one step's odometry.
   void AdvanceAnchors(const OdometryIncrement& increment) {
     for (PassLandmark& l : state_) {
       if (l.status == LandmarkStatus::kDeleted) continue;
-      AdvanceAnchor(increment, &l.anchor);
-      AdvanceAnchor(increment, &l.last);
+      AdvanceTrack(increment, &l.static_point);
     }
   }
 
   /// With the static-point check on, whether landmark `id`, associated with z, is deleted as a
-  /// moving object: z fails the check against the landmark's first detection but passes it
-  /// against the latest one, i.e. the detections drift away from their first one step by step,
-  /// as a moving object's do. A z that fails against both is kept (a misassociation the robust
-  /// loss and the re-association deal with, not evidence that the landmark moves).
+  /// moving object (MovingAfter: options_.static_point_failures detections in a row fail the
+  /// check against the landmark's first detection but pass it against the latest one, i.e. the
+  /// detections drift away from their first one step by step, as a moving object's do).
   bool DeletedAsMoving(int id, const Measurement& z) {
     if (options_.static_point_chi2 <= 0.0) return false;
     PassLandmark& l = state_[static_cast<std::size_t>(id)];
-    const Mat2& r = options_.measurement_cov;
-    const double chi2 = options_.static_point_chi2;
-    const double sd = options_.static_point_heading_std;
-    if (l.anchor.relative_cov(2, 2) > sd * sd) l.anchor = l.last;
-    if (StaticPointChi2(l.anchor, z, r) > chi2 && StaticPointChi2(l.last, z, r) <= chi2) {
-      l.status = LandmarkStatus::kDeleted;
-      l.moving = true;
-      ++moving_;
-      return true;
-    }
-    l.last = AnchorAt(z, r);
-    return false;
+    const StaticPointOptions check{options_.static_point_chi2, options_.static_point_heading_std,
+                                   options_.static_point_failures};
+    if (!MovingAfter(z, options_.measurement_cov, check, &l.static_point)) return false;
+    l.status = LandmarkStatus::kDeleted;
+    l.moving = true;
+    ++moving_;
+    return true;
   }
 
   /// Carries every landmark's Cov(m, x) from pose k-1 (`base`) to pose k = base (+) inc.delta.
@@ -379,6 +497,15 @@ class AssociationPass {
   int collapsed_ = 0;
   int moving_ = 0;                               ///< landmarks deleted by the static-point check
   std::optional<HeldMeasurementPriors> priors_;  ///< with IncrementalSettings::held_prior
+  std::size_t next_held_ = 0;  ///< poses before it are held in the next chunk solve
+  // Re-localisation (RelocalisationUnderWay): whether it is under way, the step it began at,
+  // the first landmark started in it, and the scans buffered.
+  bool relocalising_ = false;
+  std::size_t relocalisation_start_ = 0;
+  int relocalisation_first_landmark_ = 0;
+  std::vector<BufferedScan> buffer_;
+  int relocalisations_ = 0;            ///< unique matches applied
+  int relocalisations_abandoned_ = 0;  ///< modes left on an ambiguous match
 };
 
 }  // namespace
@@ -426,6 +553,10 @@ AssociatedMap IncrementalAssociation(const datasets::Scenario& scenario,
                                      const SolveObserver& observer, double* association_seconds,
                                      int* collapsed) {
   Validate(settings);
+  if (options.relocalisation_position_std > 0.0 && options.relocalisation_scans < 2) {
+    throw std::invalid_argument(
+        "IncrementalAssociationOptions.relocalisation_scans: expected >= 2");
+  }
   AssociationPass pass(scenario, odometry, options);
   const std::size_t steps = scenario.steps.size();
   for (std::size_t done = 0; done < steps;) {

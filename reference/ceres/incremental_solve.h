@@ -19,6 +19,7 @@
 #include "datasets/scenario.h"
 #include "reference/ceres/factor_graph.h"
 #include "reference/ceres/landmark_association.h"
+#include "reference/ceres/multi_scan_relocalisation.h"
 #include "reference/ceres/scan_association.h"
 
 namespace phdslam::reference {
@@ -78,9 +79,26 @@ struct IncrementalAssociationOptions {
   /// The first-detection anchor moves to the latest detection once the odometry since it has a
   /// heading standard deviation above this (rad).
   double static_point_heading_std = 0.2;
+  /// Consecutive detections that must fail against the first detection while agreeing with
+  /// the latest before the landmark is deleted (1: the first such detection).
+  int static_point_failures = 1;
   /// The odometry increments with the model's own floor (not the warm-start floor), one per
   /// step, for that test; required when it is on.
   const std::vector<OdometryIncrement>* model_increments = nullptr;
+  /// Re-localisation with evidence (multi_scan_relocalisation.h, README.md "Re-localisation
+  /// after dead reckoning"): once the pose's marginal position standard deviation (the larger
+  /// axis) exceeds this (m), the landmarks mapped so far are no longer gated scan by scan; the
+  /// detections of the last relocalisation_scans scans with detections are matched with them
+  /// together, and only a unique match associates them with those landmarks (and corrects the
+  /// poses and the landmarks started since the threshold was crossed). Meanwhile detections
+  /// are associated with, or start, new landmarks only. 0: off.
+  double relocalisation_position_std = 0.0;
+  int relocalisation_scans = 5;  ///< scans with detections matched together (>= 2)
+  RelocalisationOptions relocalisation;
+  /// When the match is ambiguous (a rival within the margin of a best with three or more
+  /// inliers: the map admits several corrections), leave the mode without a correction and
+  /// gate scan by scan again. false: keep matching at every further scan.
+  bool relocalisation_leave_ambiguous = false;
 };
 
 /// Own association: scan-to-map association, confirmation and deletion along the incremental

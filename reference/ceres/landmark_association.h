@@ -54,11 +54,13 @@ struct AssociationOptions {
 struct AssociatedMap {
   Association association;
   std::vector<Landmark> landmarks;
-  std::vector<Pose> poses;  ///< the poses the association was made at
-  int merged = 0;           ///< landmarks merged into another one
-  int dropped = 0;          ///< landmarks dropped for too few observations
-  int born = 0;             ///< landmarks created from unassociated measurements
-  int moving = 0;           ///< landmarks deleted as moving objects (static-point check)
+  std::vector<Pose> poses;            ///< the poses the association was made at
+  int merged = 0;                     ///< landmarks merged into another one
+  int dropped = 0;                    ///< landmarks dropped for too few observations
+  int born = 0;                       ///< landmarks created from unassociated measurements
+  int moving = 0;                     ///< landmarks deleted as moving objects (static-point check)
+  int relocalisations = 0;            ///< re-localisations applied (incremental pass)
+  int relocalisations_abandoned = 0;  ///< re-localisation modes left on an ambiguous match
   /// Per step and measurement: a detection of a landmark deleted as a moving object (empty when
   /// the pass does not check).
   std::vector<std::vector<bool>> excluded;

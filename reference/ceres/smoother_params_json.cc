@@ -68,6 +68,28 @@ const params::ParameterTable<SmootherOptions>& SmootherOptionsTable() {
       params::NumberField<O>(
           "incremental_static_point_heading_std",
           [](auto& o) -> auto& { return o.incremental_static_point_heading_std; }, Above(0.0)),
+      params::IntField<O>(
+          "incremental_static_point_failures",
+          [](auto& o) -> auto& { return o.incremental_static_point_failures; }, AtLeast(1)),
+      params::NumberField<O>(
+          "incremental_relocalisation_std",
+          [](auto& o) -> auto& { return o.incremental_relocalisation_std; }, AtLeast(0.0)),
+      params::IntField<O>(
+          "incremental_relocalisation_scans",
+          [](auto& o) -> auto& { return o.incremental_relocalisation_scans; }, AtLeast(2)),
+      params::NumberField<O>(
+          "incremental_relocalisation_inlier_distance",
+          [](auto& o) -> auto& { return o.incremental_relocalisation_inlier_distance; },
+          Above(0.0)),
+      params::IntField<O>(
+          "incremental_relocalisation_margin",
+          [](auto& o) -> auto& { return o.incremental_relocalisation_margin; }, AtLeast(1)),
+      params::NumberField<O>(
+          "incremental_relocalisation_prior_weight",
+          [](auto& o) -> auto& { return o.incremental_relocalisation_prior_weight; }, AtLeast(0.0)),
+      params::BoolField<O>(
+          "incremental_relocalisation_leave_ambiguous",
+          [](auto& o) -> auto& { return o.incremental_relocalisation_leave_ambiguous; }),
       params::NumberField<O>(
           "known_outlier_chi2", [](auto& o) -> auto& { return o.known_outlier_chi2; },
           AtLeast(0.0)),

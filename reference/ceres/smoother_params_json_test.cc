@@ -60,7 +60,11 @@ TEST(SmootherParamsJson, WritesEveryOptionWithItsType) {
       "incremental_new_landmark_intensity": 0.0, "incremental_pose_landmark_cross": false,
       "incremental_skip_ambiguous": false,
       "incremental_squared_marginals": false, "incremental_static_point_chi2": 0.0,
-      "incremental_static_point_heading_std": 0.2,
+      "incremental_static_point_heading_std": 0.2, "incremental_static_point_failures": 1,
+      "incremental_relocalisation_std": 0.0, "incremental_relocalisation_scans": 5,
+      "incremental_relocalisation_inlier_distance": 0.5, "incremental_relocalisation_margin": 2,
+      "incremental_relocalisation_prior_weight": 0.0,
+      "incremental_relocalisation_leave_ambiguous": false,
       "initial_pass_solve_steps": 200, "initialisation": "batch",
       "intermediate_function_tolerance": 1e-06, "known_outlier_chi2": 1000.0,
       "linear_solver": "sparse_normal_cholesky", "max_iterations": 100,
@@ -90,6 +94,18 @@ TEST(SmootherParamsJson, RejectsBadOverridesAndLeavesTheOptionsUnchanged) {
   ExpectRejected(R"({"incremental_static_point_chi2": -1})", "incremental_static_point_chi2");
   ExpectRejected(R"({"incremental_static_point_heading_std": 0})",
                  "incremental_static_point_heading_std");
+  ExpectRejected(R"({"incremental_static_point_failures": 0})",
+                 "incremental_static_point_failures");
+  ExpectRejected(R"({"incremental_relocalisation_leave_ambiguous": 1})",
+                 "incremental_relocalisation_leave_ambiguous");
+  ExpectRejected(R"({"incremental_relocalisation_std": -1})", "incremental_relocalisation_std");
+  ExpectRejected(R"({"incremental_relocalisation_scans": 1})", "incremental_relocalisation_scans");
+  ExpectRejected(R"({"incremental_relocalisation_inlier_distance": 0})",
+                 "incremental_relocalisation_inlier_distance");
+  ExpectRejected(R"({"incremental_relocalisation_margin": 0})",
+                 "incremental_relocalisation_margin");
+  ExpectRejected(R"({"incremental_relocalisation_prior_weight": -1})",
+                 "incremental_relocalisation_prior_weight");
   ExpectRejected(R"({"max_iterations": 50, "gate": 3})",
                  "unknown parameter 'gate' (known: association, initialisation, ");
   ExpectRejected(R"({"association": "unknown"})",

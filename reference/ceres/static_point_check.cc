@@ -39,4 +39,21 @@ double StaticPointChi2(const StaticPointAnchor& anchor, const Measurement& z, co
   return d.dot(c.ldlt().solve(d));
 }
 
+void AdvanceTrack(const OdometryIncrement& increment, StaticPointTrack* track) {
+  AdvanceAnchor(increment, &track->first);
+  AdvanceAnchor(increment, &track->latest);
+}
+
+bool MovingAfter(const Measurement& z, const Mat2& r, const StaticPointOptions& options,
+                 StaticPointTrack* track) {
+  const double sd = options.heading_std;
+  if (track->first.relative_cov(2, 2) > sd * sd) track->first = track->latest;
+  const bool moves = StaticPointChi2(track->first, z, r) > options.chi2 &&
+                     StaticPointChi2(track->latest, z, r) <= options.chi2;
+  track->failures = moves ? track->failures + 1 : 0;
+  if (moves && track->failures >= options.failures_required) return true;
+  track->latest = AnchorAt(z, r);
+  return false;
+}
+
 }  // namespace phdslam::reference

@@ -39,4 +39,31 @@ void AdvanceAnchor(const OdometryIncrement& increment, StaticPointAnchor* anchor
 /// d^T C^-1 d of a detection z at the anchor's current pose against the anchored point.
 double StaticPointChi2(const StaticPointAnchor& anchor, const Measurement& z, const Mat2& r);
 
+/// The check's settings (README.md, "Moving objects").
+struct StaticPointOptions {
+  double chi2 = 13.8;         ///< a detection beyond this (2 dof) of an anchor fails against it
+  double heading_std = 0.2;   ///< the first anchor gives way to the latest beyond this (rad)
+  int failures_required = 1;  ///< consecutive moving detections that delete the landmark
+};
+
+/// A landmark's state in the check: its first and latest detection, and how many consecutive
+/// detections so far failed against the first while agreeing with the latest.
+struct StaticPointTrack {
+  StaticPointAnchor first;
+  StaticPointAnchor latest;
+  int failures = 0;
+};
+
+/// Carries both anchors by one step's odometry.
+void AdvanceTrack(const OdometryIncrement& increment, StaticPointTrack* track);
+
+/// Whether z, a detection associated with the track's landmark, makes it a moving object: the
+/// first anchor gives way to the latest once its heading standard deviation exceeds
+/// options.heading_std; z "moves" when it fails against the first anchor but not against the
+/// latest, and the landmark is a moving object at the failures_required-th such detection in a
+/// row (a detection that does not move resets the count). When it is not, z becomes the latest
+/// anchor. A z that fails against both is kept: a misassociation, not evidence of motion.
+bool MovingAfter(const Measurement& z, const Mat2& r, const StaticPointOptions& options,
+                 StaticPointTrack* track);
+
 }  // namespace phdslam::reference

@@ -51,6 +51,62 @@ TEST(StaticPointChi2, APointThatMovesWhileTheVehicleStandsStillFails) {
   EXPECT_LT(StaticPointChi2(anchor, models::PredictMeasurement(x, Landmark(3.0, 0.05)), kR), 13.8);
 }
 
+/// The detection of the point (3, y) from a vehicle standing at the origin facing +x.
+Measurement SidewaysPoint(double y) { return models::PredictMeasurement(Pose::Zero(), {3.0, y}); }
+
+/// A track started at the point (3, 0), the vehicle standing still for `steps` steps with a
+/// heading noise of 0.002 rad per step.
+StaticPointTrack StandingTrack(int steps) {
+  StaticPointTrack t;
+  t.first = AnchorAt(SidewaysPoint(0.0), kR);
+  t.latest = t.first;
+  for (int k = 0; k < steps; ++k) {
+    AdvanceTrack(Increment(Pose::Zero(), Vec3(0.005, 0.005, 0.002)), &t);
+  }
+  return t;
+}
+
+// A point moving 10 cm sideways per detection (within the check of the previous one, beyond
+// that of the first after a few): with one failure required it is a moving object at the first
+// detection beyond the first one's check, with three two detections later.
+TEST(StaticPointCheck, ConsecutiveFailuresDelayTheVerdictOnAMovingPoint) {
+  const auto first_moving = [](int required) {
+    StaticPointTrack t = StandingTrack(1);
+    const StaticPointOptions o{13.8, 0.2, required};
+    for (int n = 1; n <= 20; ++n) {
+      AdvanceTrack(Increment(Pose::Zero(), Vec3(0.005, 0.005, 0.002)), &t);
+      if (MovingAfter(SidewaysPoint(0.1 * n), kR, o, &t)) return n;
+    }
+    return 0;
+  };
+  const int one = first_moving(1);
+  ASSERT_GT(one, 1);
+  EXPECT_EQ(first_moving(3), one + 2);
+}
+
+// A static point whose detections stray once (two detections off to one side, then back): one
+// failure required deletes it, two do not, since the detection back at the point resets the
+// count.
+TEST(StaticPointCheck, AnExcursionOfOneDetectionIsNotMotionWithTwoRequired) {
+  const auto moving_anywhere = [](int required) {
+    StaticPointTrack t = StandingTrack(3);
+    const StaticPointOptions o{13.8, 0.2, required};
+    bool moving = false;
+    for (double y : {0.0, 0.1, 0.2, 0.0, 0.0})
+      moving = moving || MovingAfter(SidewaysPoint(y), kR, o, &t);
+    return moving;
+  };
+  // 0.2 m at 3 m is beyond the first detection's check, 0.1 m within the latest's.
+  const StaticPointTrack probe = StandingTrack(3);
+  EXPECT_GT(StaticPointChi2(probe.first, SidewaysPoint(0.2), kR), 13.8);
+  EXPECT_LT(StaticPointChi2(probe.first, SidewaysPoint(0.1), kR), 13.8);
+  StaticPointTrack at_01 = probe;
+  at_01.latest = AnchorAt(SidewaysPoint(0.1), kR);
+  EXPECT_LT(StaticPointChi2(at_01.latest, SidewaysPoint(0.2), kR), 13.8);
+  EXPECT_TRUE(moving_anywhere(1));
+  EXPECT_FALSE(moving_anywhere(2));
+}
+
 constexpr int kStaticSteps = 5;
 
 /// A vehicle standing still for `steps` 1 s steps, facing +x, that sees a static landmark at
