@@ -127,7 +127,8 @@ std::vector<EstimatorEntry> CeresEstimators() {
                         "(reads the hidden origin labels): the graph-optimisation lower bound. "
                         "Graph solved from dead reckoning (initialisation=batch, default) or "
                         "built in time order and solved as it grows "
-                        "(initialisation=incremental)"),
+                        "(initialisation=incremental), or from the trajectory of a PHD-SLAM 3.0 "
+                        "run on the same seed (start_from=phd3)"),
           SmootherEntry("smoother-filter", reference::AssociationMode::kFilter,
                         "Ceres batch smoother on the data association of a PHD-SLAM 3.0 run "
                         "(N = 1, same seed); initialisation=batch|incremental as smoother-known"),
@@ -135,8 +136,11 @@ std::vector<EstimatorEntry> CeresEstimators() {
                         "Ceres batch smoother with its own association: each scan associated "
                         "in a sequential EKF pass from dead reckoning (initialisation=batch, "
                         "default) or with the optimised map on marginal covariances as the "
-                        "graph grows (initialisation=incremental), robust loss, re-association "
-                        "in a final full solve (reference/ceres/README.md)"),
+                        "graph grows (initialisation=incremental), or with the pass started "
+                        "from the trajectory of a PHD-SLAM 3.0 run on the same seed "
+                        "(start_from=phd3, start_particles=5; its association is not used), "
+                        "robust loss, re-association in a final full solve "
+                        "(reference/ceres/README.md)"),
           WindowEntry("window-known", true,
                       "Ceres fixed-lag (sliding-window) smoother with the known association "
                       "(reads the hidden origin labels): old states marginalised into a Gaussian "
