@@ -15,9 +15,8 @@ std::vector<OdometryIncrement> StartTrajectoryIncrements(
   const std::size_t n = scenario.steps.size();
   if (start.size() != n || odometry.size() != n) {
     throw std::invalid_argument("StartTrajectoryIncrements: expected " + std::to_string(n) +
-                                " start poses and increments, got " +
-                                std::to_string(start.size()) + " and " +
-                                std::to_string(odometry.size()));
+                                " start poses and increments, got " + std::to_string(start.size()) +
+                                " and " + std::to_string(odometry.size()));
   }
   std::vector<OdometryIncrement> out = odometry;
   Pose previous = scenario.initial_pose;

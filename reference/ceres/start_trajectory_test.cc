@@ -124,8 +124,8 @@ TEST(SmoothFromEstimatorStart, OwnAssociationFromAStartTrajectoryRecoversTheLand
   const datasets::BatchResult d = from_dead_reckoning.Solve(s);
   const AssociationScore dc = Score(s, d, from_dead_reckoning.association());
   std::cout << "start: landmarks " << sc.landmarks << ", majority " << sc.majority << "/"
-            << sc.associated << "/" << sc.detections << ", clutter kept " << sc.clutter_kept << ", worst landmark "
-            << sc.worst_landmark << " m, RMSE " << PositionRmse(s, r.poses)
+            << sc.associated << "/" << sc.detections << ", clutter kept " << sc.clutter_kept
+            << ", worst landmark " << sc.worst_landmark << " m, RMSE " << PositionRmse(s, r.poses)
             << " m; dead reckoning: landmarks " << dc.landmarks << ", majority " << dc.majority
             << ", RMSE " << PositionRmse(s, d.poses) << " m\n";
 

@@ -206,8 +206,7 @@ TEST(ReferenceEstimators, KeysFixedByTheNameAcceptOnlyTheirOwnValue) {
 // filter's, which starts from its own filter's trajectory.
 TEST(ReferenceEstimators, StartFromPhd3) {
   if (!Registered("smoother-unknown")) GTEST_SKIP() << "built without Ceres";
-  EXPECT_EQ(ResolveError("smoother-unknown", {{"start_from", "phd3"}, {"start_particles", 1}}),
-            "");
+  EXPECT_EQ(ResolveError("smoother-unknown", {{"start_from", "phd3"}, {"start_particles", 1}}), "");
   EXPECT_EQ(ResolveError("smoother-known", {{"start_from", "phd3"}}), "");
   EXPECT_EQ(ResolveError("smoother-filter", {{"start_from", "phd3"}}),
             "estimator 'smoother-filter': SmootherOptions.start_from: the filter association "

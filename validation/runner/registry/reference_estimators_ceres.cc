@@ -60,8 +60,7 @@ EstimatorEntry SmootherEntry(const std::string& name, reference::AssociationMode
     const filters::PhdSlamParams params = ResolveParameters(phd3, filters::PhdSlamParamsTable());
     auto filter = filters::MakePhdSlam("phd3", RequireContext(r), params, r.stream_seed);
     if (from_phd3) {
-      return std::make_unique<reference::SmoothFromEstimatorStart>(std::move(filter),
-                                                                   std::move(o));
+      return std::make_unique<reference::SmoothFromEstimatorStart>(std::move(filter), std::move(o));
     }
     return std::make_unique<reference::FilterThenSmooth>(std::move(filter), std::move(o));
   };
