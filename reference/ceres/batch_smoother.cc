@@ -14,6 +14,7 @@
 #include "reference/ceres/factor_graph.h"
 #include "reference/ceres/incremental_solve.h"
 #include "reference/ceres/outlier_screening.h"
+#include "reference/ceres/start_trajectory.h"
 #include "src/core/gaussian.h"
 #include "src/models/range_bearing_model.h"
 
@@ -197,6 +198,9 @@ void SmootherOptions::Validate() const {
           "min_detection_ratio: expected in [0, 1]");
   require(robust_scale > 0.0, "robust_scale: expected > 0");
   require(filter_label_distance > 0.0, "filter_label_distance: expected > 0");
+  require(start_particles >= 1, "start_particles: expected >= 1");
+  require(start_from == StartTrajectory::kDeadReckoning || association != AssociationMode::kFilter,
+          "start_from: the filter association starts from its own filter's trajectory");
   require(odometry_floor.position_std > 0.0 && odometry_floor.heading_std > 0.0,
           "odometry_floor: expected positive standard deviations");
   require(warm_start_floor.position_std > 0.0 && warm_start_floor.heading_std > 0.0,
@@ -397,7 +401,13 @@ datasets::BatchResult BatchSmoother::Solve(const datasets::Scenario& scenario) {
       } else {
         // Stage 1: the sequential pass, with a smoothing solve of the steps done so far (confirmed
         // landmarks only) every initial_pass_solve_steps steps.
-        SequentialAssociator associator(scenario, loose_increments, ao);
+        // From a start trajectory the pass follows its relative motion instead of the odometry.
+        SequentialAssociator associator(
+            scenario,
+            options_.initial_poses.empty()
+                ? loose_increments
+                : StartTrajectoryIncrements(scenario, options_.initial_poses, loose_increments),
+            ao);
         const std::size_t chunk = options_.initial_pass_solve_steps > 0
                                       ? static_cast<std::size_t>(options_.initial_pass_solve_steps)
                                       : scenario.steps.size();

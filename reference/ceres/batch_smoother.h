@@ -36,6 +36,13 @@ enum class SmootherInitialisation {
   kBatch,
 };
 
+/// The trajectory the registry starts the smoother from (README.md, "Start from another
+/// estimator's trajectory").
+enum class StartTrajectory {
+  kDeadReckoning,  ///< initial_poses left empty: dead reckoning (or the incremental solve)
+  kPhd3,           ///< a PHD-SLAM 3.0 run on the same data and stream fills initial_poses
+};
+
 /// How the odometry factor is whitened (README.md, "Odometry factor").
 enum class OdometryResidual {
   /// Velocity-model steps with one sub-interval: the control that explains the relative pose,
@@ -158,9 +165,15 @@ struct SmootherOptions {
   std::string robust_loss = "cauchy";
   double robust_scale = 1.0;
 
-  /// Initial trajectory, one pose per step; empty: dead reckoning. Known and filter modes only
-  /// (the unknown mode starts from its own sequential pass).
+  /// Initial trajectory, one pose per step; empty: dead reckoning. The known and filter modes
+  /// start their solves from it; the unknown mode's sequential pass follows its relative motion
+  /// instead of the odometry (start_trajectory.h) and makes its own association from there.
   std::vector<Pose> initial_poses;
+  /// Where the registry's smoother-known and smoother-unknown get initial_poses from (README.md,
+  /// "Start from another estimator's trajectory"); BatchSmoother itself reads only initial_poses.
+  StartTrajectory start_from = StartTrajectory::kDeadReckoning;
+  /// Particles of the PHD-SLAM 3.0 run of start_from = kPhd3.
+  int start_particles = 5;
 
   // Filter mode: per step, per measurement, the landmark id of a filter's association (any
   // non-negative label; -1 = clutter). Labels with fewer than min_observations detections are

@@ -142,6 +142,11 @@ const params::ParameterTable<SmootherOptions>& SmootherOptionsTable() {
       params::NumberField<O>(
           "filter_label_distance", [](auto& o) -> auto& { return o.filter_label_distance; },
           Above(0.0)),
+      params::EnumField<O, StartTrajectory>(
+          "start_from", [](auto& o) -> auto& { return o.start_from; },
+          {{StartTrajectory::kDeadReckoning, "dead-reckoning"}, {StartTrajectory::kPhd3, "phd3"}}),
+      params::IntField<O>(
+          "start_particles", [](auto& o) -> auto& { return o.start_particles; }, AtLeast(1)),
   });
   return table;
 }

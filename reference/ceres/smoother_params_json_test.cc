@@ -71,6 +71,7 @@ TEST(SmootherParamsJson, WritesEveryOptionWithItsType) {
       "merge_position_std": 1.0, "min_detection_ratio": 0.3, "min_observations": 3,
       "num_threads": 1, "odometry_floor": [0.0001, 1e-05], "odometry_residual": "control_space",
       "reassociation_rounds": 5, "robust_loss": "cauchy", "robust_scale": 1.0,
+      "start_from": "dead-reckoning", "start_particles": 5,
       "warm_start_floor": [0.05, 1e-05]})")
                 .dump());
 }

@@ -271,6 +271,18 @@ TEST(ReferenceEstimators, KeysFixedByTheNameAcceptOnlyTheirOwnValue) {
             "\"huber\" or \"none\", got \"tukey\"");
 }
 
+// The start from a PHD-SLAM 3.0 trajectory: for the known and own associations, not for the
+// filter's, which starts from its own filter's trajectory.
+TEST(ReferenceEstimators, StartFromPhd3) {
+  if (!Registered("smoother-unknown")) GTEST_SKIP() << "built without Ceres";
+  EXPECT_EQ(ResolveError("smoother-unknown", {{"start_from", "phd3"}, {"start_particles", 1}}), "");
+  EXPECT_EQ(ResolveError("smoother-known", {{"start_from", "phd3"}}), "");
+  EXPECT_EQ(ResolveError("smoother-filter", {{"start_from", "phd3"}}),
+            "estimator 'smoother-filter': SmootherOptions.start_from: the filter association "
+            "starts from its own filter's trajectory");
+  EXPECT_NE(ResolveError("smoother-unknown", {{"start_particles", 0}}), "");
+}
+
 TEST(ReferenceEstimators, FastSlamProposalIsFixedByTheName) {
   if (!Registered("fastslam1")) GTEST_SKIP() << "built without MRPT";
   EXPECT_EQ(ResolveError("fastslam1", {{"proposal", "motion-model"}}), "");

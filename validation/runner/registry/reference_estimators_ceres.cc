@@ -8,6 +8,7 @@
 #include "reference/ceres/filter_association.h"
 #include "reference/ceres/fixed_lag_smoother.h"
 #include "reference/ceres/smoother_params_json.h"
+#include "reference/ceres/start_trajectory.h"
 #include "reference/ceres/window_params_json.h"
 #include "src/filters/phd_slam_family.h"
 #include "src/filters/phd_slam_params_json.h"
@@ -46,18 +47,22 @@ EstimatorEntry SmootherEntry(const std::string& name, reference::AssociationMode
   };
   e.make_batch = [mode](const EstimatorRequest& r) -> std::unique_ptr<datasets::BatchEstimator> {
     reference::SmootherOptions o = ResolveSmoother(r, mode);
-    if (mode != reference::AssociationMode::kFilter) {
+    const bool from_phd3 = o.start_from == reference::StartTrajectory::kPhd3;
+    if (mode != reference::AssociationMode::kFilter && !from_phd3) {
       return std::make_unique<reference::BatchSmoother>(std::move(o));
     }
-    // The association of a single-particle PHD-SLAM 3.0 run with the paper's parameters, drawn
-    // from this run's own stream.
+    // A PHD-SLAM 3.0 run with the paper's parameters, drawn from this run's own stream: its
+    // association (smoother-filter, N = 1) or only its trajectory (start_from: phd3).
     EstimatorRequest phd3 = r;
     phd3.name = "phd3";
     phd3.overrides = nlohmann::json::object();
-    phd3.particles = 1;
+    phd3.particles = from_phd3 ? o.start_particles : 1;
     const filters::PhdSlamParams params = ResolveParameters(phd3, filters::PhdSlamParamsTable());
-    return std::make_unique<reference::FilterThenSmooth>(
-        filters::MakePhdSlam("phd3", RequireContext(r), params, r.stream_seed), std::move(o));
+    auto filter = filters::MakePhdSlam("phd3", RequireContext(r), params, r.stream_seed);
+    if (from_phd3) {
+      return std::make_unique<reference::SmoothFromEstimatorStart>(std::move(filter), std::move(o));
+    }
+    return std::make_unique<reference::FilterThenSmooth>(std::move(filter), std::move(o));
   };
   return e;
 }
@@ -121,7 +126,8 @@ std::vector<EstimatorEntry> CeresEstimators() {
                         "(reads the hidden origin labels): the graph-optimisation lower bound. "
                         "Graph solved from dead reckoning (initialisation=batch, default) or "
                         "built in time order and solved as it grows "
-                        "(initialisation=incremental)"),
+                        "(initialisation=incremental), or from the trajectory of a PHD-SLAM 3.0 "
+                        "run on the same seed (start_from=phd3)"),
           SmootherEntry("smoother-filter", reference::AssociationMode::kFilter,
                         "Ceres batch smoother on the data association of a PHD-SLAM 3.0 run "
                         "(N = 1, same seed); initialisation=batch|incremental as smoother-known"),
@@ -129,8 +135,11 @@ std::vector<EstimatorEntry> CeresEstimators() {
                         "Ceres batch smoother with its own association: each scan associated "
                         "in a sequential EKF pass from dead reckoning (initialisation=batch, "
                         "default) or with the optimised map on marginal covariances as the "
-                        "graph grows (initialisation=incremental), robust loss, re-association "
-                        "in a final full solve (reference/ceres/README.md)"),
+                        "graph grows (initialisation=incremental), or with the pass started "
+                        "from the trajectory of a PHD-SLAM 3.0 run on the same seed "
+                        "(start_from=phd3, start_particles=5; its association is not used), "
+                        "robust loss, re-association in a final full solve "
+                        "(reference/ceres/README.md)"),
           WindowEntry("window-known", true,
                       "Ceres fixed-lag (sliding-window) smoother with the known association "
                       "(reads the hidden origin labels): old states marginalised into a Gaussian "

@@ -1,0 +1,58 @@
+// The smoother's own association started from another estimator's trajectory (README.md, "Start
+// from another estimator's trajectory"). The sequential association pass predicts each pose by
+// the start trajectory's relative motion between consecutive steps instead of the odometry, so
+// that its gates open around a trajectory that has already closed its loops, while the pass, its
+// intermediate solves and the final re-association rounds make the smoother's own association:
+// nothing of the other estimator's association is read.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "datasets/batch_estimator.h"
+#include "datasets/scenario.h"
+#include "reference/ceres/batch_smoother.h"
+#include "reference/ceres/odometry_increment.h"
+#include "src/filters/estimator.h"
+
+namespace phdslam::reference {
+
+/// The increments that follow `start` (one pose per step of `scenario`): step k's delta is
+/// start[k] in the frame of start[k-1] (start[-1] = scenario.initial_pose), the heading
+/// difference wrapped to (-pi, pi] (estimators report wrapped headings). A step without
+/// propagation in `odometry` stays without; every covariance is `odometry`'s, so the pass gates
+/// and weighs its pose corrections as it would from dead reckoning. Throws std::invalid_argument
+/// when the sizes differ or a start pose is not finite.
+std::vector<OdometryIncrement> StartTrajectoryIncrements(
+    const datasets::Scenario& scenario, const std::vector<Pose>& start,
+    const std::vector<OdometryIncrement>& odometry);
+
+/// Runs an online estimator over the scenario for its trajectory alone and then the smoother
+/// with `options` (any association mode but kFilter), started from that trajectory
+/// (SmootherOptions::initial_poses). The estimator's association is never read.
+class SmoothFromEstimatorStart final : public datasets::BatchEstimator {
+ public:
+  /// `estimator` must be built for the scenario Solve will receive. Throws std::invalid_argument
+  /// when it is null, options.association is kFilter, or options.initial_poses is already set.
+  SmoothFromEstimatorStart(std::unique_ptr<filters::OnlineEstimator> estimator,
+                           SmootherOptions options);
+
+  /// Runs the estimator over every scan (once: a second call throws std::logic_error), then the
+  /// smoother. BatchResult.solve_seconds includes the estimator's run; estimator_seconds() gives
+  /// that part alone.
+  datasets::BatchResult Solve(const datasets::Scenario& scenario) override;
+
+  [[nodiscard]] const BatchSmoother& smoother() const { return *smoother_; }
+  [[nodiscard]] double estimator_seconds() const { return estimator_seconds_; }
+  /// The trajectory the smoother started from.
+  [[nodiscard]] const std::vector<Pose>& start() const { return start_; }
+
+ private:
+  std::unique_ptr<filters::OnlineEstimator> estimator_;
+  SmootherOptions options_;
+  std::unique_ptr<BatchSmoother> smoother_;
+  std::vector<Pose> start_;
+  double estimator_seconds_ = 0.0;
+};
+
+}  // namespace phdslam::reference
