@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <Eigen/Cholesky>
 #include <Eigen/LU>
 #include <cmath>
 #include <optional>
@@ -240,7 +241,7 @@ TEST(JointIplDensity, InnovationGuardRejectsAnInconsistentBestAssociation) {
     nu.segment<2>(2 * i) = r;
   }
   const Eigen::MatrixXd s = h * sigma0 * h.transpose() + omega;
-  EXPECT_GT(nu.dot(s.inverse() * nu), ChiSquareUpperQuantileEvenDof(6, 1e-6));
+  EXPECT_GT(nu.dot(s.llt().solve(nu)), ChiSquareUpperQuantileEvenDof(6, 1e-6));
 
   const PhdSlamParams params;
   const ProposalInput input{mu0, sigma0, map.active(), z, &sensor, {}};
