@@ -8,6 +8,16 @@
 
 namespace phdslam::validation {
 
+namespace {
+
+/// The labelled filters, whose survival probability the defaults below set or derive.
+const std::vector<std::string>& LabelledFilters() {
+  static const std::vector<std::string> names = {"glmb2", "glmb1", "lmb"};
+  return names;
+}
+
+}  // namespace
+
 const std::vector<ScenarioDefaultsRow>& ScenarioDefaultsTable() {
   static const std::vector<ScenarioDefaultsRow> table = {
       {"victoria-park",
@@ -32,7 +42,7 @@ const std::vector<ScenarioDefaultsRow>& ScenarioDefaultsTable() {
       // labelled filters' glmb-sim results (the paper's figures, the pD and clutter sweeps, the
       // CI gates) stay those of the paper's settings.
       {"glmb-sim",
-       {"glmb2", "glmb1", "lmb"},
+       LabelledFilters(),
        {{"survival_probability", 0.95}},
        "docs/algorithms/glmb-slam.md section 2.2: the delta-GLMB paper's p_S for its simulation"},
       // Victoria Park's pD falls with range, 0.7 (1 - r / 50 m), so most trees in view are
@@ -41,7 +51,7 @@ const std::vector<ScenarioDefaultsRow>& ScenarioDefaultsTable() {
       // The measured p_S sweep (validation/REPRODUCTION.md, "The labelled filters' survival
       // probability") gives the lowest GPS error at 0.998, the largest value measured.
       {"victoria-park",
-       {"glmb2", "glmb1", "lmb"},
+       LabelledFilters(),
        {{"survival_probability", 0.998}},
        "docs/algorithms/glmb-slam.md section 2.2: range-dependent pD, measured p_S sweep"},
   };
@@ -61,7 +71,8 @@ constexpr double kPaperDetectionProbability = 0.7;
 constexpr double kMaxDerivedSurvivalProbability = 0.998;
 
 bool IsLabelledFilter(const std::string& estimator) {
-  return estimator == "glmb2" || estimator == "glmb1" || estimator == "lmb";
+  const std::vector<std::string>& names = LabelledFilters();
+  return std::find(names.begin(), names.end(), estimator) != names.end();
 }
 
 }  // namespace
