@@ -23,7 +23,7 @@ targets=(mat_file victoria_park tum_trajectory map_csv experiment_file mrclam sc
 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only -DNDEBUG" -DCMAKE_CXX_COMPILER=clang++-14 \
   -DPHDSLAM_FUZZ=ON -DPHDSLAM_BUILD_TESTS=OFF -DPHDSLAM_BUILD_BENCHMARKS=OFF \
-  -DPHDSLAM_WITH_CERES=OFF -DPHDSLAM_WITH_MRPT=OFF >/dev/null
+  -DPHDSLAM_WITH_CERES=OFF -DPHDSLAM_WITH_MRPT=OFF -DPHDSLAM_UNITY_BUILD=ON >/dev/null
 cmake --build "$build" -j "$(nproc 2>/dev/null || echo 2)" --target "${targets[@]/#/fuzz_}" >/dev/null
 
 # Seed corpus, rebuilt on every call from the real files.

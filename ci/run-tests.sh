@@ -1,11 +1,10 @@
 #!/usr/bin/env bash
 # The test command: installs what is missing (Chromium included, for the report-rendering test),
-# builds the release preset (warnings are errors), checks formatting and runs clang-tidy on the
-# project's sources (ci/run-lint.sh), runs every unit test with CTest, the Slurm test, the
-# accuracy regression gates (the regression runs and bands of ci/thresholds.yaml and
-# ci/thresholds_glmb.yaml), then the
-# libFuzzer targets for 20 s each (ci/run-fuzz.sh, under ASan + UBSan). Exits non-zero on any
-# failure.
+# builds the release preset as a unity build (PHDSLAM_UNITY_BUILD=ON; warnings are errors), checks
+# formatting and runs clang-tidy on the project's sources (ci/run-lint.sh), runs every unit test
+# with CTest, the Slurm test, the accuracy regression gates (the regression runs and bands of
+# ci/thresholds.yaml and ci/thresholds_glmb.yaml), then the libFuzzer targets for 20 s each
+# (ci/run-fuzz.sh, under ASan + UBSan). Exits non-zero on any failure.
 #
 #   ci/run-tests.sh              release build + lint + unit tests + Slurm test + gates + fuzzing
 #   ci/run-tests.sh --sanitize   also build and run the unit tests under ASan + UBSan, and the main
@@ -28,7 +27,7 @@ stage install ci/install-deps.sh --browser --slurm
 export PHDSLAM_REQUIRE_CHROMIUM=1
 
 jobs=$(nproc 2>/dev/null || echo 2)
-stage configure cmake --preset release >/dev/null
+stage configure cmake --preset release -DPHDSLAM_UNITY_BUILD=ON >/dev/null
 stage build cmake --build --preset release -j "$jobs"
 stage lint ci/run-lint.sh build/release
 stage ctest ctest --preset release

@@ -15,7 +15,7 @@
 namespace phdslam::datasets {
 namespace {
 
-constexpr const char* kScenarioName = "glmb-sim";
+constexpr const char* kGlmbSimName = "glmb-sim";
 constexpr const char* kDataStreamName = "glmb-sim/data";
 constexpr const char* kClutterStreamName = "glmb-sim/clutter";
 
@@ -25,13 +25,13 @@ constexpr int kShortSteps = 14;
 constexpr int kCornerSteps = 12;
 static_assert(2 * kLongSteps + 2 * kShortSteps + 4 * kCornerSteps == kGlmbSimLoopSteps);
 
-[[noreturn]] void Fail(const std::string& field, const std::string& what) {
+[[noreturn]] void FailGlmbSimOption(const std::string& field, const std::string& what) {
   throw std::invalid_argument("GlmbSimOptions." + field + " " + what);
 }
 
-void RequirePositive(const std::string& field, double v) {
+void RequirePositiveGlmbSimOption(const std::string& field, double v) {
   if (!(v > 0.0) || !std::isfinite(v))
-    Fail(field, "must be finite and > 0, got " + CompactNumber(v));
+    FailGlmbSimOption(field, "must be finite and > 0, got " + CompactNumber(v));
 }
 
 // The steering angle whose kCornerSteps Euler steps turn the heading by exactly 90 deg.
@@ -95,15 +95,18 @@ GlmbSimOptions::GlmbSimOptions() {
 }
 
 void GlmbSimOptions::Validate() const {
-  if (steps < 1) Fail("steps", "must be >= 1, got " + std::to_string(steps));
-  RequirePositive("dt", dt);
-  RequirePositive("speed", speed);
-  RequirePositive("wheelbase", wheelbase);
-  if (landmarks < 0) Fail("landmarks", "must be >= 0, got " + std::to_string(landmarks));
+  if (steps < 1) FailGlmbSimOption("steps", "must be >= 1, got " + std::to_string(steps));
+  RequirePositiveGlmbSimOption("dt", dt);
+  RequirePositiveGlmbSimOption("speed", speed);
+  RequirePositiveGlmbSimOption("wheelbase", wheelbase);
+  if (landmarks < 0)
+    FailGlmbSimOption("landmarks", "must be >= 0, got " + std::to_string(landmarks));
   if (!(landmark_offset >= 0.0) || !std::isfinite(landmark_offset)) {
-    Fail("landmark_offset", "must be finite and >= 0 (m), got " + std::to_string(landmark_offset));
+    FailGlmbSimOption("landmark_offset",
+                      "must be finite and >= 0 (m), got " + std::to_string(landmark_offset));
   }
-  if (data_seed < 0) Fail("data_seed", "must be >= 0, got " + std::to_string(data_seed));
+  if (data_seed < 0)
+    FailGlmbSimOption("data_seed", "must be >= 0, got " + std::to_string(data_seed));
   SimulationSettings::Of(*this).Validate("GlmbSimOptions");
   CheckSimulationSize("GlmbSimOptions", steps, landmarks, clutter_rate);
 }
@@ -144,7 +147,7 @@ std::vector<Landmark> GlmbSimMap(const GlmbSimOptions& o) {
 Scenario MakeGlmbSimScenario(const GlmbSimOptions& options, std::uint64_t seed) {
   options.Validate();
   Scenario s;
-  s.name = kScenarioName;
+  s.name = kGlmbSimName;
   s.seed = seed;
   s.initial_pose = Pose::Zero();
   s.motion = MotionKind::kCar;

@@ -8,10 +8,10 @@
 namespace phdslam::datasets {
 namespace {
 
-constexpr std::size_t kHeaderBytes = 20;
+constexpr std::size_t kV4HeaderBytes = 20;
 constexpr std::int32_t kMaxTypeWord = 4052;  // M = 4 (Cray), O = 0, P = 5, T = 2
 
-[[noreturn]] void Fail(const std::string& where, const std::string& what) {
+[[noreturn]] void FailMatV4(const std::string& where, const std::string& what) {
   throw std::runtime_error(where + ": " + what);
 }
 
@@ -40,13 +40,14 @@ TypeWord ReadTypeWord(std::string_view bytes, std::size_t offset, const std::str
   std::int32_t word = ReadInt32(bytes, offset, false);
   if (word < 0 || word > kMaxTypeWord) word = ReadInt32(bytes, offset, true);
   if (word < 0 || word > kMaxTypeWord) {
-    Fail(where, "type word " + std::to_string(word) + " is not a version 4 type (MOPT, 0-4052)");
+    FailMatV4(where,
+              "type word " + std::to_string(word) + " is not a version 4 type (MOPT, 0-4052)");
   }
   TypeWord t{word / 1000, word % 100 / 10, word % 10, false};
   const std::int32_t order = word % 1000 / 100;
   if (t.machine > 1 || order != 0 || ElementBytes(t.precision) == 0 || t.kind > 2) {
-    Fail(where, "type word " + std::to_string(word) +
-                    " is not one libmatio reads (M 0 or 1, O 0, P 0-5, T 0-2)");
+    FailMatV4(where, "type word " + std::to_string(word) +
+                         " is not one libmatio reads (M 0 or 1, O 0, P 0-5, T 0-2)");
   }
   constexpr bool kLittleEndianMachine = std::endian::native == std::endian::little;
   t.swap = (t.machine == 0) != kLittleEndianMachine;
@@ -55,9 +56,9 @@ TypeWord ReadTypeWord(std::string_view bytes, std::size_t offset, const std::str
 
 /// Checks the variable whose header starts at `offset`; returns where the next one starts.
 std::size_t CheckVariable(std::string_view bytes, std::size_t offset, const std::string& where) {
-  if (bytes.size() - offset < kHeaderBytes) {
-    Fail(where, "ends inside a variable header at byte " + std::to_string(offset) + " (" +
-                    std::to_string(bytes.size() - offset) + " of 20 bytes)");
+  if (bytes.size() - offset < kV4HeaderBytes) {
+    FailMatV4(where, "ends inside a variable header at byte " + std::to_string(offset) + " (" +
+                         std::to_string(bytes.size() - offset) + " of 20 bytes)");
   }
   const TypeWord type = ReadTypeWord(bytes, offset, where);
   const std::int32_t rows = ReadInt32(bytes, offset + 4, type.swap);
@@ -65,12 +66,12 @@ std::size_t CheckVariable(std::string_view bytes, std::size_t offset, const std:
   const bool complex = ReadInt32(bytes, offset + 12, false) != 0;  // libmatio: any nonzero word
   const std::int32_t name_bytes = ReadInt32(bytes, offset + 16, type.swap);
   if (rows < 0 || cols < 0) {
-    Fail(where, "negative dimensions " + std::to_string(rows) + " x " + std::to_string(cols));
+    FailMatV4(where, "negative dimensions " + std::to_string(rows) + " x " + std::to_string(cols));
   }
-  std::size_t p = offset + kHeaderBytes;
+  std::size_t p = offset + kV4HeaderBytes;
   if (name_bytes < 1 || static_cast<std::uint64_t>(name_bytes) > bytes.size() - p) {
-    Fail(where, "name length " + std::to_string(name_bytes) + " is not between 1 and the " +
-                    std::to_string(bytes.size() - p) + " bytes left in the file");
+    FailMatV4(where, "name length " + std::to_string(name_bytes) + " is not between 1 and the " +
+                         std::to_string(bytes.size() - p) + " bytes left in the file");
   }
   p += static_cast<std::size_t>(name_bytes);
   // rows x cols < 2^62 fits; the byte count (up to 2^66) is formed only once it is known to fit.
@@ -78,10 +79,11 @@ std::size_t CheckVariable(std::string_view bytes, std::size_t offset, const std:
   const std::uint64_t each = ElementBytes(type.precision) * (complex ? 2 : 1);
   const std::uint64_t left = bytes.size() - p;
   if (count > left / each) {
-    Fail(where, "its " + std::to_string(rows) + " x " + std::to_string(cols) +
-                    (complex ? " complex" : "") + " elements of " +
-                    std::to_string(ElementBytes(type.precision)) + " bytes need more than the " +
-                    std::to_string(left) + " bytes left in the file (truncated or corrupt)");
+    FailMatV4(where, "its " + std::to_string(rows) + " x " + std::to_string(cols) +
+                         (complex ? " complex" : "") + " elements of " +
+                         std::to_string(ElementBytes(type.precision)) +
+                         " bytes need more than the " + std::to_string(left) +
+                         " bytes left in the file (truncated or corrupt)");
   }
   return p + static_cast<std::size_t>(count * each);
 }
@@ -89,7 +91,7 @@ std::size_t CheckVariable(std::string_view bytes, std::size_t offset, const std:
 }  // namespace
 
 void CheckMatV4Structure(std::string_view bytes, const std::string& where) {
-  if (bytes.empty()) Fail(where, "the file is empty");
+  if (bytes.empty()) FailMatV4(where, "the file is empty");
   std::size_t offset = 0;
   for (int index = 1; offset < bytes.size(); ++index) {
     offset = CheckVariable(bytes, offset, where + ", variable #" + std::to_string(index));

@@ -13,7 +13,7 @@
 namespace phdslam::datasets {
 namespace {
 
-constexpr std::size_t kHeaderBytes = 128;
+constexpr std::size_t kV5HeaderBytes = 128;
 constexpr std::size_t kTagBytes = 8;
 
 enum DataType : std::uint32_t {
@@ -84,7 +84,7 @@ struct Element {
   std::size_t next = 0;
 };
 
-[[noreturn]] void Fail(const std::string& where, const std::string& what) {
+[[noreturn]] void FailMatV5(const std::string& where, const std::string& what) {
   throw std::runtime_error(where + ": " + what);
 }
 
@@ -93,8 +93,8 @@ struct Element {
 Element ReadElement(const Buffer& buf, std::size_t offset, std::size_t end, bool padded,
                     const std::string& where) {
   if (end - offset < kTagBytes) {
-    Fail(where, "ends inside a data element tag at byte " + std::to_string(offset) + " (" +
-                    std::to_string(end - offset) + " of 8 bytes)");
+    FailMatV5(where, "ends inside a data element tag at byte " + std::to_string(offset) + " (" +
+                         std::to_string(end - offset) + " of 8 bytes)");
   }
   Element e;
   const std::uint32_t first = buf.U32(offset);
@@ -102,8 +102,8 @@ Element ReadElement(const Buffer& buf, std::size_t offset, std::size_t end, bool
     e.type = first & 0xffffU;
     e.size = first >> 16;
     if (e.size > 4) {
-      Fail(where, "small data element at byte " + std::to_string(offset) + " claims " +
-                      std::to_string(e.size) + " bytes (at most 4)");
+      FailMatV5(where, "small data element at byte " + std::to_string(offset) + " claims " +
+                           std::to_string(e.size) + " bytes (at most 4)");
     }
     e.data = offset + 4;
     e.next = offset + kTagBytes;
@@ -113,9 +113,10 @@ Element ReadElement(const Buffer& buf, std::size_t offset, std::size_t end, bool
   e.size = buf.U32(offset + 4);
   e.data = offset + kTagBytes;
   if (e.size > end - e.data) {
-    Fail(where, "data element at byte " + std::to_string(offset) + " declares " +
-                    std::to_string(e.size) + " bytes but only " + std::to_string(end - e.data) +
-                    " remain (the file is truncated or corrupt)");
+    FailMatV5(where, "data element at byte " + std::to_string(offset) + " declares " +
+                         std::to_string(e.size) + " bytes but only " +
+                         std::to_string(end - e.data) +
+                         " remain (the file is truncated or corrupt)");
   }
   const std::uint64_t padding = padded ? (kTagBytes - e.size % kTagBytes) % kTagBytes : 0;
   e.next = e.data + static_cast<std::size_t>(e.size);
@@ -129,13 +130,14 @@ void CheckArrayPart(const Buffer& buf, std::size_t& p, std::size_t end, std::uin
   const Element e = ReadElement(buf, p, end, true, where);
   const std::uint64_t each = ElementBytes(e.type);
   if (each == 0) {
-    Fail(where, std::string(part) + " part has unsupported data type " + std::to_string(e.type));
+    FailMatV5(where,
+              std::string(part) + " part has unsupported data type " + std::to_string(e.type));
   }
   const bool overflows = count != 0 && each > std::numeric_limits<std::uint64_t>::max() / count;
   if (overflows || e.size != count * each) {
-    Fail(where, "its dimensions declare " + std::to_string(count) + " elements but its " + part +
-                    " part stores " + std::to_string(e.size / each) + " (" +
-                    std::to_string(e.size) + " bytes of " + std::to_string(each) + ")");
+    FailMatV5(where, "its dimensions declare " + std::to_string(count) + " elements but its " +
+                         part + " part stores " + std::to_string(e.size / each) + " (" +
+                         std::to_string(e.size) + " bytes of " + std::to_string(each) + ")");
   }
   p = e.next;
 }
@@ -143,15 +145,15 @@ void CheckArrayPart(const Buffer& buf, std::size_t& p, std::size_t end, std::uin
 /// Product of the dimensions in a dimensions element; throws on a negative or overflowing value.
 std::uint64_t ElementCount(const Buffer& buf, const Element& dims, const std::string& where) {
   if (dims.type != kMiInt32 || dims.size < 8 || dims.size % 4 != 0) {
-    Fail(where, "malformed dimensions element");
+    FailMatV5(where, "malformed dimensions element");
   }
   std::uint64_t count = 1;
   for (std::size_t i = 0; i < dims.size / 4; ++i) {
     const auto d = static_cast<std::int32_t>(buf.U32(dims.data + 4 * i));
-    if (d < 0) Fail(where, "negative dimension " + std::to_string(d));
+    if (d < 0) FailMatV5(where, "negative dimension " + std::to_string(d));
     const auto ud = static_cast<std::uint64_t>(d);
     if (ud != 0 && count > std::numeric_limits<std::uint64_t>::max() / ud) {
-      Fail(where, "dimensions overflow");
+      FailMatV5(where, "dimensions overflow");
     }
     count *= ud;
   }
@@ -163,7 +165,7 @@ void CheckMatrix(const Buffer& buf, const Element& m, const std::string& where) 
   const std::size_t end = m.data + static_cast<std::size_t>(m.size);
   std::size_t p = m.data;
   const Element flags = ReadElement(buf, p, end, true, where);
-  if (flags.type != kMiUint32 || flags.size < 4) Fail(where, "malformed array flags element");
+  if (flags.type != kMiUint32 || flags.size < 4) FailMatV5(where, "malformed array flags element");
   const std::uint32_t flag_word = buf.U32(flags.data);
   const std::uint32_t array_class = flag_word & 0xffU;
   const bool numeric = array_class >= kFirstNumericClass && array_class <= kLastNumericClass;
@@ -202,10 +204,11 @@ void InflateTo(z_stream& zs, std::string& out, std::size_t want, const std::stri
     while (zs.avail_out > 0 && rc == Z_OK) rc = inflate(&zs, Z_NO_FLUSH);
     if (zs.avail_out > 0) {
       const std::size_t produced = out.size() - zs.avail_out;
-      Fail(where, "its compressed data inflates to only " + std::to_string(produced) + " of " +
-                      std::to_string(want) + " declared bytes" +
-                      (zs.msg != nullptr ? std::string(" (zlib: ") + zs.msg + ")" : std::string()) +
-                      "; the file is truncated or corrupt");
+      FailMatV5(where,
+                "its compressed data inflates to only " + std::to_string(produced) + " of " +
+                    std::to_string(want) + " declared bytes" +
+                    (zs.msg != nullptr ? std::string(" (zlib: ") + zs.msg + ")" : std::string()) +
+                    "; the file is truncated or corrupt");
     }
   }
 }
@@ -213,7 +216,7 @@ void InflateTo(z_stream& zs, std::string& out, std::size_t want, const std::stri
 /// Inflates a compressed variable completely: the inner tag's declared size must be produced.
 std::string Inflate(std::string_view compressed, bool swap, const std::string& where) {
   z_stream zs{};
-  if (inflateInit(&zs) != Z_OK) Fail(where, "cannot start decompression");
+  if (inflateInit(&zs) != Z_OK) FailMatV5(where, "cannot start decompression");
   struct Ender {
     z_stream* zs;
     ~Ender() { inflateEnd(zs); }
@@ -224,18 +227,18 @@ std::string Inflate(std::string_view compressed, bool swap, const std::string& w
   InflateTo(zs, out, kTagBytes, where);
   const Buffer head{out, swap};
   const std::uint32_t first = head.U32(0);
-  if (first != kMiMatrix) Fail(where, "compressed data does not hold an array");
+  if (first != kMiMatrix) FailMatV5(where, "compressed data does not hold an array");
   const std::uint64_t declared = head.U32(4);
   if (declared > kMaxMatVariableBytes - kTagBytes) {
-    Fail(where, "declares " + std::to_string(declared) + " bytes, more than the " +
-                    std::to_string(kMaxMatVariableBytes) + " accepted for one variable");
+    FailMatV5(where, "declares " + std::to_string(declared) + " bytes, more than the " +
+                         std::to_string(kMaxMatVariableBytes) + " accepted for one variable");
   }
   if (declared + kTagBytes > kMaxDeflateRatio * compressed.size()) {
-    Fail(where, "declares " + std::to_string(declared) + " bytes, but its " +
-                    std::to_string(compressed.size()) +
-                    " compressed bytes cannot inflate to more than " +
-                    std::to_string(kMaxDeflateRatio * compressed.size()) +
-                    " (deflate expands at most 1032:1); the file is truncated or corrupt");
+    FailMatV5(where, "declares " + std::to_string(declared) + " bytes, but its " +
+                         std::to_string(compressed.size()) +
+                         " compressed bytes cannot inflate to more than " +
+                         std::to_string(kMaxDeflateRatio * compressed.size()) +
+                         " (deflate expands at most 1032:1); the file is truncated or corrupt");
   }
   InflateTo(zs, out, kTagBytes + static_cast<std::size_t>(declared), where);
   return out;
@@ -244,7 +247,7 @@ std::string Inflate(std::string_view compressed, bool swap, const std::string& w
 /// True when `bytes` starts with a 128-byte MAT-file header of the given version number (0x0100
 /// for version 5, 0x0200 for 7.3), stored in the byte order its endian indicator gives.
 bool HasHeaderVersion(std::string_view bytes, unsigned version) {
-  if (bytes.size() < kHeaderBytes) return false;
+  if (bytes.size() < kV5HeaderBytes) return false;
   const std::string_view endian = bytes.substr(126, 2);
   const auto v0 = static_cast<unsigned char>(bytes[124]);
   const auto v1 = static_cast<unsigned char>(bytes[125]);
@@ -260,9 +263,9 @@ bool IsMatV5(std::string_view bytes) { return HasHeaderVersion(bytes, 0x0100); }
 bool IsMatV73(std::string_view bytes) { return HasHeaderVersion(bytes, 0x0200); }
 
 void CheckMatV5Structure(std::string_view bytes, const std::string& where) {
-  if (!IsMatV5(bytes)) Fail(where, "not a version 5 MAT-file");
+  if (!IsMatV5(bytes)) FailMatV5(where, "not a version 5 MAT-file");
   const Buffer file{bytes, bytes.substr(126, 2) == "MI"};
-  std::size_t offset = kHeaderBytes;
+  std::size_t offset = kV5HeaderBytes;
   for (int index = 1; offset < bytes.size(); ++index) {
     const std::string variable = where + ", variable #" + std::to_string(index);
     const Element e = ReadElement(file, offset, bytes.size(), true, variable);

@@ -27,7 +27,7 @@ struct Row {
   std::array<double, N> values{};
 };
 
-std::string Quote(const std::filesystem::path& path) { return "'" + path.string() + "'"; }
+std::string QuotedPath(const std::filesystem::path& path) { return "'" + path.string() + "'"; }
 
 [[noreturn]] void FailAt(const std::filesystem::path& path, std::size_t line,
                          const std::string& what) {
@@ -37,10 +37,10 @@ std::string Quote(const std::filesystem::path& path) { return "'" + path.string(
 std::string ReadWholeFile(const std::filesystem::path& path) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) {
-    throw std::runtime_error("MRCLAM file " + Quote(path) + " is missing");
+    throw std::runtime_error("MRCLAM file " + QuotedPath(path) + " is missing");
   }
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error("cannot open " + Quote(path) + " for reading");
+  if (!in) throw std::runtime_error("cannot open " + QuotedPath(path) + " for reading");
   std::ostringstream buffer;
   buffer << in.rdbuf();
   return buffer.str();
@@ -85,7 +85,7 @@ std::vector<Row<N>> ReadRows(const std::filesystem::path& path, std::string_view
     if (trimmed.empty() || trimmed.front() == '#') continue;
     rows.push_back(ParseLine<N>(line, number, path, columns));
   }
-  if (rows.empty()) throw std::runtime_error(Quote(path) + " holds no data lines");
+  if (rows.empty()) throw std::runtime_error(QuotedPath(path) + " holds no data lines");
   return rows;
 }
 
@@ -325,7 +325,7 @@ MrclamRobotData LoadMrclamRobot(const std::filesystem::path& data_dir, int datas
   const std::filesystem::path dir = data_dir / MrclamFolder(dataset);
   std::error_code ec;
   if (!std::filesystem::is_directory(dir, ec)) {
-    throw std::runtime_error("MRCLAM folder " + Quote(dir) + " is missing");
+    throw std::runtime_error("MRCLAM folder " + QuotedPath(dir) + " is missing");
   }
   MrclamRobotData data;
   data.dataset = dataset;

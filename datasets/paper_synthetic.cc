@@ -12,7 +12,7 @@
 namespace phdslam::datasets {
 namespace {
 
-constexpr const char* kScenarioName = "paper-synthetic";
+constexpr const char* kPaperSyntheticName = "paper-synthetic";
 
 std::string Shape(const Eigen::MatrixXd& m) {
   return std::to_string(m.rows()) + " x " + std::to_string(m.cols());
@@ -93,7 +93,7 @@ Scenario MakePaperSyntheticScenario(const PaperSyntheticEnvironment& env, std::u
   constexpr double kDt = 1.0;
 
   Scenario s;
-  s.name = kScenarioName;
+  s.name = kPaperSyntheticName;
   s.seed = seed;
   s.initial_pose = env.initial_pose;
   s.motion = MotionKind::kVelocity;
@@ -112,7 +112,7 @@ Scenario MakePaperSyntheticScenario(const PaperSyntheticEnvironment& env, std::u
   }
   s.truth.landmarks = env.landmarks;
 
-  RandomStream rng(DeriveSeed(HashName(kScenarioName), seed));
+  RandomStream rng(DeriveSeed(HashName(kPaperSyntheticName), seed));
   s.steps = SimulateRangeBearingSteps(s.truth.poses, controls, env.landmarks, settings, kDt, rng);
   return s;
 }

@@ -13,17 +13,18 @@
 namespace phdslam::datasets {
 namespace {
 
-[[noreturn]] void Fail(std::string_view owner, std::string_view field, const std::string& what) {
+[[noreturn]] void FailRangeBearingOption(std::string_view owner, std::string_view field,
+                                         const std::string& what) {
   throw std::invalid_argument(std::string(owner) + "." + std::string(field) + " " + what);
 }
 
 void CheckCovariance(std::string_view owner, std::string_view field, const Mat2& cov) {
-  if (!cov.allFinite()) Fail(owner, field, "must be finite");
-  if (cov(0, 1) != cov(1, 0)) Fail(owner, field, "must be symmetric");
+  if (!cov.allFinite()) FailRangeBearingOption(owner, field, "must be finite");
+  if (cov(0, 1) != cov(1, 0)) FailRangeBearingOption(owner, field, "must be symmetric");
   const double det = cov(0, 0) * cov(1, 1) - cov(0, 1) * cov(1, 0);
   const double scale = cov(0, 0) * cov(1, 1);
   if (cov(0, 0) < 0.0 || cov(1, 1) < 0.0 || det < -1e-12 * scale) {
-    Fail(owner, field, "must be positive semi-definite");
+    FailRangeBearingOption(owner, field, "must be positive semi-definite");
   }
 }
 
@@ -32,23 +33,28 @@ void CheckCovariance(std::string_view owner, std::string_view field, const Mat2&
 void SimulationSettings::Validate(std::string_view owner) const {
   const auto str = [](double v) { return CompactNumber(v); };
   if (!(detection_probability > 0.0 && detection_probability <= 1.0)) {
-    Fail(owner, "detection_probability", "must be in (0, 1], got " + str(detection_probability));
+    FailRangeBearingOption(owner, "detection_probability",
+                           "must be in (0, 1], got " + str(detection_probability));
   }
   if (!(clutter_rate >= 0.0 && clutter_rate <= kMaxClutterRate)) {
-    Fail(owner, "clutter_rate",
-         "must be in [0, " + str(kMaxClutterRate) + "] per scan, got " + str(clutter_rate));
+    FailRangeBearingOption(
+        owner, "clutter_rate",
+        "must be in [0, " + str(kMaxClutterRate) + "] per scan, got " + str(clutter_rate));
   }
   if (!(fov_range > 0.0) || !std::isfinite(fov_range)) {
-    Fail(owner, "fov_range", "must be finite and > 0 (m), got " + str(fov_range));
+    FailRangeBearingOption(owner, "fov_range", "must be finite and > 0 (m), got " + str(fov_range));
   }
   if (!(fov_half_angle > 0.0 && fov_half_angle <= std::numbers::pi)) {
-    Fail(owner, "fov_half_angle", "must be in (0, pi] (rad), got " + str(fov_half_angle));
+    FailRangeBearingOption(owner, "fov_half_angle",
+                           "must be in (0, pi] (rad), got " + str(fov_half_angle));
   }
   if (!(range_buffer >= 0.0) || !std::isfinite(range_buffer)) {
-    Fail(owner, "range_buffer", "must be finite and >= 0 (m), got " + str(range_buffer));
+    FailRangeBearingOption(owner, "range_buffer",
+                           "must be finite and >= 0 (m), got " + str(range_buffer));
   }
   if (!(angle_buffer >= 0.0) || !std::isfinite(angle_buffer)) {
-    Fail(owner, "angle_buffer", "must be finite and >= 0 (rad), got " + str(angle_buffer));
+    FailRangeBearingOption(owner, "angle_buffer",
+                           "must be finite and >= 0 (rad), got " + str(angle_buffer));
   }
   CheckCovariance(owner, "measurement_noise_cov", measurement_noise_cov);
   CheckCovariance(owner, "control_noise_cov", control_noise_cov);

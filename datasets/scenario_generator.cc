@@ -15,7 +15,7 @@
 namespace phdslam::datasets {
 namespace {
 
-constexpr const char* kScenarioName = "generated";
+constexpr const char* kGeneratedName = "generated";
 constexpr const char* kLandmarkStreamName = "generated/landmarks";
 constexpr double kCellsPerHalfWidth = 32.0;
 constexpr double kMaxRasterCells = 4.0e7;
@@ -121,7 +121,7 @@ CorridorRaster RasteriseCorridor(const std::vector<Pose>& poses, double half_wid
   return r;
 }
 
-[[noreturn]] void Fail(const std::string& field, const std::string& what) {
+[[noreturn]] void FailGeneratorOption(const std::string& field, const std::string& what) {
   throw std::invalid_argument("GeneratorOptions." + field + " " + what);
 }
 
@@ -134,19 +134,23 @@ GeneratorOptions::GeneratorOptions() {
 
 void GeneratorOptions::Validate() const {
   const auto str = [](double v) { return CompactNumber(v); };
-  if (steps < 1) Fail("steps", "must be >= 1, got " + std::to_string(steps));
-  if (!(dt > 0.0) || !std::isfinite(dt)) Fail("dt", "must be finite and > 0 (s), got " + str(dt));
+  if (steps < 1) FailGeneratorOption("steps", "must be >= 1, got " + std::to_string(steps));
+  if (!(dt > 0.0) || !std::isfinite(dt))
+    FailGeneratorOption("dt", "must be finite and > 0 (s), got " + str(dt));
   if (!(speed >= 0.0) || !std::isfinite(speed)) {
-    Fail("speed", "must be finite and >= 0 (m/s), got " + str(speed));
+    FailGeneratorOption("speed", "must be finite and >= 0 (m/s), got " + str(speed));
   }
   if (!(turn_amplitude >= 0.0) || !std::isfinite(turn_amplitude)) {
-    Fail("turn_amplitude", "must be finite and >= 0 (rad/s), got " + str(turn_amplitude));
+    FailGeneratorOption("turn_amplitude",
+                        "must be finite and >= 0 (rad/s), got " + str(turn_amplitude));
   }
-  if (landmarks < 0) Fail("landmarks", "must be >= 0, got " + std::to_string(landmarks));
+  if (landmarks < 0)
+    FailGeneratorOption("landmarks", "must be >= 0, got " + std::to_string(landmarks));
   if (!(corridor_half_width > 0.0) || !std::isfinite(corridor_half_width)) {
-    Fail("corridor_half_width", "must be finite and > 0 (m), got " + str(corridor_half_width));
+    FailGeneratorOption("corridor_half_width",
+                        "must be finite and > 0 (m), got " + str(corridor_half_width));
   }
-  if (!initial_pose.allFinite()) Fail("initial_pose", "must be finite");
+  if (!initial_pose.allFinite()) FailGeneratorOption("initial_pose", "must be finite");
   SimulationSettings::Of(*this).Validate("GeneratorOptions");
   CheckSimulationSize("GeneratorOptions", steps, landmarks, clutter_rate);
 }
@@ -166,7 +170,7 @@ Scenario GenerateScenarioPrefix(const GeneratorOptions& options, std::uint64_t s
   TruePath path = MakeTruePath(options);
 
   Scenario s;
-  s.name = kScenarioName;
+  s.name = kGeneratedName;
   s.seed = seed;
   s.initial_pose = options.initial_pose;
   s.motion = MotionKind::kVelocity;
@@ -193,7 +197,7 @@ Scenario GenerateScenarioPrefix(const GeneratorOptions& options, std::uint64_t s
   const auto prefix = static_cast<std::size_t>(simulated_steps);
   path.poses.resize(prefix);
   path.controls.resize(prefix);
-  RandomStream rng(DeriveSeed(HashName(kScenarioName), seed));
+  RandomStream rng(DeriveSeed(HashName(kGeneratedName), seed));
   s.steps = SimulateRangeBearingSteps(path.poses, path.controls, s.truth.landmarks, settings,
                                       options.dt, rng);
   s.truth.poses = std::move(path.poses);

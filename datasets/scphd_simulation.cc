@@ -14,16 +14,16 @@
 namespace phdslam::datasets {
 namespace {
 
-constexpr const char* kScenarioName = "scphd-sim";
+constexpr const char* kScPhdSimName = "scphd-sim";
 constexpr const char* kMapStreamName = "scphd-sim/map";
 
-[[noreturn]] void Fail(const std::string& field, const std::string& what) {
+[[noreturn]] void FailScPhdSimOption(const std::string& field, const std::string& what) {
   throw std::invalid_argument("ScPhdSimOptions." + field + " " + what);
 }
 
-void RequirePositive(const std::string& field, double v) {
+void RequirePositiveScPhdSimOption(const std::string& field, double v) {
   if (!(v > 0.0) || !std::isfinite(v))
-    Fail(field, "must be finite and > 0, got " + CompactNumber(v));
+    FailScPhdSimOption(field, "must be finite and > 0, got " + CompactNumber(v));
 }
 
 // The heading change per step that makes each Euler step of length v dt a chord of the circle.
@@ -39,16 +39,18 @@ ScPhdSimOptions::ScPhdSimOptions() {
 }
 
 void ScPhdSimOptions::Validate() const {
-  if (steps < 1) Fail("steps", "must be >= 1, got " + std::to_string(steps));
-  RequirePositive("dt", dt);
-  RequirePositive("speed", speed);
-  RequirePositive("circle_radius", circle_radius);
-  RequirePositive("wheelbase", wheelbase);
-  if (speed * dt >= 2.0 * circle_radius) Fail("speed", "* dt must be below the circle's diameter");
-  if (landmarks < 0) Fail("landmarks", "must be >= 0, got " + std::to_string(landmarks));
+  if (steps < 1) FailScPhdSimOption("steps", "must be >= 1, got " + std::to_string(steps));
+  RequirePositiveScPhdSimOption("dt", dt);
+  RequirePositiveScPhdSimOption("speed", speed);
+  RequirePositiveScPhdSimOption("circle_radius", circle_radius);
+  RequirePositiveScPhdSimOption("wheelbase", wheelbase);
+  if (speed * dt >= 2.0 * circle_radius)
+    FailScPhdSimOption("speed", "* dt must be below the circle's diameter");
+  if (landmarks < 0)
+    FailScPhdSimOption("landmarks", "must be >= 0, got " + std::to_string(landmarks));
   if (!(map_inner_radius >= 0.0) || !(map_outer_radius > map_inner_radius) ||
       !std::isfinite(map_outer_radius)) {
-    Fail("map_outer_radius", "must be finite and > map_inner_radius >= 0");
+    FailScPhdSimOption("map_outer_radius", "must be finite and > map_inner_radius >= 0");
   }
   SimulationSettings::Of(*this).Validate("ScPhdSimOptions");
   CheckSimulationSize("ScPhdSimOptions", steps, landmarks, clutter_rate);
@@ -72,7 +74,7 @@ std::vector<Landmark> ScPhdSimMap(const ScPhdSimOptions& o) {
 Scenario MakeScPhdSimScenario(const ScPhdSimOptions& options, std::uint64_t seed) {
   options.Validate();
   Scenario s;
-  s.name = kScenarioName;
+  s.name = kScPhdSimName;
   s.seed = seed;
   const double turn = TurnPerStep(options);
   // Heading the first chord: the poses are the vertices of a regular polygon on the circle.
@@ -95,7 +97,7 @@ Scenario MakeScPhdSimScenario(const ScPhdSimOptions& options, std::uint64_t seed
     controls.push_back(u);
     x = motion.Predict(x, u, options.dt);
   }
-  RandomStream rng(DeriveSeed(HashName(kScenarioName), seed));
+  RandomStream rng(DeriveSeed(HashName(kScPhdSimName), seed));
   s.steps =
       SimulateRangeBearingSteps(poses, controls, s.truth.landmarks, settings, options.dt, rng);
   s.truth.poses = std::move(poses);

@@ -14,7 +14,7 @@
 namespace phdslam::validation {
 namespace {
 
-constexpr double kRadToDeg = 180.0 / std::numbers::pi;
+constexpr double kDegreesPerRadian = 180.0 / std::numbers::pi;
 
 void RequireFiniteTimes(const std::vector<datasets::StampedPose>& poses, const char* what) {
   for (std::size_t i = 0; i < poses.size(); ++i) {
@@ -38,7 +38,7 @@ std::pair<std::string, std::string> TimeSpan(const std::vector<datasets::Stamped
   return {std::to_string(lo->t), std::to_string(hi->t)};
 }
 
-nlohmann::json OrNull(const std::optional<double>& v) {
+nlohmann::json ValueOrNull(const std::optional<double>& v) {
   return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
 }
 
@@ -123,13 +123,16 @@ nlohmann::json CompareTrajectories(const std::vector<datasets::StampedPose>& tru
   if (!matched.truth.empty()) {
     const PoseErrors errors = ComputePoseErrors(matched.truth, matched.estimate);
     for (double e : errors.position_m) position.Add(e);
-    for (double e : errors.heading_rad) heading.Add(e * kRadToDeg);
+    for (double e : errors.heading_rad) heading.Add(e * kDegreesPerRadian);
   }
-  return {
-      {"pos_rmse_m", OrNull(position.Rms())},      {"pos_err_std_m", OrNull(position.Std())},
-      {"heading_rmse_deg", OrNull(heading.Rms())}, {"heading_err_std_deg", OrNull(heading.Std())},
-      {"matched", matched.truth.size()},           {"truth_poses", truth.size()},
-      {"estimate_poses", estimate.size()},         {"time_tolerance_s", tolerance}};
+  return {{"pos_rmse_m", ValueOrNull(position.Rms())},
+          {"pos_err_std_m", ValueOrNull(position.Std())},
+          {"heading_rmse_deg", ValueOrNull(heading.Rms())},
+          {"heading_err_std_deg", ValueOrNull(heading.Std())},
+          {"matched", matched.truth.size()},
+          {"truth_poses", truth.size()},
+          {"estimate_poses", estimate.size()},
+          {"time_tolerance_s", tolerance}};
 }
 
 }  // namespace phdslam::validation
