@@ -385,11 +385,19 @@ void ParticleFilter<Model>::Resample(const std::vector<double>& weights) {
   for (int j = 0; j < n; ++j) r[j] = DrawUniform(j, DrawPurpose::kResample);
   const std::vector<int> sources = StratifiedResample(weights, r);
   if (observer_) observer_->Resampled(step_index_, sources);
+  // A source's last copy takes its particle by move (its map's storage is not copied again).
+  std::vector<int> last_use(n, -1);
+  for (int j = 0; j < n; ++j) last_use[sources[j]] = j;
   std::vector<ParticleType> next;
   next.reserve(n);
   const double log_uniform = -std::log(static_cast<double>(n));
-  for (int s : sources) {
-    next.push_back(particles_[s]);
+  for (int j = 0; j < n; ++j) {
+    const int s = sources[j];
+    if (last_use[s] == j) {
+      next.push_back(std::move(particles_[s]));
+    } else {
+      next.push_back(particles_[s]);
+    }
     next.back().log_weight = log_uniform;
     next.back().parent = s;
   }

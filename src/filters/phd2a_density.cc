@@ -1,7 +1,10 @@
 #include "src/filters/phd2a_density.h"
 
 #include <Eigen/LU>
+#include <array>
 #include <cmath>
+#include <cstddef>
+#include <memory_resource>
 #include <numbers>
 #include <stdexcept>
 #include <vector>
@@ -10,9 +13,13 @@
 #include "src/core/gaussian.h"
 #include "src/core/log_sum_exp.h"
 #include "src/models/range_bearing_model.h"
+#include "src/models/sensor_model.h"
 
 namespace phdslam::filters {
 namespace {
+
+/// Stack bytes for the scratch lists of one Build: room for about 40 gated pairs.
+constexpr std::size_t kScratchArenaBytes = std::size_t{12} * 1024;
 
 /// One gated (component, measurement) pair.
 struct Pair {
@@ -63,25 +70,31 @@ ProposalOutput MergedEkfDensity::Build(const ProposalInput& input) const {
   const Mat3& sigma0 = input.predicted_cov;
   const models::FovView fov(*input.sensor, mu0);
 
-  std::vector<Pair> pairs;
-  std::vector<Mat3> conditional_covs;
+  // The scratch lists of this build live in a stack arena (the heap only beyond it).
+  std::array<std::byte, kScratchArenaBytes> arena_bytes;  // uninitialised: the arena writes it
+  std::pmr::monotonic_buffer_resource arena(arena_bytes.data(), arena_bytes.size());
+  std::pmr::vector<Pair> pairs(&arena);
+  std::pmr::vector<Mat3> conditional_covs(&arena);
   double log_missed_mass = kNegInf;
+  models::LogDetectionTerms log_pd;
   for (int i = 0; i < static_cast<int>(active.size()); ++i) {
     const phd::GaussianComponent& comp = active[i];
     const double pd = fov.DetectionProbability(comp.mean);
     if (pd <= 0.0) continue;
-    log_missed_mass = LogAddExp(log_missed_mass, std::log1p(-pd) + comp.log_weight);
-    const auto j = models::MeasurementJacobians(mu0, comp.mean);
-    const Measurement z_hat = models::PredictMeasurement(mu0, comp.mean);
+    log_pd.Set(pd);
+    log_missed_mass = LogAddExp(log_missed_mass, log_pd.log_miss() + comp.log_weight);
+    const auto [z_hat, j] = models::PredictWithJacobians(mu0, comp.mean);
     const Mat32 pht = sigma0 * j.hx.transpose();
     Mat2 s = j.hx * pht + j.hm * comp.cov * j.hm.transpose() + input.sensor->noise_cov;
     Symmetrize(s);
     const Mat2 s_inv = s.inverse();
     const double log_norm =
-        std::log(pd) + comp.log_weight - log_two_pi - 0.5 * std::log(s.determinant());
+        log_pd.log_pd() + comp.log_weight - log_two_pi - 0.5 * std::log(s.determinant());
     const Mat32 gain = pht * s_inv;
+    const double range_window = FirstCoordinateGateHalfWidth(s, params_.map.gate_threshold);
     int conditional = -1;
     for (int jz = 0; jz < num_z; ++jz) {
+      if (std::abs(input.measurements[jz](0) - z_hat(0)) > range_window) continue;
       Vec2 nu = input.measurements[jz] - z_hat;
       nu(1) = WrapAngle(nu(1));
       const double d2 = nu.dot(s_inv * nu);
@@ -98,8 +111,8 @@ ProposalOutput MergedEkfDensity::Build(const ProposalInput& input) const {
   if (pairs.empty()) return PriorProposal(input);
 
   // Per-measurement normaliser log(lambda_c + sum_i g_ij) and best explanation.
-  std::vector<double> log_denominator(num_z, log_clutter);
-  std::vector<double> best_gain(num_z, log_clutter);
+  std::pmr::vector<double> log_denominator(num_z, log_clutter, &arena);
+  std::pmr::vector<double> best_gain(num_z, log_clutter, &arena);
   ProposalOutput out;
   out.best_association.assign(num_z, -1);
   for (const Pair& p : pairs) {
@@ -111,9 +124,9 @@ ProposalOutput MergedEkfDensity::Build(const ProposalInput& input) const {
   }
 
   // The mixture to collapse: the prior with the misdetection mass, then every conditional.
-  std::vector<double> log_weights;
-  std::vector<Pose> means;
-  std::vector<Mat3> covs;
+  std::pmr::vector<double> log_weights(&arena);
+  std::pmr::vector<Pose> means(&arena);
+  std::pmr::vector<Mat3> covs(&arena);
   log_weights.reserve(pairs.size() + 1);
   means.reserve(pairs.size() + 1);
   covs.reserve(pairs.size() + 1);
