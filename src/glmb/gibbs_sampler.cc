@@ -161,23 +161,20 @@ bool ResampleRow(const ChainRows& rows, int n, ChainState& state, RandomStream& 
   int last_allowed = -1;
   for (int c = 0; c < count; ++c) {
     const int o = owner[slot[c]];
-    if (o == -1 || o == n) {
-      total += weight[c];
-      last_allowed = c;
-    }
+    const bool allowed = o == -1 || o == n;
+    total += allowed ? weight[c] : 0.0;  // + 0.0 leaves a sum >= 0 as it is
+    last_allowed = allowed ? c : last_allowed;
     cumulative[c] = total;
   }
   if (!(total > 0.0)) return false;  // unreachable from a valid state: the current value is allowed
   const double target = u * total;
-  // A value that is not allowed repeats its predecessor's running sum, which target already
-  // reached (target >= 0), so the first running sum above target is an allowed value's.
-  int pick_c = last_allowed;
-  for (int c = 0; c < count; ++c) {
-    if (target < cumulative[c]) {
-      pick_c = c;
-      break;
-    }
-  }
+  // The running sums do not decrease, so the first one above target comes after the sums that
+  // are not; a value that is not allowed repeats its predecessor's sum, which target already
+  // reached (target >= 0), so that first sum is an allowed value's. None above target (u * total
+  // rounded up to total): the last allowed value.
+  int below = 0;
+  for (int c = 0; c < count; ++c) below += cumulative[c] <= target ? 1 : 0;
+  const int pick_c = below < count ? below : last_allowed;
   const int pick = value[pick_c];
   const int old = state.gamma[n];
   if (pick == old) return false;
