@@ -89,23 +89,8 @@ std::optional<Association> OptimalAssociation(EtaRows rows, int measurements) {
   return gamma;
 }
 
-namespace {
-
-/// The allowed values of a chain's rows with their linear weights exp(log eta - row max),
-/// computed once per chain so that a sweep needs no exponentials; row n's values are
-/// [begin[n], begin[n + 1]), -1 and 0 first, then the gated measurements.
-struct ChainRows {
-  std::vector<int> begin;
-  std::vector<int> value;  ///< gamma
-  /// The owner slot a value needs free: j for measurement j, `measurements` (never owned) for
-  /// death and miss.
-  std::vector<int> slot;
-  std::vector<double> weight;
-  int widest = 0;  ///< the most values of one row
-};
-
-ChainRows Linearise(EtaRows rows, int measurements) {
-  ChainRows out;
+SamplerRows MakeSamplerRows(EtaRows rows, int measurements) {
+  SamplerRows out;
   out.begin.reserve(rows.size() + 1);
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const EtaRow& row = rows[i];
@@ -130,6 +115,8 @@ ChainRows Linearise(EtaRows rows, int measurements) {
   return out;
 }
 
+namespace {
+
 /// The contribution of gamma_n = g to an association's hash (a sum over rows, so that one row's
 /// change updates it in O(1)).
 std::uint64_t RowHash(int n, int g) {
@@ -145,13 +132,24 @@ struct ChainState {
   std::vector<double> cumulative;  ///< scratch: running sums of a row's allowed weights
 };
 
-/// Resamples gamma[n] from its conditional; true when it changed. One uniform is drawn whatever
-/// the row. The running sums are those of a sum over the allowed values in order, so the pick is
-/// the first allowed value whose running sum exceeds u times the total.
-bool ResampleRow(const ChainRows& rows, int n, ChainState& state, RandomStream& rng) {
+/// Sets gamma[n] = pick, keeping the owners and the hash; true when it changed.
+bool SetRow(int n, int pick, ChainState& state) {
+  const int old = state.gamma[n];
+  if (pick == old) return false;
+  if (old > 0) state.owner[old - 1] = -1;
+  if (pick > 0) state.owner[pick - 1] = n;
+  state.gamma[n] = pick;
+  state.hash += RowHash(n, pick) - RowHash(n, old);
+  return true;
+}
+
+/// Resamples gamma[n], whose values are row `row` of `rows`, from its conditional; true when it
+/// changed. One uniform u is drawn whatever the row; the pick is the first allowed value (in the
+/// row's order) whose running sum of allowed weights exceeds u times their total.
+bool ResampleRow(const SamplerRows& rows, int row, int n, ChainState& state, RandomStream& rng) {
   const double u = rng.Uniform();
-  const int first = rows.begin[n];
-  const int count = rows.begin[n + 1] - first;
+  const int first = rows.begin[row];
+  const int count = rows.begin[row + 1] - first;
   const int* value = rows.value.data() + first;
   const int* slot = rows.slot.data() + first;
   const double* weight = rows.weight.data() + first;
@@ -175,21 +173,15 @@ bool ResampleRow(const ChainRows& rows, int n, ChainState& state, RandomStream& 
   int below = 0;
   for (int c = 0; c < count; ++c) below += cumulative[c] <= target ? 1 : 0;
   const int pick_c = below < count ? below : last_allowed;
-  const int pick = value[pick_c];
-  const int old = state.gamma[n];
-  if (pick == old) return false;
-  if (old > 0) state.owner[old - 1] = -1;
-  if (pick > 0) state.owner[pick - 1] = n;
-  state.gamma[n] = pick;
-  state.hash += RowHash(n, pick) - RowHash(n, old);
-  return true;
+  return SetRow(n, value[pick_c], state);
 }
 
 /// Runs the chain from `start` for samples - 1 sweeps, calling visit(gamma, hash, changed) on
-/// every sample; changed is false when the sweep left the association as it was.
+/// every sample; changed is false when the sweep left the association as it was. Row n of the
+/// chain is row index[n] of `table` (row n when index is empty).
 template <class Visit>
-void RunChain(EtaRows rows, int measurements, const Association& start, int samples,
-              RandomStream& rng, Visit&& visit) {
+void RunChain(const SamplerRows& table, std::span<const int> index, int measurements,
+              const Association& start, int samples, RandomStream& rng, Visit&& visit) {
   ChainState state;
   state.gamma = start;
   for (std::size_t i = 0; i < start.size(); ++i) {
@@ -201,12 +193,14 @@ void RunChain(EtaRows rows, int measurements, const Association& start, int samp
   for (std::size_t i = 0; i < start.size(); ++i) {
     if (start[i] > 0) state.owner[start[i] - 1] = static_cast<int>(i);
   }
-  const ChainRows linear = Linearise(rows, measurements);
-  state.cumulative.resize(static_cast<std::size_t>(linear.widest));
-  const int n_rows = static_cast<int>(rows.size());
+  state.cumulative.resize(static_cast<std::size_t>(table.widest));
+  const int n_rows = static_cast<int>(start.size());
   for (int s = 1; s < samples; ++s) {
     bool changed = false;
-    for (int n = 0; n < n_rows; ++n) changed |= ResampleRow(linear, n, state, rng);
+    for (int n = 0; n < n_rows; ++n) {
+      const int row = index.empty() ? n : index[n];
+      changed |= ResampleRow(table, row, n, state, rng);
+    }
     visit(state.gamma, state.hash, changed);
   }
 }
@@ -270,22 +264,29 @@ std::vector<Association> GibbsSample(EtaRows rows, int measurements, const Assoc
                                      int samples, RandomStream& rng) {
   std::vector<Association> out;
   out.reserve(std::max(1, samples));
-  RunChain(rows, measurements, start, samples, rng,
-           [&](const Association& g, std::uint64_t /*hash*/, bool /*changed*/) {
-             out.push_back(g);
-           });
+  const SamplerRows table = MakeSamplerRows(rows, measurements);
+  RunChain(
+      table, {}, measurements, start, samples, rng,
+      [&](const Association& g, std::uint64_t /*hash*/, bool /*changed*/) { out.push_back(g); });
   return out;
+}
+
+std::vector<Association> DistinctGibbsSamples(const SamplerRows& table, std::span<const int> index,
+                                              int measurements, const Association& start,
+                                              int samples, RandomStream& rng) {
+  AssociationSet seen(start.size());
+  RunChain(table, index, measurements, start, samples, rng,
+           [&](const Association& g, std::uint64_t hash, bool changed) {
+             if (changed) seen.Insert(g, hash);  // unchanged: the common case, already in
+           });
+  return seen.Sorted();
 }
 
 std::vector<Association> DistinctGibbsSamples(EtaRows rows, int measurements,
                                               const Association& start, int samples,
                                               RandomStream& rng) {
-  AssociationSet seen(start.size());
-  RunChain(rows, measurements, start, samples, rng,
-           [&](const Association& g, std::uint64_t hash, bool changed) {
-             if (changed) seen.Insert(g, hash);  // unchanged: the common case, already in
-           });
-  return seen.Sorted();
+  return DistinctGibbsSamples(MakeSamplerRows(rows, measurements), {}, measurements, start, samples,
+                              rng);
 }
 
 std::vector<Association> DistinctAssociations(std::vector<Association> samples) {

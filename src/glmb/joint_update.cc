@@ -93,6 +93,7 @@ std::vector<SampledAssociation> SampleAssociations(const JointProblem& problem,
   for (const JointProblem::Parent& h : problem.parents) half_log_w.push_back(0.5 * h.log_weight);
   const double norm = LogSumExp(half_log_w);
   std::vector<SampledAssociation> out;
+  const SamplerRows sampler_rows = MakeSamplerRows(problem.eta, problem.measurements);
   for (int h = 0; h < static_cast<int>(problem.parents.size()); ++h) {
     const JointProblem::Parent& parent = problem.parents[h];
     const EtaRows eta = problem.EtaOf(static_cast<std::size_t>(h));
@@ -107,7 +108,8 @@ std::vector<SampledAssociation> SampleAssociations(const JointProblem& problem,
     if (!start) continue;
     std::vector<Association> distinct =
         t_h == 1 ? std::vector<Association>{*start}
-                 : DistinctGibbsSamples(eta, problem.measurements, *start, t_h, rng);
+                 : DistinctGibbsSamples(sampler_rows, parent.rows, problem.measurements, *start,
+                                        t_h, rng);
     for (Association& gamma : distinct) {
       const double lw = parent.log_weight + LogAssociationWeight(eta, gamma) + problem.log_ck;
       out.push_back(SampledAssociation{h, std::move(gamma), lw});
