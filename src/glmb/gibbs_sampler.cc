@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <unordered_set>
 
 #include "src/assignment/linear_assignment.h"
 #include "src/core/log_sum_exp.h"
@@ -90,87 +89,173 @@ std::optional<Association> OptimalAssociation(EtaRows rows, int measurements) {
   return gamma;
 }
 
-namespace {
-
-/// A row's allowed values with their linear weights exp(log eta - row max), computed once per
-/// chain so that a sweep needs no exponentials.
-struct LinearRow {
-  std::vector<int> choices;     ///< gamma values, -1 and 0 first, then the gated measurements
-  std::vector<double> weights;  ///< aligned with choices
-};
-
-LinearRow Linearise(const EtaRow& row) {
-  LinearRow out;
-  auto offer = [&](int g, double v) {
-    if (v == kNegInf) return;
-    out.choices.push_back(g);
-    out.weights.push_back(v);
-  };
-  offer(-1, row.log_death);
-  offer(0, row.log_miss);
-  for (const auto& [j, v] : row.detections) offer(j + 1, v);
-  if (out.weights.empty()) return out;
-  const double m = *std::max_element(out.weights.begin(), out.weights.end());
-  for (double& w : out.weights) w = std::exp(w - m);
+SamplerRows MakeSamplerRows(EtaRows rows, int measurements) {
+  SamplerRows out;
+  out.begin.reserve(rows.size() + 1);
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const EtaRow& row = rows[i];
+    const auto first = static_cast<int>(out.value.size());
+    out.begin.push_back(first);
+    auto offer = [&](int g, double v) {
+      if (v == kNegInf) return;
+      out.value.push_back(g);
+      out.slot.push_back(g > 0 ? g - 1 : measurements);
+      out.weight.push_back(v);
+    };
+    offer(-1, row.log_death);
+    offer(0, row.log_miss);
+    for (const auto& [j, v] : row.detections) offer(j + 1, v);
+    const auto last = static_cast<int>(out.value.size());
+    out.widest = std::max(out.widest, last - first);
+    if (last == first) continue;
+    const double m = *std::max_element(out.weight.begin() + first, out.weight.end());
+    for (int c = first; c < last; ++c) out.weight[c] = std::exp(out.weight[c] - m);
+  }
+  out.begin.push_back(static_cast<int>(out.value.size()));
   return out;
 }
 
-/// Resamples gamma[n] from its conditional; owner[j] is the row holding measurement j or -1.
-/// One uniform is drawn whatever the row.
-void ResampleRow(const LinearRow& row, int n, Association& gamma, std::vector<int>& owner,
-                 RandomStream& rng) {
+namespace {
+
+/// The contribution of gamma_n = g to an association's hash (a sum over rows, so that one row's
+/// change updates it in O(1)).
+std::uint64_t RowHash(int n, int g) {
+  return MixSeed((static_cast<std::uint64_t>(n) << 32) ^ static_cast<std::uint32_t>(g + 1));
+}
+
+/// The state of one chain: the association, the owner of each measurement (row or -1; slot
+/// `measurements` is never owned) and the association's hash.
+struct ChainState {
+  Association gamma;
+  std::vector<int> owner;
+  std::uint64_t hash = 0;
+  std::vector<double> cumulative;  ///< scratch: running sums of a row's allowed weights
+};
+
+/// Sets gamma[n] = pick, keeping the owners and the hash; true when it changed.
+bool SetRow(int n, int pick, ChainState& state) {
+  const int old = state.gamma[n];
+  if (pick == old) return false;
+  if (old > 0) state.owner[old - 1] = -1;
+  if (pick > 0) state.owner[pick - 1] = n;
+  state.gamma[n] = pick;
+  state.hash += RowHash(n, pick) - RowHash(n, old);
+  return true;
+}
+
+/// Resamples gamma[n], whose values are row `row` of `rows`, from its conditional; true when it
+/// changed. One uniform u is drawn whatever the row; the pick is the first allowed value (in the
+/// row's order) whose running sum of allowed weights exceeds u times their total.
+bool ResampleRow(const SamplerRows& rows, int row, int n, ChainState& state, RandomStream& rng) {
   const double u = rng.Uniform();
-  auto allowed = [&](std::size_t c) {
-    const int g = row.choices[c];
-    return g <= 0 || owner[g - 1] == -1 || owner[g - 1] == n;
-  };
+  const int first = rows.begin[row];
+  const int count = rows.begin[row + 1] - first;
+  const int* value = rows.value.data() + first;
+  const int* slot = rows.slot.data() + first;
+  const double* weight = rows.weight.data() + first;
+  const int* owner = state.owner.data();
+  double* cumulative = state.cumulative.data();
   double total = 0.0;
-  for (std::size_t c = 0; c < row.choices.size(); ++c) {
-    if (allowed(c)) total += row.weights[c];
+  int last_allowed = -1;
+  for (int c = 0; c < count; ++c) {
+    const int o = owner[slot[c]];
+    const bool allowed = o == -1 || o == n;
+    total += allowed ? weight[c] : 0.0;  // + 0.0 leaves a sum >= 0 as it is
+    last_allowed = allowed ? c : last_allowed;
+    cumulative[c] = total;
   }
-  if (!(total > 0.0)) return;  // unreachable from a valid state: the current value is allowed
+  if (!(total > 0.0)) return false;  // unreachable from a valid state: the current value is allowed
   const double target = u * total;
-  double acc = 0.0;
-  int pick = gamma[n];
-  for (std::size_t c = 0; c < row.choices.size(); ++c) {
-    if (!allowed(c)) continue;
-    pick = row.choices[c];
-    acc += row.weights[c];
-    if (target < acc) break;
-  }
-  const int old = gamma[n];
-  if (old > 0) owner[old - 1] = -1;
-  gamma[n] = pick;
-  if (pick > 0) owner[pick - 1] = n;
+  // The running sums do not decrease, so the first one above target comes after the sums that
+  // are not; a value that is not allowed repeats its predecessor's sum, which target already
+  // reached (target >= 0), so that first sum is an allowed value's. None above target (u * total
+  // rounded up to total): the last allowed value.
+  int below = 0;
+  for (int c = 0; c < count; ++c) below += cumulative[c] <= target ? 1 : 0;
+  const int pick_c = below < count ? below : last_allowed;
+  return SetRow(n, value[pick_c], state);
 }
 
-/// Runs the chain from `start` for samples - 1 sweeps, calling visit(gamma) on every sample.
+/// Runs the chain from `start` for samples - 1 sweeps, calling visit(gamma, hash, changed) on
+/// every sample; changed is false when the sweep left the association as it was. Row n of the
+/// chain is row index[n] of `table` (row n when index is empty).
 template <class Visit>
-void RunChain(EtaRows rows, int measurements, const Association& start, int samples,
-              RandomStream& rng, Visit&& visit) {
-  visit(start);
-  if (samples <= 1) return;  // the start only: no sweep, no draw
-  Association gamma = start;
-  std::vector<int> owner(measurements, -1);
-  for (std::size_t i = 0; i < gamma.size(); ++i) {
-    if (gamma[i] > 0) owner[gamma[i] - 1] = static_cast<int>(i);
+void RunChain(const SamplerRows& table, std::span<const int> index, int measurements,
+              const Association& start, int samples, RandomStream& rng, Visit&& visit) {
+  ChainState state;
+  state.gamma = start;
+  for (std::size_t i = 0; i < start.size(); ++i) {
+    state.hash += RowHash(static_cast<int>(i), start[i]);
   }
-  std::vector<LinearRow> linear;
-  linear.reserve(rows.size());
-  for (std::size_t i = 0; i < rows.size(); ++i) linear.push_back(Linearise(rows[i]));
-  const int n_rows = static_cast<int>(rows.size());
+  visit(state.gamma, state.hash, true);
+  if (samples <= 1) return;  // the start only: no sweep, no draw
+  state.owner.assign(static_cast<std::size_t>(measurements) + 1, -1);
+  for (std::size_t i = 0; i < start.size(); ++i) {
+    if (start[i] > 0) state.owner[start[i] - 1] = static_cast<int>(i);
+  }
+  state.cumulative.resize(static_cast<std::size_t>(table.widest));
+  const int n_rows = static_cast<int>(start.size());
   for (int s = 1; s < samples; ++s) {
-    for (int n = 0; n < n_rows; ++n) ResampleRow(linear[n], n, gamma, owner, rng);
-    visit(gamma);
+    bool changed = false;
+    for (int n = 0; n < n_rows; ++n) {
+      const int row = index.empty() ? n : index[n];
+      changed |= ResampleRow(table, row, n, state, rng);
+    }
+    visit(state.gamma, state.hash, changed);
   }
 }
 
-struct AssociationHash {
-  std::size_t operator()(const Association& a) const {
-    std::uint64_t h = 0x9e3779b97f4a7c15ULL;
-    for (int v : a) h = MixSeed(h ^ static_cast<std::uint64_t>(static_cast<std::int64_t>(v)));
-    return static_cast<std::size_t>(h);
+/// A set of associations of one length, stored flat, with open addressing on their hashes.
+class AssociationSet {
+ public:
+  explicit AssociationSet(std::size_t length) : length_(length), table_(16, -1) {}
+
+  /// Adds gamma (whose hash is `hash`) unless present.
+  void Insert(const Association& gamma, std::uint64_t hash) {
+    std::size_t mask = table_.size() - 1;
+    for (std::size_t i = hash & mask;; i = (i + 1) & mask) {
+      const int k = table_[i];
+      if (k < 0) break;
+      if (hashes_[k] == hash && std::equal(gamma.begin(), gamma.end(), Row(k))) return;
+    }
+    const auto k = static_cast<int>(hashes_.size());
+    hashes_.push_back(hash);
+    store_.insert(store_.end(), gamma.begin(), gamma.end());
+    if (2 * hashes_.size() > table_.size()) {
+      table_.assign(2 * table_.size(), -1);
+      mask = table_.size() - 1;
+      for (int e = 0; e < k; ++e) Place(e, mask);
+    }
+    Place(k, mask);
   }
+
+  /// The members in lexicographic order.
+  [[nodiscard]] std::vector<Association> Sorted() const {
+    std::vector<int> order(hashes_.size());
+    for (std::size_t k = 0; k < order.size(); ++k) order[k] = static_cast<int>(k);
+    std::sort(order.begin(), order.end(), [&](int a, int b) {
+      return std::lexicographical_compare(Row(a), Row(a) + length_, Row(b), Row(b) + length_);
+    });
+    std::vector<Association> out;
+    out.reserve(order.size());
+    for (int k : order) out.emplace_back(Row(k), Row(k) + length_);
+    return out;
+  }
+
+ private:
+  [[nodiscard]] const int* Row(int k) const {
+    return store_.data() + static_cast<std::size_t>(k) * length_;
+  }
+  void Place(int k, std::size_t mask) {
+    std::size_t i = hashes_[k] & mask;
+    while (table_[i] >= 0) i = (i + 1) & mask;
+    table_[i] = k;
+  }
+
+  std::size_t length_;
+  std::vector<int> store_;
+  std::vector<std::uint64_t> hashes_;
+  std::vector<int> table_;  ///< member index or -1, size a power of two
 };
 
 }  // namespace
@@ -179,25 +264,29 @@ std::vector<Association> GibbsSample(EtaRows rows, int measurements, const Assoc
                                      int samples, RandomStream& rng) {
   std::vector<Association> out;
   out.reserve(std::max(1, samples));
-  RunChain(rows, measurements, start, samples, rng,
-           [&](const Association& g) { out.push_back(g); });
+  const SamplerRows table = MakeSamplerRows(rows, measurements);
+  RunChain(
+      table, {}, measurements, start, samples, rng,
+      [&](const Association& g, std::uint64_t /*hash*/, bool /*changed*/) { out.push_back(g); });
   return out;
+}
+
+std::vector<Association> DistinctGibbsSamples(const SamplerRows& table, std::span<const int> index,
+                                              int measurements, const Association& start,
+                                              int samples, RandomStream& rng) {
+  AssociationSet seen(start.size());
+  RunChain(table, index, measurements, start, samples, rng,
+           [&](const Association& g, std::uint64_t hash, bool changed) {
+             if (changed) seen.Insert(g, hash);  // unchanged: the common case, already in
+           });
+  return seen.Sorted();
 }
 
 std::vector<Association> DistinctGibbsSamples(EtaRows rows, int measurements,
                                               const Association& start, int samples,
                                               RandomStream& rng) {
-  std::unordered_set<Association, AssociationHash> seen;
-  std::vector<Association> out;
-  const Association* last = nullptr;
-  RunChain(rows, measurements, start, samples, rng, [&](const Association& g) {
-    if (last != nullptr && *last == g) return;  // the common case: the chain stayed
-    const auto [it, inserted] = seen.insert(g);
-    last = &*it;
-    if (inserted) out.push_back(g);
-  });
-  std::sort(out.begin(), out.end());
-  return out;
+  return DistinctGibbsSamples(MakeSamplerRows(rows, measurements), {}, measurements, start, samples,
+                              rng);
 }
 
 std::vector<Association> DistinctAssociations(std::vector<Association> samples) {

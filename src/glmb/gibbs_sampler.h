@@ -58,6 +58,21 @@ double LogAssociationWeight(EtaRows rows, const Association& gamma);
 /// measurements]; nullopt when none is valid (some row has no allowed value left).
 std::optional<Association> OptimalAssociation(EtaRows rows, int measurements);
 
+/// Eta rows in the sampler's form, computed once for a table of rows that many chains share:
+/// each row's allowed values with their linear weights exp(log eta - row max), row r's values
+/// being [begin[r], begin[r + 1]) in the order -1, 0, the gated measurements.
+struct SamplerRows {
+  std::vector<int> begin;
+  std::vector<int> value;  ///< gamma
+  /// The owner slot a value needs free: j for measurement j, `measurements` (never owned) for
+  /// death and miss.
+  std::vector<int> slot;
+  std::vector<double> weight;
+  int widest = 0;  ///< the most values of one row
+};
+
+SamplerRows MakeSamplerRows(EtaRows rows, int measurements);
+
 /// `samples` associations (at least 1): `start` (which must be valid) followed by samples - 1
 /// Gibbs sweeps, rows resampled in order from their conditionals given the other rows (a
 /// measurement taken by another row is excluded), conditionals shifted by their maximum before
@@ -72,5 +87,11 @@ std::vector<Association> DistinctAssociations(std::vector<Association> samples);
 std::vector<Association> DistinctGibbsSamples(EtaRows rows, int measurements,
                                               const Association& start, int samples,
                                               RandomStream& rng);
+
+/// The same for the eta matrix whose row n is row index[n] of `table` (MakeSamplerRows of a
+/// shared table of rows, such as JointProblem::eta).
+std::vector<Association> DistinctGibbsSamples(const SamplerRows& table, std::span<const int> index,
+                                              int measurements, const Association& start,
+                                              int samples, RandomStream& rng);
 
 }  // namespace phdslam::glmb

@@ -210,6 +210,22 @@ TEST(GibbsSampler, DistinctSamplingMatchesDeduplicatedSamples) {
             DistinctAssociations(GibbsSample(rows, 3, *start, 500, b)));
 }
 
+TEST(GibbsSampler, SharedTableRowsSampleAsTheirOwnMatrix) {
+  // A parent's rows picked out of a shared table (as JointProblem::eta is shared by parents)
+  // sample exactly as the same rows copied into a matrix of their own.
+  std::vector<EtaRow> table = SmallEta();
+  table.insert(table.begin() + 1, EtaRow{std::log(0.5), std::log(0.1), {{0, std::log(3.0)}}});
+  const std::vector<int> index{3, 0, 2};
+  const std::vector<EtaRow> own{table[3], table[0], table[2]};
+  const auto start = OptimalAssociation(own, 3);
+  ASSERT_TRUE(start.has_value());
+  RandomStream a(7);
+  RandomStream b(7);
+  const std::vector<Association> from_own = DistinctGibbsSamples(own, 3, *start, 400, a);
+  EXPECT_GT(from_own.size(), 3u);
+  EXPECT_EQ(DistinctGibbsSamples(MakeSamplerRows(table, 3), index, 3, *start, 400, b), from_own);
+}
+
 TEST(GibbsSampler, OptimalStartIsTheBestAssociation) {
   const std::vector<EtaRow> rows = SmallEta();
   const std::vector<Association> valid = EnumerateValid(rows, 3);

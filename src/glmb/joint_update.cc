@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <numeric>
 #include <unordered_map>
 
@@ -94,6 +93,7 @@ std::vector<SampledAssociation> SampleAssociations(const JointProblem& problem,
   for (const JointProblem::Parent& h : problem.parents) half_log_w.push_back(0.5 * h.log_weight);
   const double norm = LogSumExp(half_log_w);
   std::vector<SampledAssociation> out;
+  const SamplerRows sampler_rows = MakeSamplerRows(problem.eta, problem.measurements);
   for (int h = 0; h < static_cast<int>(problem.parents.size()); ++h) {
     const JointProblem::Parent& parent = problem.parents[h];
     const EtaRows eta = problem.EtaOf(static_cast<std::size_t>(h));
@@ -108,7 +108,8 @@ std::vector<SampledAssociation> SampleAssociations(const JointProblem& problem,
     if (!start) continue;
     std::vector<Association> distinct =
         t_h == 1 ? std::vector<Association>{*start}
-                 : DistinctGibbsSamples(eta, problem.measurements, *start, t_h, rng);
+                 : DistinctGibbsSamples(sampler_rows, parent.rows, problem.measurements, *start,
+                                        t_h, rng);
     for (Association& gamma : distinct) {
       const double lw = parent.log_weight + LogAssociationWeight(eta, gamma) + problem.log_ck;
       out.push_back(SampledAssociation{h, std::move(gamma), lw});
@@ -124,6 +125,15 @@ struct Child {
   double log_weight = kNegInf;
   int sample = 0;             ///< first sample giving this child
   std::vector<int> assigned;  ///< measurements detected in it
+};
+
+/// A hash of a child's sorted entry ids (its key for merging duplicates).
+struct IdSetHash {
+  std::size_t operator()(const std::vector<std::uint64_t>& ids) const {
+    std::uint64_t h = 0x9e3779b97f4a7c15ULL;
+    for (std::uint64_t id : ids) h = MixSeed(h ^ id);
+    return static_cast<std::size_t>(h);
+  }
 };
 
 void NormaliseLogWeights(std::vector<Child>& children) {
@@ -168,26 +178,31 @@ UpdateResult BuildPosterior(const JointProblem& problem,
     return slot;
   };
   std::vector<Child> children;
-  std::map<std::vector<std::uint64_t>, int> seen;
+  std::unordered_map<std::vector<std::uint64_t>, int, IdSetHash> seen;
   std::vector<double> all_log_w;
   all_log_w.reserve(samples.size());
+  // Scratch reused over the samples: the child's entries (pointers into the problem, the prior
+  // and the child cache, all stable here), the new detection children, the id key.
+  std::vector<const TrackPtr*> tracks;
+  std::vector<const TrackPtr*> detected;
+  std::vector<int> assigned;
+  std::vector<std::uint64_t> key;
+  const auto by_id = [](const TrackPtr* a, const TrackPtr* b) { return (*a)->id < (*b)->id; };
   for (int s = 0; s < static_cast<int>(samples.size()); ++s) {
     const SampledAssociation& sample = samples[s];
     const JointProblem::Parent& parent = problem.parents[sample.parent];
     all_log_w.push_back(sample.log_weight);
-    Child c;
-    c.sample = s;
-    c.log_weight = sample.log_weight;
-    c.tracks.reserve(parent.tracks->size() + parent.rows.size());
+    tracks.clear();
+    detected.clear();
+    assigned.clear();
     // The prior entries in id order (pass-through, or kept when missed), then the births kept
     // (ids above every prior entry), then the new detection children (sorted: created here).
-    std::vector<TrackPtr> detected;
     auto take = [&](std::size_t i) {
       const int g = sample.gamma[i];
-      if (g == 0) c.tracks.push_back(problem.entries[parent.rows[i]]);
+      if (g == 0) tracks.push_back(&problem.entries[parent.rows[i]]);
       if (g > 0) {
-        detected.push_back(child_of(parent.rows[i], g - 1));
-        c.assigned.push_back(g - 1);
+        detected.push_back(&child_of(parent.rows[i], g - 1));
+        assigned.push_back(g - 1);
       }
     };
     std::size_t r = 0;
@@ -196,20 +211,25 @@ UpdateResult BuildPosterior(const JointProblem& problem,
           problem.entries[parent.rows[r]] == t) {
         take(r++);
       } else {
-        c.tracks.push_back(t);
+        tracks.push_back(&t);
       }
     }
     for (std::size_t i = parent.in_fov_rows; i < parent.rows.size(); ++i) take(i);
-    const auto by_id = [](const TrackPtr& a, const TrackPtr& b) { return a->id < b->id; };
     std::sort(detected.begin(), detected.end(), by_id);
-    c.tracks.insert(c.tracks.end(), detected.begin(), detected.end());
-    if (!std::is_sorted(c.tracks.begin(), c.tracks.end(), by_id)) {
-      std::sort(c.tracks.begin(), c.tracks.end(), by_id);
+    tracks.insert(tracks.end(), detected.begin(), detected.end());
+    if (!std::is_sorted(tracks.begin(), tracks.end(), by_id)) {
+      std::sort(tracks.begin(), tracks.end(), by_id);
     }
-    std::vector<std::uint64_t> key(c.tracks.size());
-    for (std::size_t i = 0; i < key.size(); ++i) key[i] = c.tracks[i]->id;
-    const auto [it, inserted] = seen.emplace(std::move(key), static_cast<int>(children.size()));
+    key.resize(tracks.size());
+    for (std::size_t i = 0; i < key.size(); ++i) key[i] = (*tracks[i])->id;
+    const auto [it, inserted] = seen.try_emplace(key, static_cast<int>(children.size()));
     if (inserted) {
+      Child c;
+      c.sample = s;
+      c.log_weight = sample.log_weight;
+      c.tracks.reserve(tracks.size());
+      for (const TrackPtr* t : tracks) c.tracks.push_back(*t);
+      c.assigned = assigned;
       children.push_back(std::move(c));
     } else {
       Child& d = children[it->second];
