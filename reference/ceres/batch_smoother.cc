@@ -201,6 +201,9 @@ void SmootherOptions::Validate() const {
   require(start_particles >= 1, "start_particles: expected >= 1");
   require(start_from == StartTrajectory::kDeadReckoning || association != AssociationMode::kFilter,
           "start_from: the filter association starts from its own filter's trajectory");
+  require(start_path == StartPath::kEstimate || start_from == StartTrajectory::kPhd3,
+          "start_path: best-particle-path is a trajectory of the start_from filter run, "
+          "which needs start_from: phd3");
   require(odometry_floor.position_std > 0.0 && odometry_floor.heading_std > 0.0,
           "odometry_floor: expected positive standard deviations");
   require(warm_start_floor.position_std > 0.0 && warm_start_floor.heading_std > 0.0,

@@ -43,6 +43,13 @@ enum class StartTrajectory {
   kPhd3,           ///< a PHD-SLAM 3.0 run on the same data and stream fills initial_poses
 };
 
+/// Which trajectory of the start_from filter run fills initial_poses (README.md, "Start from
+/// another estimator's trajectory").
+enum class StartPath {
+  kEstimate,          ///< the filter's estimate of every step (its highest-weight particle then)
+  kBestParticlePath,  ///< the path of the highest-weight particle of the last step
+};
+
 /// How the odometry factor is whitened (README.md, "Odometry factor").
 enum class OdometryResidual {
   /// Velocity-model steps with one sub-interval: the control that explains the relative pose,
@@ -174,6 +181,9 @@ struct SmootherOptions {
   StartTrajectory start_from = StartTrajectory::kDeadReckoning;
   /// Particles of the PHD-SLAM 3.0 run of start_from = kPhd3.
   int start_particles = 5;
+  /// Which trajectory of that run: its per-step estimates or its best final particle's path
+  /// (particle_lineage.h). Only with start_from = kPhd3.
+  StartPath start_path = StartPath::kEstimate;
 
   // Filter mode: per step, per measurement, the landmark id of a filter's association (any
   // non-negative label; -1 = clutter). Labels with fewer than min_observations detections are

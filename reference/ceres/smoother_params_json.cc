@@ -147,6 +147,9 @@ const params::ParameterTable<SmootherOptions>& SmootherOptionsTable() {
           {{StartTrajectory::kDeadReckoning, "dead-reckoning"}, {StartTrajectory::kPhd3, "phd3"}}),
       params::IntField<O>(
           "start_particles", [](auto& o) -> auto& { return o.start_particles; }, AtLeast(1)),
+      params::EnumField<O, StartPath>("start_path", [](auto& o) -> auto& { return o.start_path; },
+                                      {{StartPath::kEstimate, "estimate"},
+                                       {StartPath::kBestParticlePath, "best-particle-path"}}),
   });
   return table;
 }

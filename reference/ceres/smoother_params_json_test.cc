@@ -71,7 +71,7 @@ TEST(SmootherParamsJson, WritesEveryOptionWithItsType) {
       "merge_position_std": 1.0, "min_detection_ratio": 0.3, "min_observations": 3,
       "num_threads": 1, "odometry_floor": [0.0001, 1e-05], "odometry_residual": "control_space",
       "reassociation_rounds": 5, "robust_loss": "cauchy", "robust_scale": 1.0,
-      "start_from": "dead-reckoning", "start_particles": 5,
+      "start_from": "dead-reckoning", "start_particles": 5, "start_path": "estimate",
       "warm_start_floor": [0.05, 1e-05]})")
                 .dump());
 }
@@ -121,6 +121,7 @@ TEST(SmootherParamsJson, RejectsBadOverridesAndLeavesTheOptionsUnchanged) {
                  "parameter 'warm_start_floor': must be > 0, got 0");
   ExpectRejected(R"({"linear_solver": "dense_qr"})", "sparse_normal_cholesky");
   ExpectRejected(R"({"robust_loss": "tukey"})", "robust_loss");
+  ExpectRejected(R"({"start_path": "lineage"})", "parameter 'start_path': expected one of");
   ExpectRejected(R"({"min_observations": 0})", "min_observations");
   ExpectRejected(R"({"initialisation": "dead_reckoning"})",
                  "parameter 'initialisation': expected one of");

@@ -37,8 +37,17 @@ std::vector<OdometryIncrement> StartTrajectoryIncrements(
 
 SmoothFromEstimatorStart::SmoothFromEstimatorStart(
     std::unique_ptr<filters::OnlineEstimator> estimator, SmootherOptions options)
-    : estimator_(std::move(estimator)), options_(std::move(options)) {
+    : SmoothFromEstimatorStart(Started{std::move(estimator), nullptr}, std::move(options)) {}
+
+SmoothFromEstimatorStart::SmoothFromEstimatorStart(Started started, SmootherOptions options)
+    : lineage_(std::move(started.lineage)),
+      estimator_(std::move(started.estimator)),
+      options_(std::move(options)) {
   if (!estimator_) throw std::invalid_argument("SmoothFromEstimatorStart: no estimator given");
+  if (options_.start_path == StartPath::kBestParticlePath && !lineage_) {
+    throw std::invalid_argument(
+        "SmoothFromEstimatorStart: start_path best-particle-path needs a particle filter");
+  }
   if (options_.association == AssociationMode::kFilter) {
     throw std::invalid_argument(
         "SmoothFromEstimatorStart: the filter association starts from its own filter's "
@@ -58,6 +67,14 @@ datasets::BatchResult SmoothFromEstimatorStart::Solve(const datasets::Scenario& 
   start_.clear();
   start_.reserve(scenario.steps.size());
   for (const auto& step : scenario.steps) start_.push_back(estimator_->Step(step.data).pose);
+  if (lineage_) {
+    start_ = lineage_->lineage().BestFinalPath();
+    if (start_.size() != scenario.steps.size()) {
+      throw std::logic_error("SmoothFromEstimatorStart: the particle lineage holds " +
+                             std::to_string(start_.size()) + " steps, the scenario " +
+                             std::to_string(scenario.steps.size()));
+    }
+  }
   estimator_seconds_ =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
   SmootherOptions o = options_;
