@@ -19,7 +19,7 @@ namespace phdslam::filters {
 namespace {
 
 /// Stack bytes for the scratch lists of one Build: room for about 40 gated pairs.
-constexpr std::size_t kScratchArenaBytes = std::size_t{12} * 1024;
+constexpr std::size_t kPhd2aScratchArenaBytes = std::size_t{12} * 1024;
 
 /// One gated (component, measurement) pair.
 struct Pair {
@@ -71,7 +71,7 @@ ProposalOutput MergedEkfDensity::Build(const ProposalInput& input) const {
   const models::FovView fov(*input.sensor, mu0);
 
   // The scratch lists of this build live in a stack arena (the heap only beyond it).
-  std::array<std::byte, kScratchArenaBytes> arena_bytes;  // uninitialised: the arena writes it
+  std::array<std::byte, kPhd2aScratchArenaBytes> arena_bytes;  // uninitialised: the arena writes it
   std::pmr::monotonic_buffer_resource arena(arena_bytes.data(), arena_bytes.size());
   std::pmr::vector<Pair> pairs(&arena);
   std::pmr::vector<Mat3> conditional_covs(&arena);
