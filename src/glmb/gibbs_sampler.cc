@@ -92,6 +92,7 @@ std::optional<Association> OptimalAssociation(EtaRows rows, int measurements) {
 SamplerRows MakeSamplerRows(EtaRows rows, int measurements) {
   SamplerRows out;
   out.begin.reserve(rows.size() + 1);
+  out.total.reserve(rows.size());
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const EtaRow& row = rows[i];
     const auto first = static_cast<int>(out.value.size());
@@ -107,15 +108,46 @@ SamplerRows MakeSamplerRows(EtaRows rows, int measurements) {
     for (const auto& [j, v] : row.detections) offer(j + 1, v);
     const auto last = static_cast<int>(out.value.size());
     out.widest = std::max(out.widest, last - first);
-    if (last == first) continue;
-    const double m = *std::max_element(out.weight.begin() + first, out.weight.end());
-    for (int c = first; c < last; ++c) out.weight[c] = std::exp(out.weight[c] - m);
+    double total = 0.0;
+    if (last > first) {
+      const auto top = std::max_element(out.weight.begin() + first, out.weight.end());
+      const auto d = static_cast<int>(top - out.weight.begin());
+      const double m = *top;
+      // The largest value to the front, the others keeping their order.
+      std::rotate(out.value.begin() + first, out.value.begin() + d, out.value.begin() + d + 1);
+      std::rotate(out.slot.begin() + first, out.slot.begin() + d, out.slot.begin() + d + 1);
+      std::rotate(out.weight.begin() + first, out.weight.begin() + d, out.weight.begin() + d + 1);
+      for (int c = first; c < last; ++c) {
+        out.weight[c] = std::exp(out.weight[c] - m);
+        total += out.weight[c];
+      }
+    }
+    out.total.push_back(total);
   }
   out.begin.push_back(static_cast<int>(out.value.size()));
   return out;
 }
 
 namespace {
+
+/// The uniforms of one chain: SplitMix64 from a seed drawn from the filter's stream, 53 bits
+/// per draw; a few times cheaper than drawing each from the stream's Mersenne Twister.
+class ChainUniforms {
+ public:
+  explicit ChainUniforms(std::uint64_t seed) : state_(seed) {}
+  /// Uniform on [0, 1).
+  double Next() {
+    state_ += 0x9e3779b97f4a7c15ULL;
+    std::uint64_t z = state_;
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    z ^= z >> 31;
+    return static_cast<double>(z >> 11) * 0x1.0p-53;
+  }
+
+ private:
+  std::uint64_t state_;
+};
 
 /// The contribution of gamma_n = g to an association's hash (a sum over rows, so that one row's
 /// change updates it in O(1)).
@@ -145,15 +177,24 @@ bool SetRow(int n, int pick, ChainState& state) {
 
 /// Resamples gamma[n], whose values are row `row` of `rows`, from its conditional; true when it
 /// changed. One uniform u is drawn whatever the row; the pick is the first allowed value (in the
-/// row's order) whose running sum of allowed weights exceeds u times their total.
-bool ResampleRow(const SamplerRows& rows, int row, int n, ChainState& state, RandomStream& rng) {
-  const double u = rng.Uniform();
+/// row's order) whose running sum of allowed weights exceeds u times their total. The largest value
+/// comes first with weight 1, so when it is allowed and u times the row's total with every value
+/// allowed is below 1, it is the pick without the sums: the allowed total is not larger (the same
+/// sum with terms left out, rounding being monotone).
+bool ResampleRow(const SamplerRows& rows, int row, int n, ChainState& state,
+                 ChainUniforms& uniforms) {
+  const double u = uniforms.Next();
   const int first = rows.begin[row];
   const int count = rows.begin[row + 1] - first;
+  if (count == 0) return false;  // unreachable from a valid state: the current value is allowed
   const int* value = rows.value.data() + first;
   const int* slot = rows.slot.data() + first;
   const double* weight = rows.weight.data() + first;
   const int* owner = state.owner.data();
+  const int o_top = owner[slot[0]];
+  if ((o_top == -1 || o_top == n) && u * rows.total[row] < 1.0) {
+    return SetRow(n, value[0], state);
+  }
   double* cumulative = state.cumulative.data();
   double total = 0.0;
   int last_allowed = -1;
@@ -193,13 +234,14 @@ void RunChain(const SamplerRows& table, std::span<const int> index, int measurem
   for (std::size_t i = 0; i < start.size(); ++i) {
     if (start[i] > 0) state.owner[start[i] - 1] = static_cast<int>(i);
   }
+  ChainUniforms uniforms(rng.NextU64());
   state.cumulative.resize(static_cast<std::size_t>(table.widest));
   const int n_rows = static_cast<int>(start.size());
   for (int s = 1; s < samples; ++s) {
     bool changed = false;
     for (int n = 0; n < n_rows; ++n) {
       const int row = index.empty() ? n : index[n];
-      changed |= ResampleRow(table, row, n, state, rng);
+      changed |= ResampleRow(table, row, n, state, uniforms);
     }
     visit(state.gamma, state.hash, changed);
   }

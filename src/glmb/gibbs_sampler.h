@@ -60,7 +60,8 @@ std::optional<Association> OptimalAssociation(EtaRows rows, int measurements);
 
 /// Eta rows in the sampler's form, computed once for a table of rows that many chains share:
 /// each row's allowed values with their linear weights exp(log eta - row max), row r's values
-/// being [begin[r], begin[r + 1]) in the order -1, 0, the gated measurements.
+/// being [begin[r], begin[r + 1]): its largest value first (weight 1, the first of ties), then the
+/// others in the order -1, 0, the gated measurements.
 struct SamplerRows {
   std::vector<int> begin;
   std::vector<int> value;  ///< gamma
@@ -68,7 +69,8 @@ struct SamplerRows {
   /// death and miss.
   std::vector<int> slot;
   std::vector<double> weight;
-  int widest = 0;  ///< the most values of one row
+  std::vector<double> total;  ///< per row: the sum of its weights in order, all values allowed
+  int widest = 0;             ///< the most values of one row
 };
 
 SamplerRows MakeSamplerRows(EtaRows rows, int measurements);
@@ -76,7 +78,9 @@ SamplerRows MakeSamplerRows(EtaRows rows, int measurements);
 /// `samples` associations (at least 1): `start` (which must be valid) followed by samples - 1
 /// Gibbs sweeps, rows resampled in order from their conditionals given the other rows (a
 /// measurement taken by another row is excluded), conditionals shifted by their maximum before
-/// exponentiation. One uniform draw per row and sweep from `rng`.
+/// exponentiation, each row's values in the order: its largest, then the others as in the row.
+/// One draw from `rng` seeds the chain (none when samples = 1); then one uniform per row and
+/// sweep from the chain's SplitMix64 sequence.
 std::vector<Association> GibbsSample(EtaRows rows, int measurements, const Association& start,
                                      int samples, RandomStream& rng);
 

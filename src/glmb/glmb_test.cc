@@ -317,8 +317,42 @@ TEST(GibbsSampler, DistinctSamplesContainMurtysRankedAssociations) {
     EXPECT_LE(z, exhaustive + 1e-12);
     previous = z;
   }
-  // The associations never visited carry less than 0.1 % of the mass.
-  EXPECT_GT(previous, exhaustive + std::log(0.999));
+}
+
+TEST(GibbsSampler, UnvisitedMassMatchesIndependentSampling) {
+  // On this 52-association problem the chain mixes like independent draws from the
+  // posterior: after n samples the mass of the associations never visited averages
+  // sum_g q_g (1 - q_g)^n (0.083 at n = 100, 0.0015 at n = 3000). Over 2000 seeds the
+  // measured means were 1.03 and 1.03 times that, with standard deviations of 27 % and 52 %
+  // of it per seed, so a 200-seed mean lies within 4 % of it; the band of 20 % fails a
+  // chain that sticks to its start or to one mode. A single seed cannot be held to a fixed
+  // captured fraction: with 3000 samples, 73 % of seeds leave more than 0.1 % unvisited.
+  const std::vector<EtaRow> rows = SmallEta();
+  const int m = 3;
+  std::vector<double> all;
+  for (const Association& g : EnumerateValid(rows, m)) all.push_back(LogAssociationWeight(rows, g));
+  ASSERT_EQ(all.size(), 52u);
+  const double exhaustive = LogSumExp(all);
+  const auto start = OptimalAssociation(rows, m);
+  ASSERT_TRUE(start.has_value());
+  constexpr int kSeeds = 200;
+  for (const int n : {100, 3000}) {
+    double independent = 0.0;
+    for (const double w : all) {
+      const double q = std::exp(w - exhaustive);
+      independent += q * std::pow(1.0 - q, n);
+    }
+    double unvisited = 0.0;
+    for (int seed = 1; seed <= kSeeds; ++seed) {
+      RandomStream rng(static_cast<std::uint64_t>(seed));
+      std::vector<double> lw;
+      for (const Association& g : DistinctGibbsSamples(rows, m, *start, n, rng)) {
+        lw.push_back(LogAssociationWeight(rows, g));
+      }
+      unvisited += -std::expm1(LogSumExp(lw) - exhaustive) / kSeeds;
+    }
+    EXPECT_NEAR(unvisited / independent, 1.0, 0.2) << "n = " << n;
+  }
 }
 
 TEST(GlmbJointUpdate, LandmarkOutsideTheFieldOfViewIsUnchanged) {
