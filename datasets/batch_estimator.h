@@ -22,6 +22,9 @@ struct BatchResult {
   /// Whether the final solve converged (an iterative solver; empty when not applicable). A run
   /// whose solve did not converge carries solver_converged = false in its metrics.
   std::optional<bool> converged;
+  /// Re-localisations applied, for an estimator that re-localises during the run (the Ceres
+  /// smoother's own association with re-localisation on); empty when it cannot re-localise.
+  std::optional<int> relocalisations;
   double solve_seconds = 0.0;
 };
 

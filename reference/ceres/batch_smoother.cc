@@ -509,6 +509,11 @@ datasets::BatchResult BatchSmoother::Solve(const datasets::Scenario& scenario) {
   result.map.log_weights.assign(landmarks.size(), 0.0);
   result.iterations = report_.iterations;
   result.converged = report_.converged;
+  // Only the own association's incremental pass re-localises, and only with the option on.
+  if (incremental && options_.association == AssociationMode::kUnknown &&
+      options_.incremental_relocalisation_std > 0.0) {
+    result.relocalisations = report_.relocalisations;
+  }
   result.solve_seconds = SecondsSince(start);
   return result;
 }

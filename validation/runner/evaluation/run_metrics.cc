@@ -225,6 +225,9 @@ RunEvaluation EvaluateRun(const RunRecord& record, const datasets::Scenario& sce
     ev.metrics.solver_iterations = static_cast<std::size_t>(std::max(*record.solver_iterations, 0));
   }
   ev.metrics.solver_converged = record.solver_converged;
+  if (record.relocalisations) {
+    ev.metrics.relocalisations = static_cast<std::size_t>(std::max(*record.relocalisations, 0));
+  }
   return ev;
 }
 

@@ -84,6 +84,9 @@ struct RunMetrics {
   /// estimators.
   std::optional<std::size_t> solves;
   std::optional<std::size_t> unconverged_solves;
+  /// Batch estimators that re-localise (the Ceres smoother's own association with
+  /// incremental_relocalisation_std > 0): re-localisations applied; nullopt for the others.
+  std::optional<std::size_t> relocalisations;
   ErrorMoments step_ms;  ///< wall time per step (online estimators)
   double total_ms = 0.0;
 };
@@ -124,9 +127,11 @@ std::string OverflowedMetricsField(const nlohmann::json& j);
 /// The metrics.json key of the layout version, and the version this program writes. A file
 /// without the key is version 1: the keys of version 2 (all but format_version), some of which it
 /// may lack because it was written before they existed (the consistency keys, the association
-/// counts, the solver keys: read as "none"). Version 2 requires every key.
+/// counts, the solver keys: read as "none"). Version 2 requires those; version 3 adds
+/// `relocalisations`, which files of versions 1 and 2 lack (read as "none"). Version 3 requires
+/// every key.
 inline constexpr const char* kFormatVersionKey = "format_version";
-inline constexpr int kMetricsFormatVersion = 2;
+inline constexpr int kMetricsFormatVersion = 3;
 
 /// The format version of a metrics.json (1 without the key). Throws std::runtime_error naming
 /// `source` and the version when it is not an integer or not one this program reads.

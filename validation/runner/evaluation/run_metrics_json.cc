@@ -66,6 +66,11 @@ class JsonReader {
   const std::string& source_;
 };
 
+// Format versions from which a key is required (MetricsKey::required_from): keys added while
+// version 1 was current, and while version 2 was.
+constexpr int kFromV2 = 2;
+constexpr int kFromV3 = 3;
+
 // One metrics.json key: how it is written from RunMetrics and read back. The keys are written in
 // one object (sorted by name in the file) and read in table order, so a group's leading key
 // (gospa_m, da_tp) is read before the keys that depend on it.
@@ -75,9 +80,10 @@ struct MetricsKey {
   /// Reads the value into the metrics; empty for derived keys (RMSE, std, means, rates), written
   /// for readers and recomputed from the sufficient statistics.
   std::function<void(const JsonReader&, const std::string&, RunMetrics&)> read;
-  /// A format-version-1 file (no format_version) may lack the key: it was written before the key
-  /// existed, and the metric keeps its default (none).
-  bool absent_before_v2 = false;
+  /// The first format version that requires the key. A file of an earlier version (version 1: no
+  /// format_version) may lack it, having been written before the key existed; the metric then
+  /// keeps its default (none).
+  int required_from = 1;
 };
 
 using Metrics = RunMetrics;
@@ -108,22 +114,22 @@ std::vector<MetricsKey> MomentKeys(const std::string& prefix, const std::string&
 // values are finite and non-negative, so a sum written as null overflowed: it reads as +infinity
 // (e.g. collapsed particles without resampling, where single values reach 1e300).
 std::vector<MetricsKey> NeesKeys(const std::string& prefix, ErrorMoments RunMetrics::*member,
-                                 bool absent_before_v2) {
+                                 int required_from) {
   return {
       {prefix + "_mean",
        [member](const Metrics& m) { return OrNull((m.*member).Mean()); },
        {},
-       absent_before_v2},
+       required_from},
       {prefix + "_count", [member](const Metrics& m) { return nlohmann::json((m.*member).count); },
        [member](const Reader& r, const std::string& k, Metrics& m) {
          (m.*member).count = r.Count(k);
        },
-       absent_before_v2},
+       required_from},
       {prefix + "_sum", [member](const Metrics& m) { return nlohmann::json((m.*member).sum); },
        [member](const Reader& r, const std::string& k, Metrics& m) {
          (m.*member).sum = r.OptionalNumber(k).value_or(std::numeric_limits<double>::infinity());
        },
-       absent_before_v2},
+       required_from},
   };
 }
 
@@ -154,7 +160,7 @@ MetricsKey AssociationKey(const std::string& name, long AssociationCounts::*memb
           [member](const Reader& r, const std::string& k, Metrics& m) {
             if (m.association) (*m.association).*member = static_cast<long>(r.Count(k));
           },
-          true};
+          kFromV2};
 }
 
 // An optional number (null when not available).
@@ -167,18 +173,18 @@ MetricsKey OptionalNumberKey(const std::string& name, std::optional<double> RunM
 
 // A count stored in a std::size_t member; optional counts are null when not available.
 MetricsKey CountKey(const std::string& name, std::size_t RunMetrics::*member,
-                    bool absent_before_v2 = false) {
+                    int required_from = 1) {
   return {name, [member](const Metrics& m) { return nlohmann::json(m.*member); },
           [member](const Reader& r, const std::string& k, Metrics& m) { m.*member = r.Count(k); },
-          absent_before_v2};
+          required_from};
 }
 MetricsKey OptionalCountKey(const std::string& name, std::optional<std::size_t> RunMetrics::*member,
-                            bool absent_before_v2 = false) {
+                            int required_from = 1) {
   return {name, [member](const Metrics& m) { return OrNull(m.*member); },
           [member](const Reader& r, const std::string& k, Metrics& m) {
             m.*member = r.OptionalCount(k);
           },
-          absent_before_v2};
+          required_from};
 }
 
 // A number stored in a double member.
@@ -189,8 +195,8 @@ MetricsKey NumberKey(const std::string& name, double RunMetrics::*member) {
 
 // A value written for readers only, from the metrics.
 MetricsKey Derived(const std::string& name, std::function<nlohmann::json(const Metrics&)> write,
-                   bool absent_before_v2 = false) {
-  return {name, std::move(write), {}, absent_before_v2};
+                   int required_from = 1) {
+  return {name, std::move(write), {}, required_from};
 }
 
 std::optional<double> DaRate(const Metrics& m, double (AssociationCounts::*rate)() const) {
@@ -236,19 +242,19 @@ const std::vector<MetricsKey>& MetricsKeys() {
          OptionalNumberKey("resampling_pct", &Metrics::resampling_pct),
          OptionalNumberKey("hypotheses_mean", &Metrics::hypotheses_mean),
          OptionalNumberKey("map_components_mean", &Metrics::map_components_mean)});
-    add(NeesKeys("pose_nees", &Metrics::pose_nees, false));
-    add(NeesKeys("landmark_nees", &Metrics::landmark_nees, false));
-    add({CountKey("pose_coverage_inside", &Metrics::pose_coverage_inside, true)});
-    add(NeesKeys("pose_nees_rb", &Metrics::pose_nees_rb, true));
-    add({CountKey("pose_coverage_rb_inside", &Metrics::pose_coverage_rb_inside, true)});
-    add(NeesKeys("gps_nees_rb", &Metrics::gps_nees_rb, true));
-    add({CountKey("gps_coverage_rb_inside", &Metrics::gps_coverage_rb_inside, true),
+    add(NeesKeys("pose_nees", &Metrics::pose_nees, 1));
+    add(NeesKeys("landmark_nees", &Metrics::landmark_nees, 1));
+    add({CountKey("pose_coverage_inside", &Metrics::pose_coverage_inside, kFromV2)});
+    add(NeesKeys("pose_nees_rb", &Metrics::pose_nees_rb, kFromV2));
+    add({CountKey("pose_coverage_rb_inside", &Metrics::pose_coverage_rb_inside, kFromV2)});
+    add(NeesKeys("gps_nees_rb", &Metrics::gps_nees_rb, kFromV2));
+    add({CountKey("gps_coverage_rb_inside", &Metrics::gps_coverage_rb_inside, kFromV2),
          {"nis_sum", [](const Metrics& m) { return nlohmann::json(m.nis_sum); },
           [](const Reader& r, const std::string& k, Metrics& m) {
             m.nis_sum = r.OptionalNumber(k).value_or(std::numeric_limits<double>::infinity());
           },
-          true},
-         CountKey("nis_count", &Metrics::nis_count, true),
+          kFromV2},
+         CountKey("nis_count", &Metrics::nis_count, kFromV2),
          Derived(
              "nis_mean",
              [](const Metrics& m) {
@@ -256,7 +262,7 @@ const std::vector<MetricsKey>& MetricsKeys() {
                                                    m.nis_sum / static_cast<double>(m.nis_count))
                                              : std::nullopt);
              },
-             true),
+             kFromV2),
          {"da_tp",
           [](const Metrics& m) {
             return m.association ? nlohmann::json(m.association->tp) : nlohmann::json(nullptr);
@@ -266,7 +272,7 @@ const std::vector<MetricsKey>& MetricsKeys() {
             m.association = AssociationCounts{};
             m.association->tp = static_cast<long>(r.Count(k));
           },
-          true},
+          kFromV2},
          AssociationKey("da_fn", &AssociationCounts::fn),
          AssociationKey("da_tn", &AssociationCounts::tn),
          AssociationKey("da_fp", &AssociationCounts::fp),
@@ -276,12 +282,12 @@ const std::vector<MetricsKey>& MetricsKeys() {
          AssociationKey("da_unreported", &AssociationCounts::unreported),
          Derived(
              "da_tpr", [](const Metrics& m) { return OrNull(DaRate(m, &AssociationCounts::tpr)); },
-             true),
+             kFromV2),
          Derived(
              "da_tnr", [](const Metrics& m) { return OrNull(DaRate(m, &AssociationCounts::tnr)); },
-             true),
+             kFromV2),
          OptionalCountKey("gps_matched_steps", &Metrics::gps_matched_steps),
-         OptionalCountKey("solver_iterations", &Metrics::solver_iterations, true),
+         OptionalCountKey("solver_iterations", &Metrics::solver_iterations, kFromV2),
          {"solver_converged", [](const Metrics& m) { return OrNull(m.solver_converged); },
           [](const Reader& r, const std::string& k, Metrics& m) {
             const nlohmann::json& v = r.Field(k);
@@ -289,9 +295,10 @@ const std::vector<MetricsKey>& MetricsKeys() {
             if (!v.is_boolean()) r.Fail(k, "true, false or null");
             m.solver_converged = v.get<bool>();
           },
-          true},
-         OptionalCountKey("solves", &Metrics::solves, true),
-         OptionalCountKey("unconverged_solves", &Metrics::unconverged_solves, true),
+          kFromV2},
+         OptionalCountKey("solves", &Metrics::solves, kFromV2),
+         OptionalCountKey("unconverged_solves", &Metrics::unconverged_solves, kFromV2),
+         OptionalCountKey("relocalisations", &Metrics::relocalisations, kFromV3),
          Derived("ms_per_step_mean", [](const Metrics& m) { return OrNull(m.step_ms.Mean()); }),
          Derived("ms_per_step_std", [](const Metrics& m) { return OrNull(m.step_ms.Std()); })});
     // The timing statistics are ms_count, ms_sum, ms_sq_sum (unit-less prefix "ms").
@@ -362,7 +369,7 @@ RunMetrics RunMetricsFromJson(const nlohmann::json& j, const std::string& source
   RunMetrics m;
   for (const MetricsKey& key : MetricsKeys()) {
     if (!key.read) continue;
-    if (version == 1 && key.absent_before_v2 && !j.contains(key.name)) continue;
+    if (version < key.required_from && !j.contains(key.name)) continue;
     key.read(r, key.name, m);
   }
   return m;

@@ -40,6 +40,9 @@ struct RunRecord {
   std::optional<int> solver_iterations;
   /// Batch estimators: whether the final solve converged (BatchResult::converged).
   std::optional<bool> solver_converged;
+  /// Batch estimators that re-localise: the re-localisations applied
+  /// (BatchResult::relocalisations); nullopt for every other estimator.
+  std::optional<int> relocalisations;
   /// Online estimators that solve (filters::SolveCounter): their solves after the last step.
   std::optional<filters::SolveCounts> solves;
   /// Wall time of the whole estimation (ms): the sum of step_ms, or the batch solve.

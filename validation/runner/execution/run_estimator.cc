@@ -88,6 +88,7 @@ void RunBatch(const EstimatorEntry& entry, const EstimatorRequest& request,
   record.final_map = std::move(result.map);
   record.solver_iterations = result.iterations;
   record.solver_converged = result.converged;
+  record.relocalisations = result.relocalisations;
   if (on_steps_done) on_steps_done(record.poses.size());
 }
 

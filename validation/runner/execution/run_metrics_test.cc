@@ -286,14 +286,27 @@ TEST(RunMetricsJson, RoundTripsTheSufficientStatistics) {
   EXPECT_TRUE(j.at("solver_converged").is_null());
   old.erase("solver_converged");
   EXPECT_FALSE(RunMetricsFromJson(old, "test").solver_converged);
+  // Estimators that do not re-localise have no count; files of versions 1 and 2 lack the key.
+  EXPECT_TRUE(j.at("relocalisations").is_null());
+  old.erase("relocalisations");
+  EXPECT_FALSE(RunMetricsFromJson(old, "test").relocalisations);
+  nlohmann::json v2 = j;
+  v2["format_version"] = 2;
+  v2.erase("relocalisations");
+  EXPECT_FALSE(RunMetricsFromJson(v2, "test").relocalisations);
 
   nlohmann::json missing = j;
   missing.erase("pos_err_count");
   EXPECT_THROW(RunMetricsFromJson(missing, "test"), std::runtime_error);
-  // Version 2 requires the keys version 1 could lack.
+  // Version 2 requires the keys version 1 could lack, version 3 those version 2 could lack.
   nlohmann::json without_counts = j;
   without_counts.erase("da_tp");
   EXPECT_THROW(RunMetricsFromJson(without_counts, "test"), std::runtime_error);
+  without_counts["format_version"] = 2;
+  EXPECT_THROW(RunMetricsFromJson(without_counts, "test"), std::runtime_error);
+  nlohmann::json without_relocalisations = j;
+  without_relocalisations.erase("relocalisations");
+  EXPECT_THROW(RunMetricsFromJson(without_relocalisations, "test"), std::runtime_error);
   nlohmann::json mistyped = j;
   mistyped["ms_sum"] = "fast";
   EXPECT_THROW(RunMetricsFromJson(mistyped, "test"), std::runtime_error);
@@ -313,7 +326,7 @@ std::string ErrorOf(Read read) {
 TEST(RunMetricsJson, WritesItsFormatVersionAndRefusesUnknownOnes) {
   const nlohmann::json j = ToJson(EvaluateRun(HandRecord(), TruthScenario()).metrics);
   EXPECT_EQ(j.at("format_version"), kMetricsFormatVersion);
-  EXPECT_EQ(MetricsFormatVersion(j, "a/metrics.json"), 2);
+  EXPECT_EQ(MetricsFormatVersion(j, "a/metrics.json"), 3);
 
   // A file without the key is version 1 and reads as the same metrics.
   nlohmann::json v1 = j;
@@ -322,10 +335,10 @@ TEST(RunMetricsJson, WritesItsFormatVersionAndRefusesUnknownOnes) {
   EXPECT_EQ(ToJson(RunMetricsFromJson(v1, "a/metrics.json")), j);
 
   nlohmann::json newer = j;
-  newer["format_version"] = 3;
+  newer["format_version"] = 4;
   const std::string why = ErrorOf([&] { RunMetricsFromJson(newer, "runs/x/metrics.json"); });
   EXPECT_NE(why.find("runs/x/metrics.json"), std::string::npos) << why;
-  EXPECT_NE(why.find("format_version 3"), std::string::npos) << why;
+  EXPECT_NE(why.find("format_version 4"), std::string::npos) << why;
   for (const nlohmann::json& bad :
        {nlohmann::json(0), nlohmann::json("2"), nlohmann::json(2.5), nlohmann::json(nullptr)}) {
     nlohmann::json mistyped = j;
@@ -353,6 +366,7 @@ class FixedBatch final : public datasets::BatchEstimator {
     r.map.means = {Landmark(5.0, 5.0)};
     r.iterations = 17;
     r.converged = false;
+    r.relocalisations = 2;
     return r;
   }
 
@@ -389,6 +403,11 @@ TEST(RunEstimator, RecordsBatchResultsAndChecksTheirLength) {
   EXPECT_FALSE(*ev.metrics.solver_converged);
   EXPECT_FALSE(j.at("solver_converged").get<bool>());
   EXPECT_EQ(RunMetricsFromJson(j, "test").solver_converged, std::optional<bool>(false));
+  // A batch estimator's re-localisations reach the metrics.
+  ASSERT_TRUE(ev.metrics.relocalisations);
+  EXPECT_EQ(*ev.metrics.relocalisations, 2u);
+  EXPECT_EQ(j.at("relocalisations").get<int>(), 2);
+  EXPECT_EQ(RunMetricsFromJson(j, "test").relocalisations, std::optional<std::size_t>(2));
   nlohmann::json mistyped = j;
   mistyped["solver_converged"] = "yes";
   EXPECT_THROW(RunMetricsFromJson(mistyped, "test"), std::runtime_error);

@@ -32,12 +32,15 @@ struct RunSource {
   bool finished = true;  ///< metrics.json present; otherwise error.json only
 };
 
-// The results of a metrics.json: without the timing keys (ms_*), which differ between runs, and
-// without format_version, so that a run written before the key existed (version 1) and the same
-// run written now compare equal.
+// The results of a metrics.json: without the timing keys (ms_*), which differ between runs,
+// without format_version, and without the keys that hold null ("none"), so that a run written
+// by an earlier format version (version 1 without format_version, version 2 without
+// relocalisations: keys added since, which read as none) and the same run written now compare
+// equal.
 nlohmann::json ResultsOf(nlohmann::json metrics) {
   for (auto it = metrics.begin(); it != metrics.end();) {
-    it = it.key().rfind("ms_", 0) == 0 ? metrics.erase(it) : std::next(it);
+    const bool drop = it.key().rfind("ms_", 0) == 0 || it->is_null();
+    it = drop ? metrics.erase(it) : std::next(it);
   }
   metrics.erase(kFormatVersionKey);
   return metrics;

@@ -113,9 +113,10 @@ TEST(MergeResults, TwoShardsMergedEqualTheUnshardedRun) {
   ExpectSameResults(base / "whole", base / "merged");
 }
 
-// A run written before metrics.json had format_version (version 1) merges with the same run
-// written now; a run with other results is still refused.
-TEST(MergeResults, AVersionOneMetricsFileMergesWithTheSameRunWrittenNow) {
+// A run written by an earlier format version (version 1: before metrics.json had
+// format_version; version 2: before relocalisations) merges with the same run written now; a run
+// with other results is still refused.
+TEST(MergeResults, AnEarlierVersionsMetricsFileMergesWithTheSameRunWrittenNow) {
   const fs::path base = datasets::testing::FreshTestDir();
   Experiment x = SmallExperiment();
   x.estimators = {{"odometry", nlohmann::json::object(), {1}}};
@@ -124,10 +125,16 @@ TEST(MergeResults, AVersionOneMetricsFileMergesWithTheSameRunWrittenNow) {
   RunExperiment(x, Quiet(base / "old"));
   const fs::path old_metrics = RunFolder(base / "old", "odometry", 1, 1) / kMetricsFile;
   nlohmann::json old = ReadJsonObject(old_metrics);
-  ASSERT_EQ(old.at("format_version"), 2);
-  old.erase("format_version");
+  ASSERT_EQ(old.at("format_version"), 3);
+  ASSERT_TRUE(old.at("relocalisations").is_null());
+  old["format_version"] = 2;
+  old.erase("relocalisations");
   WriteFileAtomically(old_metrics, JsonFileText(old));
   // The run is in both inputs: copied from the first, compared with the second.
+  const MergeReport v2 = MergeResults(base / "merged-v2", {base / "new", base / "old"});
+  EXPECT_EQ(v2.runs_copied, 1u);
+  old.erase("format_version");
+  WriteFileAtomically(old_metrics, JsonFileText(old));
   const MergeReport report = MergeResults(base / "merged", {base / "new", base / "old"});
   EXPECT_EQ(report.runs_copied, 1u);
   EXPECT_TRUE(fs::exists(RunFolder(base / "merged", "odometry", 1, 1) / kMetricsFile));

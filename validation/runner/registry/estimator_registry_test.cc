@@ -283,6 +283,44 @@ TEST(ReferenceEstimators, StartFromPhd3) {
   EXPECT_NE(ResolveError("smoother-unknown", {{"start_particles", 0}}), "");
 }
 
+// On Victoria Park the own association starts by default from the best final particle's path of
+// a PHD-SLAM 3.0 run (scenario_defaults.cc); an explicit value wins, and setting the start back
+// to dead reckoning drops the path that belongs to the start.
+TEST(ReferenceEstimators, VictoriaParkStartsTheOwnAssociationFromTheBestParticlePath) {
+  if (!Registered("smoother-unknown")) GTEST_SKIP() << "built without Ceres";
+  EstimatorRequest request;
+  request.name = "smoother-unknown";
+  request.scenario_name = "victoria-park";
+  const auto start = [&](const nlohmann::json& overrides) {
+    request.overrides = overrides;
+    const nlohmann::json p = FindEstimator("smoother-unknown").resolved_parameters(request);
+    return p.at("start_from").get<std::string>() + " " + p.at("start_path").get<std::string>();
+  };
+  EXPECT_EQ(start(nlohmann::json::object()), "phd3 best-particle-path");
+  EXPECT_EQ(start({{"start_from", "dead-reckoning"}}), "dead-reckoning estimate");
+  EXPECT_EQ(start({{"start_path", "estimate"}}), "phd3 estimate");
+  EXPECT_EQ(start({{"start_particles", 1}}), "phd3 best-particle-path");
+  // A path asked for with the dead-reckoning start is still refused, naming start_path.
+  request.overrides = {{"start_from", "dead-reckoning"}, {"start_path", "best-particle-path"}};
+  try {
+    FindEstimator("smoother-unknown").resolved_parameters(request);
+    ADD_FAILURE() << "start_path without a start accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("start_path"), std::string::npos) << e.what();
+  }
+  // Elsewhere the start stays dead reckoning; the other smoothers keep theirs on Victoria Park.
+  request.scenario_name = "paper-synthetic";
+  EXPECT_EQ(start(nlohmann::json::object()), "dead-reckoning estimate");
+  request.scenario_name = "victoria-park";
+  request.name = "smoother-filter";
+  EXPECT_EQ(FindEstimator("smoother-filter")
+                .resolved_parameters(request)
+                .at("start_from")
+                .get<std::string>(),
+            "dead-reckoning");
+  EXPECT_EQ(ScenarioParameterDefaults("victoria-park", "smoother-known"), nlohmann::json::object());
+}
+
 TEST(ReferenceEstimators, FastSlamProposalIsFixedByTheName) {
   if (!Registered("fastslam1")) GTEST_SKIP() << "built without MRPT";
   EXPECT_EQ(ResolveError("fastslam1", {{"proposal", "motion-model"}}), "");

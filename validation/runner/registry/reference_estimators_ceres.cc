@@ -26,6 +26,13 @@ reference::SmootherOptions ResolveSmoother(const EstimatorRequest& r,
   defaults.association = mode;
   reference::SmootherOptions o =
       ResolveParameters(r, reference::SmootherOptionsTable(), std::move(defaults));
+  // A scenario's default start_path (scenario_defaults.cc) belongs to its default start: when
+  // start_from is set back to dead-reckoning and start_path is not given, no path is taken. A
+  // start_path given with dead-reckoning is still an error naming it.
+  if (o.start_from == reference::StartTrajectory::kDeadReckoning &&
+      !r.overrides.contains("start_path")) {
+    o.start_path = reference::StartPath::kEstimate;
+  }
   try {
     o.Validate();
   } catch (const std::invalid_argument& e) {
@@ -137,9 +144,10 @@ std::vector<EstimatorEntry> CeresEstimators() {
                         "default) or with the optimised map on marginal covariances as the "
                         "graph grows (initialisation=incremental), or with the pass started "
                         "from the trajectory of a PHD-SLAM 3.0 run on the same seed "
-                        "(start_from=phd3, start_particles=5; its association is not used), "
-                        "robust loss, re-association in a final full solve "
-                        "(reference/ceres/README.md)"),
+                        "(start_from=phd3, start_particles=5; its association is not used; "
+                        "start_path=best-particle-path for its best final particle's path, "
+                        "both the default on victoria-park), robust loss, re-association in a "
+                        "final full solve (reference/ceres/README.md)"),
           WindowEntry("window-known", true,
                       "Ceres fixed-lag (sliding-window) smoother with the known association "
                       "(reads the hidden origin labels): old states marginalised into a Gaussian "

@@ -317,6 +317,10 @@ const std::vector<Column<RunResult>>& RunColumns() {
        [](const R& r) {
          return r.metrics.unconverged_solves ? Count(*r.metrics.unconverged_solves) : std::string();
        }},
+      {"relocalisations",
+       [](const R& r) {
+         return r.metrics.relocalisations ? Count(*r.metrics.relocalisations) : std::string();
+       }},
   };
   return columns;
 }

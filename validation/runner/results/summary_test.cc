@@ -79,6 +79,7 @@ RunMetrics SecondRun() {
   m.association = da;
   m.solver_iterations = 12;
   m.solver_converged = false;
+  m.relocalisations = 3;
   return m;
 }
 
@@ -235,6 +236,8 @@ TEST_F(SummaryTest, WritesSummaryAndRunsCsv) {
   EXPECT_EQ(r1["solver_iterations"], "");
   EXPECT_EQ(Row(runs, 1)["solver_converged"], "0");
   EXPECT_EQ(r1["solver_converged"], "");
+  EXPECT_EQ(Row(runs, 1)["relocalisations"], "3");
+  EXPECT_EQ(r1["relocalisations"], "");
   auto r3 = Row(runs, 2);
   EXPECT_EQ(r3["estimator"], "b");
   EXPECT_EQ(r3["gospa_m"], "");
