@@ -13,6 +13,7 @@
 #include "validation/runner/execution/monte_carlo.h"
 #include "validation/runner/io/results_io.h"
 #include "validation/runner/io/results_layout.h"
+#include "validation/runner/testing/results_testing.h"
 
 namespace phdslam::validation {
 namespace {
@@ -43,15 +44,6 @@ MonteCarloSettings QuietRun(const fs::path& out) {
   return s;
 }
 
-std::vector<std::string> CsvCells(const std::string& line) {
-  std::vector<std::string> cells;
-  std::stringstream in(line);
-  std::string cell;
-  while (std::getline(in, cell, ',')) cells.push_back(cell);
-  if (!line.empty() && line.back() == ',') cells.emplace_back();
-  return cells;
-}
-
 // The one row of runs.csv, by column name.
 std::map<std::string, std::string> OnlyRunsRow(const fs::path& out) {
   std::stringstream text(ReadTextFile(out / kRunsTableFile));
@@ -59,8 +51,8 @@ std::map<std::string, std::string> OnlyRunsRow(const fs::path& out) {
   std::string row;
   std::getline(text, header);
   std::getline(text, row);
-  const std::vector<std::string> names = CsvCells(header);
-  const std::vector<std::string> cells = CsvCells(row);
+  const std::vector<std::string> names = testing::SplitCells(header);
+  const std::vector<std::string> cells = testing::SplitCells(row);
   EXPECT_EQ(names.size(), cells.size()) << row;
   std::map<std::string, std::string> by_name;
   for (std::size_t i = 0; i < names.size() && i < cells.size(); ++i) by_name[names[i]] = cells[i];
