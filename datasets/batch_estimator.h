@@ -25,6 +25,10 @@ struct BatchResult {
   /// Re-localisations applied, for an estimator that re-localises during the run (the Ceres
   /// smoother's own association with re-localisation on); empty when it cannot re-localise.
   std::optional<int> relocalisations;
+  /// The negative log posterior of the final trajectory, map and association under the
+  /// scenario's model, in nats, up to terms shared by every solution of the same data (the Ceres
+  /// smoother: reference/ceres/association_posterior.h); empty for estimators that do not score it.
+  std::optional<double> neg_log_posterior;
   double solve_seconds = 0.0;
 };
 

@@ -501,6 +501,8 @@ datasets::BatchResult BatchSmoother::Solve(const datasets::Scenario& scenario) {
     landmark_covs = PoseKnownLandmarkCovariances(scenario, poses, landmarks, association_);
   }
 
+  report_.posterior =
+      NegativeLogPosterior(scenario, final_odometry, poses, landmarks, association_);
   report_.landmarks = landmarks.size();
   report_.associated_measurements = graph->residuals();
   result.poses = poses;
@@ -514,6 +516,7 @@ datasets::BatchResult BatchSmoother::Solve(const datasets::Scenario& scenario) {
       options_.incremental_relocalisation_std > 0.0) {
     result.relocalisations = report_.relocalisations;
   }
+  result.neg_log_posterior = report_.posterior.Total();
   result.solve_seconds = SecondsSince(start);
   return result;
 }

@@ -12,6 +12,7 @@
 
 #include "datasets/batch_estimator.h"
 #include "datasets/scenario.h"
+#include "reference/ceres/association_posterior.h"
 #include "reference/ceres/factor_graph.h"
 #include "reference/ceres/landmark_association.h"
 #include "reference/ceres/odometry_increment.h"
@@ -217,8 +218,10 @@ struct SmootherReport {
   /// The final solve met a tolerance (ceres CONVERGENCE); false when it stopped at
   /// max_iterations or failed, and its estimate is then reported as not converged.
   bool converged = false;
-  double initial_cost = 0.0;               ///< of the last solve
-  double final_cost = 0.0;                 ///< of the last solve
+  double initial_cost = 0.0;  ///< of the last solve
+  double final_cost = 0.0;    ///< of the last solve
+  /// The final solution's negative log posterior (association_posterior.h), by term.
+  PosteriorTerms posterior;
   std::vector<std::string> brief_reports;  ///< ceres::Solver::Summary::BriefReport per solve
 };
 

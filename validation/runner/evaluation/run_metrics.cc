@@ -228,6 +228,7 @@ RunEvaluation EvaluateRun(const RunRecord& record, const datasets::Scenario& sce
   if (record.relocalisations) {
     ev.metrics.relocalisations = static_cast<std::size_t>(std::max(*record.relocalisations, 0));
   }
+  ev.metrics.neg_log_posterior = record.neg_log_posterior;
   return ev;
 }
 

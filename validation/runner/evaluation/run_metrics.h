@@ -87,6 +87,10 @@ struct RunMetrics {
   /// Batch estimators that re-localise (the Ceres smoother's own association with
   /// incremental_relocalisation_std > 0): re-localisations applied; nullopt for the others.
   std::optional<std::size_t> relocalisations;
+  /// Batch estimators that score their solution (the Ceres smoother): the negative log posterior
+  /// of its trajectory, map and association (nats, reference/ceres/association_posterior.h);
+  /// nullopt for the others.
+  std::optional<double> neg_log_posterior;
   ErrorMoments step_ms;  ///< wall time per step (online estimators)
   double total_ms = 0.0;
 };
@@ -128,10 +132,11 @@ std::string OverflowedMetricsField(const nlohmann::json& j);
 /// without the key is version 1: the keys of version 2 (all but format_version), some of which it
 /// may lack because it was written before they existed (the consistency keys, the association
 /// counts, the solver keys: read as "none"). Version 2 requires those; version 3 adds
-/// `relocalisations`, which files of versions 1 and 2 lack (read as "none"). Version 3 requires
+/// `relocalisations`, which files of versions 1 and 2 lack (read as "none"); version 4 adds
+/// `neg_log_posterior`, which files of versions 1-3 lack (read as "none"). Version 4 requires
 /// every key.
 inline constexpr const char* kFormatVersionKey = "format_version";
-inline constexpr int kMetricsFormatVersion = 3;
+inline constexpr int kMetricsFormatVersion = 4;
 
 /// The format version of a metrics.json (1 without the key). Throws std::runtime_error naming
 /// `source` and the version when it is not an integer or not one this program reads.

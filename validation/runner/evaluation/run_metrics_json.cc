@@ -67,9 +67,10 @@ class JsonReader {
 };
 
 // Format versions from which a key is required (MetricsKey::required_from): keys added while
-// version 1 was current, and while version 2 was.
+// version 1 was current, while version 2 was, and while version 3 was.
 constexpr int kFromV2 = 2;
 constexpr int kFromV3 = 3;
+constexpr int kFromV4 = 4;
 
 // One metrics.json key: how it is written from RunMetrics and read back. The keys are written in
 // one object (sorted by name in the file) and read in table order, so a group's leading key
@@ -164,11 +165,13 @@ MetricsKey AssociationKey(const std::string& name, long AssociationCounts::*memb
 }
 
 // An optional number (null when not available).
-MetricsKey OptionalNumberKey(const std::string& name, std::optional<double> RunMetrics::*member) {
+MetricsKey OptionalNumberKey(const std::string& name, std::optional<double> RunMetrics::*member,
+                             int required_from = 1) {
   return {name, [member](const Metrics& m) { return OrNull(m.*member); },
           [member](const Reader& r, const std::string& k, Metrics& m) {
             m.*member = r.OptionalNumber(k);
-          }};
+          },
+          required_from};
 }
 
 // A count stored in a std::size_t member; optional counts are null when not available.
@@ -299,6 +302,7 @@ const std::vector<MetricsKey>& MetricsKeys() {
          OptionalCountKey("solves", &Metrics::solves, kFromV2),
          OptionalCountKey("unconverged_solves", &Metrics::unconverged_solves, kFromV2),
          OptionalCountKey("relocalisations", &Metrics::relocalisations, kFromV3),
+         OptionalNumberKey("neg_log_posterior", &Metrics::neg_log_posterior, kFromV4),
          Derived("ms_per_step_mean", [](const Metrics& m) { return OrNull(m.step_ms.Mean()); }),
          Derived("ms_per_step_std", [](const Metrics& m) { return OrNull(m.step_ms.Std()); })});
     // The timing statistics are ms_count, ms_sum, ms_sq_sum (unit-less prefix "ms").

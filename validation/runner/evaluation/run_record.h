@@ -43,6 +43,9 @@ struct RunRecord {
   /// Batch estimators that re-localise: the re-localisations applied
   /// (BatchResult::relocalisations); nullopt for every other estimator.
   std::optional<int> relocalisations;
+  /// Batch estimators that score their solution (the Ceres smoother): its negative log
+  /// posterior (BatchResult::neg_log_posterior); nullopt for every other estimator.
+  std::optional<double> neg_log_posterior;
   /// Online estimators that solve (filters::SolveCounter): their solves after the last step.
   std::optional<filters::SolveCounts> solves;
   /// Wall time of the whole estimation (ms): the sum of step_ms, or the batch solve.

@@ -89,6 +89,7 @@ void RunBatch(const EstimatorEntry& entry, const EstimatorRequest& request,
   record.solver_iterations = result.iterations;
   record.solver_converged = result.converged;
   record.relocalisations = result.relocalisations;
+  record.neg_log_posterior = result.neg_log_posterior;
   if (on_steps_done) on_steps_done(record.poses.size());
 }
 

@@ -293,12 +293,20 @@ TEST(RunMetricsJson, RoundTripsTheSufficientStatistics) {
   nlohmann::json v2 = j;
   v2["format_version"] = 2;
   v2.erase("relocalisations");
+  v2.erase("neg_log_posterior");
   EXPECT_FALSE(RunMetricsFromJson(v2, "test").relocalisations);
+  // Estimators that do not score their solution have no posterior; files of versions 1-3 lack it.
+  EXPECT_TRUE(j.at("neg_log_posterior").is_null());
+  nlohmann::json v3 = j;
+  v3["format_version"] = 3;
+  v3.erase("neg_log_posterior");
+  EXPECT_FALSE(RunMetricsFromJson(v3, "test").neg_log_posterior);
 
   nlohmann::json missing = j;
   missing.erase("pos_err_count");
   EXPECT_THROW(RunMetricsFromJson(missing, "test"), std::runtime_error);
-  // Version 2 requires the keys version 1 could lack, version 3 those version 2 could lack.
+  // Version 2 requires the keys version 1 could lack, version 3 those version 2 could lack,
+  // version 4 those version 3 could lack.
   nlohmann::json without_counts = j;
   without_counts.erase("da_tp");
   EXPECT_THROW(RunMetricsFromJson(without_counts, "test"), std::runtime_error);
@@ -307,6 +315,9 @@ TEST(RunMetricsJson, RoundTripsTheSufficientStatistics) {
   nlohmann::json without_relocalisations = j;
   without_relocalisations.erase("relocalisations");
   EXPECT_THROW(RunMetricsFromJson(without_relocalisations, "test"), std::runtime_error);
+  nlohmann::json without_posterior = j;
+  without_posterior.erase("neg_log_posterior");
+  EXPECT_THROW(RunMetricsFromJson(without_posterior, "test"), std::runtime_error);
   nlohmann::json mistyped = j;
   mistyped["ms_sum"] = "fast";
   EXPECT_THROW(RunMetricsFromJson(mistyped, "test"), std::runtime_error);
@@ -326,7 +337,7 @@ std::string ErrorOf(Read read) {
 TEST(RunMetricsJson, WritesItsFormatVersionAndRefusesUnknownOnes) {
   const nlohmann::json j = ToJson(EvaluateRun(HandRecord(), TruthScenario()).metrics);
   EXPECT_EQ(j.at("format_version"), kMetricsFormatVersion);
-  EXPECT_EQ(MetricsFormatVersion(j, "a/metrics.json"), 3);
+  EXPECT_EQ(MetricsFormatVersion(j, "a/metrics.json"), 4);
 
   // A file without the key is version 1 and reads as the same metrics.
   nlohmann::json v1 = j;
@@ -335,10 +346,10 @@ TEST(RunMetricsJson, WritesItsFormatVersionAndRefusesUnknownOnes) {
   EXPECT_EQ(ToJson(RunMetricsFromJson(v1, "a/metrics.json")), j);
 
   nlohmann::json newer = j;
-  newer["format_version"] = 4;
+  newer["format_version"] = 5;
   const std::string why = ErrorOf([&] { RunMetricsFromJson(newer, "runs/x/metrics.json"); });
   EXPECT_NE(why.find("runs/x/metrics.json"), std::string::npos) << why;
-  EXPECT_NE(why.find("format_version 4"), std::string::npos) << why;
+  EXPECT_NE(why.find("format_version 5"), std::string::npos) << why;
   for (const nlohmann::json& bad :
        {nlohmann::json(0), nlohmann::json("2"), nlohmann::json(2.5), nlohmann::json(nullptr)}) {
     nlohmann::json mistyped = j;
@@ -367,6 +378,7 @@ class FixedBatch final : public datasets::BatchEstimator {
     r.iterations = 17;
     r.converged = false;
     r.relocalisations = 2;
+    r.neg_log_posterior = -12.5;
     return r;
   }
 
@@ -408,6 +420,10 @@ TEST(RunEstimator, RecordsBatchResultsAndChecksTheirLength) {
   EXPECT_EQ(*ev.metrics.relocalisations, 2u);
   EXPECT_EQ(j.at("relocalisations").get<int>(), 2);
   EXPECT_EQ(RunMetricsFromJson(j, "test").relocalisations, std::optional<std::size_t>(2));
+  // And its score.
+  EXPECT_EQ(ev.metrics.neg_log_posterior, std::optional<double>(-12.5));
+  EXPECT_EQ(j.at("neg_log_posterior").get<double>(), -12.5);
+  EXPECT_EQ(RunMetricsFromJson(j, "test").neg_log_posterior, std::optional<double>(-12.5));
   nlohmann::json mistyped = j;
   mistyped["solver_converged"] = "yes";
   EXPECT_THROW(RunMetricsFromJson(mistyped, "test"), std::runtime_error);

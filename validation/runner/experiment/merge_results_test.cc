@@ -114,8 +114,8 @@ TEST(MergeResults, TwoShardsMergedEqualTheUnshardedRun) {
 }
 
 // A run written by an earlier format version (version 1: before metrics.json had
-// format_version; version 2: before relocalisations) merges with the same run written now; a run
-// with other results is still refused.
+// format_version; version 2: before relocalisations; version 3: before neg_log_posterior) merges
+// with the same run written now; a run with other results is still refused.
 TEST(MergeResults, AnEarlierVersionsMetricsFileMergesWithTheSameRunWrittenNow) {
   const fs::path base = datasets::testing::FreshTestDir();
   Experiment x = SmallExperiment();
@@ -125,8 +125,14 @@ TEST(MergeResults, AnEarlierVersionsMetricsFileMergesWithTheSameRunWrittenNow) {
   RunExperiment(x, Quiet(base / "old"));
   const fs::path old_metrics = RunFolder(base / "old", "odometry", 1, 1) / kMetricsFile;
   nlohmann::json old = ReadJsonObject(old_metrics);
-  ASSERT_EQ(old.at("format_version"), 3);
+  ASSERT_EQ(old.at("format_version"), 4);
   ASSERT_TRUE(old.at("relocalisations").is_null());
+  ASSERT_TRUE(old.at("neg_log_posterior").is_null());
+  old["format_version"] = 3;
+  old.erase("neg_log_posterior");
+  WriteFileAtomically(old_metrics, JsonFileText(old));
+  const MergeReport v3 = MergeResults(base / "merged-v3", {base / "new", base / "old"});
+  EXPECT_EQ(v3.runs_copied, 1u);
   old["format_version"] = 2;
   old.erase("relocalisations");
   WriteFileAtomically(old_metrics, JsonFileText(old));

@@ -321,6 +321,7 @@ const std::vector<Column<RunResult>>& RunColumns() {
        [](const R& r) {
          return r.metrics.relocalisations ? Count(*r.metrics.relocalisations) : std::string();
        }},
+      {"neg_log_posterior", [](const R& r) { return Num(r.metrics.neg_log_posterior); }},
   };
   return columns;
 }

@@ -80,6 +80,7 @@ RunMetrics SecondRun() {
   m.solver_iterations = 12;
   m.solver_converged = false;
   m.relocalisations = 3;
+  m.neg_log_posterior = 1234.5;
   return m;
 }
 
@@ -238,6 +239,8 @@ TEST_F(SummaryTest, WritesSummaryAndRunsCsv) {
   EXPECT_EQ(r1["solver_converged"], "");
   EXPECT_EQ(Row(runs, 1)["relocalisations"], "3");
   EXPECT_EQ(r1["relocalisations"], "");
+  EXPECT_EQ(Row(runs, 1)["neg_log_posterior"], "1234.5");
+  EXPECT_EQ(r1["neg_log_posterior"], "");
   auto r3 = Row(runs, 2);
   EXPECT_EQ(r3["estimator"], "b");
   EXPECT_EQ(r3["gospa_m"], "");
