@@ -71,6 +71,7 @@ from .results import (
     Group,
     ResultsFolder,
 )
+from .smoother_posterior import posterior_gaps, posterior_sentence
 from .stats import relative_difference, stack_ragged, standard_error_of_values
 from .style import save_figure
 from .sweep_table import SweepTable, read_sweep_table, sweep_point_of, sweep_root_of
@@ -339,12 +340,17 @@ class ReportBuilder:
         """A filter against the graph-optimisation smoothers: which one is the ceiling."""
         title = "Filter against the smoothers: the ceiling"
         comparison = ceiling_comparison(folder)
+        posterior = posterior_sentence(posterior_gaps(folder), self._name)
+        posterior_html = f"<p>{escape(posterior)}</p>" if posterior else ""
+        needs = ("the folder needs a filter and a smoother (smoother-*, window*) with a finite "
+                 "pooled position RMSE and a seed with steps.csv in common")
         if comparison is None:
-            return Section(sid, title, skipped_note=(
-                "the folder needs a filter and a smoother (smoother-*, window*) with a finite "
-                "pooled position RMSE and a seed with steps.csv in common"))
+            if posterior:  # the smoothers' scores without a filter to draw against
+                return Section(sid, title, body=posterior_html + note_html(
+                    f"No trajectory comparison: {needs}."))
+            return Section(sid, title, skipped_note=needs)
         fig = plot_filter_vs_smoothers(folder, comparison, self._name)
-        body = f"<p>{escape(ceiling_sentence(comparison, self._name))}</p>"
+        body = f"<p>{escape(ceiling_sentence(comparison, self._name))}</p>" + posterior_html
         body += self._figure(
             fig, f"{prefix}smoothers.png",
             f"Seed {comparison.seed}: position error per step (left) and the trajectories "

@@ -10,6 +10,7 @@ from fixture import FixtureSpec, make_results_folder
 from phdslam_reports.figures.filter_vs_smoother import ceiling_comparison, is_smoother
 from phdslam_reports.report import build_report
 from phdslam_reports.results import ResultsFolder
+from phdslam_reports.smoother_posterior import posterior_gaps
 
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
 
@@ -70,6 +71,69 @@ class CeilingTest(unittest.TestCase):
         path = next(p for p in self.report.figure_files if p.name == "smoothers.png")
         self.assertTrue(path.read_bytes().startswith(PNG_MAGIC))
         self.assertTrue(re.search(r'<img src="data:image/png;base64,', self.body))
+
+
+def add_posterior_column(results: Path, scores: dict[str, dict[int, float]]) -> None:
+    """Appends runs.csv's neg_log_posterior column: scores[estimator][seed], empty elsewhere."""
+    path = results / "runs.csv"
+    lines = path.read_text(encoding="utf-8").splitlines()
+    header = lines[0].split(",")
+    est, seed = header.index("estimator"), header.index("seed")
+    out = [lines[0] + ",neg_log_posterior"]
+    for line in lines[1:]:
+        cells = line.split(",")
+        value = scores.get(cells[est], {}).get(int(cells[seed]))
+        out.append(line + "," + ("" if value is None else repr(value)))
+    path.write_text("\n".join(out) + "\n", encoding="utf-8")
+
+
+class PosteriorTest(unittest.TestCase):
+    """The smoothers' negative log posterior, paired with the known association's."""
+
+    def test_gaps_are_paired_over_the_common_seeds(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            results, _ = build(Path(tmp), (("phd3", 10), ("smoother-known", 1),
+                                           ("smoother-unknown", 1), ("smoother-filter", 1)),
+                               {"smoother-unknown": 8.0}, seeds=(1, 2, 3))
+            add_posterior_column(results, {
+                "smoother-known": {1: -500.0, 2: -800.0, 3: -100.0},
+                "smoother-unknown": {1: 3900.0, 2: 7000.0, 3: -200.0},
+                "smoother-filter": {2: -700.0},  # one seed only
+            })
+            gaps = {g.estimator: g for g in posterior_gaps(ResultsFolder(results))}
+            self.assertEqual(sorted(gaps), ["smoother-filter", "smoother-unknown"])
+            unknown = gaps["smoother-unknown"]
+            self.assertEqual(unknown.seeds, 3)
+            self.assertAlmostEqual(unknown.mean_difference, (4400.0 + 7800.0 - 100.0) / 3)
+            self.assertEqual(unknown.less_probable, 2)
+            self.assertEqual((gaps["smoother-filter"].seeds,
+                              gaps["smoother-filter"].less_probable), (1, 1))
+            body = build_report([results], Path(tmp) / "again").section("smoothers").body
+            self.assertRegex(body, r"smoother-unknown is \+4,033 nats on average over 3 seeds, "
+                                   r"less probable on 2\.")
+            self.assertIn("search, not the model, is what falls short", body)
+
+    def test_scores_are_shown_without_a_filter_to_draw_against(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            results, _ = build(Path(tmp), (("smoother-known", 1), ("smoother-unknown", 1),
+                                           ("odometry", 1)), {})
+            add_posterior_column(results, {"smoother-known": {1: 0.0, 2: 0.0},
+                                           "smoother-unknown": {1: -5.0, 2: -7.0}})
+            section = build_report([results], Path(tmp) / "r").section("smoothers")
+            self.assertTrue(section.shown)
+            self.assertIn("smoother-unknown is -6 nats on average over 2 seeds, less probable "
+                          "on 0.", section.body)
+            self.assertNotIn("falls short", section.body)
+            self.assertIn("No trajectory comparison", section.body)
+
+    def test_no_sentence_without_the_known_association_or_the_column(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            results, report = build(Path(tmp), (("phd3", 10), ("smoother-known", 1),
+                                                ("smoother-unknown", 1)), {})
+            self.assertEqual(posterior_gaps(ResultsFolder(results)), [])  # no column
+            self.assertNotIn("Negative log posterior", report.section("smoothers").body)
+            add_posterior_column(results, {"smoother-unknown": {1: 10.0, 2: 20.0}})
+            self.assertEqual(posterior_gaps(ResultsFolder(results)), [])  # no known scores
 
 
 class NoCeilingTest(unittest.TestCase):
