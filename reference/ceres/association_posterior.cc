@@ -5,11 +5,12 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
-#include <numbers>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
 #include "src/core/angles.h"
+#include "src/core/gaussian.h"
 #include "src/models/range_bearing_model.h"
 #include "src/models/sensor_model.h"
 
@@ -78,8 +79,6 @@ PosteriorTerms NegativeLogPosterior(const datasets::Scenario& scenario,
   terms.odometry = OdometryTerm(scenario, odometry, poses);
 
   const Mat2& r = scenario.sensor.noise_cov;
-  const Mat2 r_inverse = r.inverse();
-  const double half_log_det = 0.5 * std::log((2.0 * std::numbers::pi * r).determinant());
   const double log_clutter = std::log(scenario.sensor.ClutterIntensity());
   std::vector<bool> detected(landmarks.size());
   for (std::size_t k = 0; k < poses.size(); ++k) {
@@ -96,7 +95,13 @@ PosteriorTerms NegativeLogPosterior(const datasets::Scenario& scenario,
       detected[i] = true;
       Vec2 innovation = measurements[j] - models::PredictMeasurement(poses[k], landmarks[i]);
       innovation(1) = WrapAngle(innovation(1));
-      terms.measurements += 0.5 * innovation.dot(r_inverse * innovation) + half_log_det;
+      const std::optional<double> log_likelihood = LogNormalPdf<2>(innovation, Vec2::Zero(), r);
+      if (!log_likelihood) {
+        throw std::invalid_argument(
+            "NegativeLogPosterior: the sensor noise R is not positive "
+            "definite");
+      }
+      terms.measurements -= *log_likelihood;
       terms.detections -= std::log(
           std::clamp(fov.DetectionProbability(landmarks[i]), kPosteriorMinPd, kPosteriorMaxPd));
     }

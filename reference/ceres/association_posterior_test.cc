@@ -32,6 +32,8 @@ struct Odometry {
       : increments(ScenarioOdometry(s, options.odometry_floor)),
         spec{&increments, options.odometry_floor,
              options.odometry_residual == OdometryResidual::kControlSpace} {}
+  Odometry(const Odometry&) = delete;  // spec points into this object's increments
+  Odometry& operator=(const Odometry&) = delete;
   std::vector<OdometryIncrement> increments;
   OdometrySpec spec;
 };
