@@ -2,8 +2,10 @@
 
 #include <Eigen/Core>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 
 #include "src/assignment/linear_assignment.h"
 #include "src/core/log_sum_exp.h"
@@ -20,12 +22,19 @@ double LogEta(const EtaRow& row, int gamma) {
 }
 
 double LogAssociationWeight(EtaRows rows, const Association& gamma) {
-  std::vector<char> taken;
+  // The measurements taken so far: on the stack for the usual scan, on the heap beyond it.
+  constexpr int kOnStack = 256;
+  std::array<char, kOnStack> taken_here{};
+  std::vector<char> taken_heap;
   double total = 0.0;
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const int g = gamma[i];
     if (g > 0) {
-      if (static_cast<int>(taken.size()) < g) taken.resize(g, 0);
+      char* taken = taken_here.data();
+      if (g > kOnStack) {
+        if (static_cast<int>(taken_heap.size()) < g) taken_heap.resize(g, 0);
+        taken = taken_heap.data();
+      }
       if (taken[g - 1] != 0) return kNegInf;
       taken[g - 1] = 1;
     }
@@ -123,6 +132,10 @@ SamplerRows MakeSamplerRows(EtaRows rows, int measurements) {
       }
     }
     out.total.push_back(total);
+    const double leave = total > 0.0 ? (total - 1.0) / total : 0.0;
+    out.leave.push_back(leave);
+    out.rare.push_back(
+        static_cast<char>(last > first && out.slot[first] == measurements && leave <= kRareLeave));
   }
   out.begin.push_back(static_cast<int>(out.value.size()));
   return out;
@@ -175,15 +188,13 @@ bool SetRow(int n, int pick, ChainState& state) {
   return true;
 }
 
-/// Resamples gamma[n], whose values are row `row` of `rows`, from its conditional; true when it
-/// changed. One uniform u is drawn whatever the row; the pick is the first allowed value (in the
-/// row's order) whose running sum of allowed weights exceeds u times their total. The largest value
-/// comes first with weight 1, so when it is allowed and u times the row's total with every value
-/// allowed is below 1, it is the pick without the sums: the allowed total is not larger (the same
-/// sum with terms left out, rounding being monotone).
-bool ResampleRow(const SamplerRows& rows, int row, int n, ChainState& state,
-                 ChainUniforms& uniforms) {
-  const double u = uniforms.Next();
+/// Resamples gamma[n], whose values are row `row` of `rows`, from its conditional given u, the
+/// uniform of this row and sweep; true when it changed. The pick is the first allowed value (in
+/// the row's order) whose running sum of allowed weights exceeds u times their total. The largest
+/// value comes first with weight 1, so when it is allowed and u times the row's total with every
+/// value allowed is below 1, it is the pick without the sums: the allowed total is not larger (the
+/// same sum with terms left out, rounding being monotone).
+bool ResampleRowAt(double u, const SamplerRows& rows, int row, int n, ChainState& state) {
   const int first = rows.begin[row];
   const int count = rows.begin[row + 1] - first;
   if (count == 0) return false;  // unreachable from a valid state: the current value is allowed
@@ -217,6 +228,130 @@ bool ResampleRow(const SamplerRows& rows, int row, int n, ChainState& state,
   return SetRow(n, value[pick_c], state);
 }
 
+/// A geometric number of failures before the first success of chance p, log_q = log(1 - p) < 0.
+std::int64_t GeometricGap(ChainUniforms& uniforms, double log_q) {
+  const double v = 1.0 - uniforms.Next();  // (0, 1]
+  const double g = std::floor(std::log(v) / log_q);
+  return g < 4.0e18 ? static_cast<std::int64_t>(g) : std::numeric_limits<std::int64_t>::max();
+}
+
+/// The rare rows' sweeps away from their largest value (SamplerRows::rare): the cells (sweep,
+/// rare row) where u lies above 1 / total form a Bernoulli process, drawn as candidates with
+/// geometric gaps at the chain's largest chance `top_leave` and each kept with chance
+/// leave / top_leave. Between them a rare row takes its largest value, which is allowed whatever
+/// the other rows hold, without a draw.
+class RareRowEvents {
+ public:
+  /// `rare` lists the chain's rare rows (positions n) of `table` rows index (or n when empty).
+  RareRowEvents(std::span<const int> rare, const SamplerRows& table, std::span<const int> index)
+      : rare_(rare), table_(table), index_(index) {
+    for (int n : rare) top_leave_ = std::max(top_leave_, Leave(n));
+    log_stay_ = std::log1p(-top_leave_);
+  }
+
+  /// Calls on_leave(n) for each rare row whose u lies above 1 / total in sweep s (from 1), in
+  /// the order of the draws; called once per sweep, in order.
+  template <class OnLeave>
+  void Sweep(std::int64_t s, ChainUniforms& uniforms, OnLeave&& on_leave) {
+    if (rare_.empty() || !(top_leave_ > 0.0)) return;
+    const auto k = static_cast<std::int64_t>(rare_.size());
+    if (next_ < 0) next_ = GeometricGap(uniforms, log_stay_);  // the first candidate cell
+    const std::int64_t end = s * k;                            // cells of sweeps 1..s: [0, end)
+    while (next_ < end) {
+      const auto r = static_cast<std::size_t>(next_ % k);
+      if (uniforms.Next() * top_leave_ < Leave(rare_[r])) on_leave(rare_[r]);
+      const std::int64_t gap = GeometricGap(uniforms, log_stay_);
+      next_ = gap >= std::numeric_limits<std::int64_t>::max() - next_
+                  ? std::numeric_limits<std::int64_t>::max()
+                  : next_ + 1 + gap;
+    }
+  }
+
+ private:
+  [[nodiscard]] double Leave(int n) const {
+    return table_.leave[static_cast<std::size_t>(index_.empty() ? n : index_[n])];
+  }
+
+  std::span<const int> rare_;
+  const SamplerRows& table_;
+  std::span<const int> index_;
+  double top_leave_ = 0.0;
+  double log_stay_ = 0.0;
+  std::int64_t next_ = -1;  ///< the next candidate cell, (s - 1) * rare rows + rare index
+};
+
+/// A list of ints in storage laid out in advance for its largest size.
+class IntList {
+ public:
+  IntList() = default;
+  explicit IntList(int* data) : data_(data) {}
+  void push_back(int v) { data_[size_++] = v; }
+  void clear() { size_ = 0; }
+  [[nodiscard]] std::size_t size() const { return size_; }
+  int operator[](std::size_t i) const { return data_[i]; }
+  [[nodiscard]] int* begin() const { return data_; }
+  [[nodiscard]] int* end() const { return data_ + size_; }
+  [[nodiscard]] std::span<const int> view() const { return {data_, size_}; }
+
+ private:
+  int* data_ = nullptr;
+  std::size_t size_ = 0;
+};
+
+/// The chain's rows by how they are resampled, in one allocation reused over its sweeps.
+struct ChainRows {
+  explicit ChainRows(int n_rows)
+      : storage(5 * static_cast<std::size_t>(n_rows)),
+        dense(storage.data()),
+        rare(storage.data() + n_rows),
+        away(storage.data() + 2 * static_cast<std::ptrdiff_t>(n_rows)),
+        due(storage.data() + 3 * static_cast<std::ptrdiff_t>(n_rows)) {}
+  std::vector<int> storage;
+  IntList dense;  ///< positions resampled every sweep with their own uniform
+  IntList rare;   ///< positions of rare rows
+  IntList away;   ///< rare rows not at their largest value after the last sweep
+  IntList due;    ///< this sweep's rare rows to visit: 2 n + (1 when it leaves); at most 2 per row
+};
+
+/// Visits the rows of sweep s in order: the dense ones from their conditionals, the due rare
+/// ones (leaving: from their conditional given u above 1 / total; away: back to their largest
+/// value); true when the association changed.
+bool RunSweep(std::int64_t s, const SamplerRows& table, std::span<const int> index, ChainRows& rows,
+              RareRowEvents& events, ChainState& state, ChainUniforms& uniforms) {
+  auto row_of = [&](int n) { return index.empty() ? n : index[n]; };
+  auto top_of = [&](int n) { return table.value[table.begin[row_of(n)]]; };
+  rows.due.clear();
+  for (int n : rows.away) rows.due.push_back(2 * n);
+  events.Sweep(s, uniforms, [&](int n) { rows.due.push_back(2 * n + 1); });
+  if (rows.due.size() > 1) std::sort(rows.due.begin(), rows.due.end());
+  rows.away.clear();
+  bool changed = false;
+  std::size_t d = 0;
+  const int n_rows = static_cast<int>(state.gamma.size());
+  for (std::size_t r = 0; r <= rows.dense.size(); ++r) {
+    const int until = r < rows.dense.size() ? rows.dense[r] : n_rows;
+    for (; d < rows.due.size() && rows.due[d] / 2 < until; ++d) {
+      const int n = rows.due[d] / 2;
+      // An away row that also leaves appears twice (2 n, 2 n + 1): the second visit decides.
+      if (d + 1 < rows.due.size() && rows.due[d + 1] / 2 == n) continue;
+      const int row = row_of(n);
+      if (rows.due[d] % 2 == 1) {  // u above 1 / total: uniform on [1 / total, 1)
+        const double floor_u = 1.0 / table.total[row];
+        const double u = floor_u + (1.0 - floor_u) * uniforms.Next();
+        changed |= ResampleRowAt(u, table, row, n, state);
+      } else {
+        changed |= SetRow(n, top_of(n), state);
+      }
+      if (state.gamma[n] != top_of(n)) rows.away.push_back(n);
+    }
+    if (r < rows.dense.size()) {
+      const int n = rows.dense[r];
+      changed |= ResampleRowAt(uniforms.Next(), table, row_of(n), n, state);
+    }
+  }
+  return changed;
+}
+
 /// Runs the chain from `start` for samples - 1 sweeps, calling visit(gamma, hash, changed) on
 /// every sample; changed is false when the sweep left the association as it was. Row n of the
 /// chain is row index[n] of `table` (row n when index is empty).
@@ -237,12 +372,19 @@ void RunChain(const SamplerRows& table, std::span<const int> index, int measurem
   ChainUniforms uniforms(rng.NextU64());
   state.cumulative.resize(static_cast<std::size_t>(table.widest));
   const int n_rows = static_cast<int>(start.size());
-  for (int s = 1; s < samples; ++s) {
-    bool changed = false;
-    for (int n = 0; n < n_rows; ++n) {
-      const int row = index.empty() ? n : index[n];
-      changed |= ResampleRow(table, row, n, state, uniforms);
+  ChainRows rows(n_rows);
+  for (int n = 0; n < n_rows; ++n) {
+    const int row = index.empty() ? n : index[n];
+    if (table.rare[row] == 0) {
+      rows.dense.push_back(n);
+      continue;
     }
+    rows.rare.push_back(n);
+    if (start[n] != table.value[table.begin[row]]) rows.away.push_back(n);
+  }
+  RareRowEvents events(rows.rare.view(), table, index);
+  for (int s = 1; s < samples; ++s) {
+    const bool changed = RunSweep(s, table, index, rows, events, state, uniforms);
     visit(state.gamma, state.hash, changed);
   }
 }

@@ -70,8 +70,16 @@ struct SamplerRows {
   std::vector<int> slot;
   std::vector<double> weight;
   std::vector<double> total;  ///< per row: the sum of its weights in order, all values allowed
+  /// Per row: true when its largest value can never be taken by another row (death or miss) and
+  /// the chance 1 - 1 / total of u falling above it is at most kRareLeave. Such a row keeps its
+  /// largest value except at rare sweeps, which the chain draws in advance (RunChain).
+  std::vector<char> rare;
+  std::vector<double> leave;  ///< per row: 1 - 1 / total (0 for a row without values)
   int widest = 0;             ///< the most values of one row
 };
+
+/// The largest chance per sweep of leaving its largest value for a row the chain skips.
+inline constexpr double kRareLeave = 1.0 / 16.0;
 
 SamplerRows MakeSamplerRows(EtaRows rows, int measurements);
 
@@ -79,8 +87,10 @@ SamplerRows MakeSamplerRows(EtaRows rows, int measurements);
 /// Gibbs sweeps, rows resampled in order from their conditionals given the other rows (a
 /// measurement taken by another row is excluded), conditionals shifted by their maximum before
 /// exponentiation, each row's values in the order: its largest, then the others as in the row.
-/// One draw from `rng` seeds the chain (none when samples = 1); then one uniform per row and
-/// sweep from the chain's SplitMix64 sequence.
+/// One draw from `rng` seeds the chain (none when samples = 1); then uniforms from the chain's
+/// SplitMix64 sequence: one per row and sweep for the other rows; for the rare rows (SamplerRows)
+/// the sweeps at which u exceeds 1 / total are drawn as a Bernoulli process (geometric gaps at the
+/// chain's largest leave, thinned to each row's), the row keeping its largest value in between.
 std::vector<Association> GibbsSample(EtaRows rows, int measurements, const Association& start,
                                      int samples, RandomStream& rng);
 

@@ -200,6 +200,59 @@ TEST(GibbsSampler, StationaryDistributionMatchesEnumeration) {
   EXPECT_LT(0.5 * tv, 0.01);
 }
 
+/// Two rows that keep their largest value (death, miss) in all but 1 % and 5 % of sweeps, which
+/// the chain skips between the sweeps it draws in advance, among two rows resampled every sweep.
+std::vector<EtaRow> EtaWithRareRows() {
+  std::vector<EtaRow> rows(4);
+  rows[0] = EtaRow{std::log(0.05), std::log(0.285), {{0, std::log(1.3)}, {1, std::log(0.4)}}};
+  rows[1] = EtaRow{std::log(0.99), std::log(0.002), {{0, std::log(0.005)}, {2, std::log(0.003)}}};
+  rows[2] = EtaRow{std::log(0.02), std::log(0.9), {{1, std::log(0.02)}, {2, std::log(0.0073)}}};
+  rows[3] = EtaRow{std::log(0.1), std::log(0.2), {{1, std::log(2.0)}, {2, std::log(0.5)}}};
+  return rows;
+}
+
+TEST(GibbsSampler, RareRowsKeepTheStationaryDistribution) {
+  const std::vector<EtaRow> rows = EtaWithRareRows();
+  const int m = 3;
+  const SamplerRows table = MakeSamplerRows(rows, m);
+  EXPECT_EQ(table.rare, (std::vector<char>{0, 1, 1, 0}));
+  EXPECT_NEAR(table.leave[1], 0.01 / 1.0, 1e-12);  // the others over all values
+  EXPECT_NEAR(table.leave[2], 0.0473 / 0.9473, 1e-12);
+  const std::vector<Association> valid = EnumerateValid(rows, m);
+  std::vector<double> lw;
+  for (const Association& g : valid) lw.push_back(LogAssociationWeight(rows, g));
+  const double norm = LogSumExp(lw);
+  const auto start = OptimalAssociation(rows, m);
+  ASSERT_TRUE(start.has_value());
+  RandomStream rng(20261127);
+  const int n = 400000;
+  const std::vector<Association> samples = GibbsSample(rows, m, *start, n, rng);
+  std::map<Association, int> counts;
+  std::vector<int> away(rows.size(), 0);
+  for (const Association& g : samples) {
+    ASSERT_GT(LogAssociationWeight(rows, g), kNegInf) << "a sample is not positive 1-1";
+    ++counts[g];
+    away[1] += g[1] != -1 ? 1 : 0;
+    away[2] += g[2] != 0 ? 1 : 0;
+  }
+  double tv = 0.0;
+  std::vector<double> exact_away(rows.size(), 0.0);
+  for (std::size_t i = 0; i < valid.size(); ++i) {
+    const auto it = counts.find(valid[i]);
+    const double p = std::exp(lw[i] - norm);
+    const double empirical = it == counts.end() ? 0.0 : static_cast<double>(it->second) / n;
+    tv += std::abs(empirical - p);
+    exact_away[1] += valid[i][1] != -1 ? p : 0.0;
+    exact_away[2] += valid[i][2] != 0 ? p : 0.0;
+  }
+  EXPECT_LT(0.5 * tv, 0.01);
+  // The rare rows' own marginals (about 0.7 % and 4 % away from their largest value): 4000 and
+  // 16000 expected visits, so a relative 8 % is more than 5 binomial standard errors.
+  for (int r : {1, 2}) {
+    EXPECT_NEAR(static_cast<double>(away[r]) / n / exact_away[r], 1.0, 0.08) << "row " << r;
+  }
+}
+
 TEST(GibbsSampler, DistinctSamplingMatchesDeduplicatedSamples) {
   const std::vector<EtaRow> rows = SmallEta();
   const auto start = OptimalAssociation(rows, 3);
