@@ -37,8 +37,9 @@ JointProblem BuildJointProblem(std::span<const Hypothesis> prior, std::span<cons
   JointProblem p;
   p.measurements = static_cast<int>(measurements.size());
   p.log_ck = -settings.clutter_rate + p.measurements * settings.log_clutter_intensity;
-  // Out-of-FOV entries never enter the problem (they pass through, BuildPosterior); the FOV
-  // test comes before the entry lookup because most of a map is outside the FOV.
+  // Out-of-FOV entries never enter the problem (they pass through, BuildPosterior). Each id is
+  // tested once: `index` holds its entry, or kOutside; the hypotheses share most tracks.
+  constexpr int kOutside = -1;
   const models::FovView fov(*setup.sensor, x);
   std::unordered_map<std::uint64_t, int> index;
   std::vector<double> entry_existence;
@@ -47,15 +48,15 @@ JointProblem BuildJointProblem(std::span<const Hypothesis> prior, std::span<cons
     const TrackSet& tracks = *prior[h].tracks;
     for (std::size_t i = 0; i < tracks.size(); ++i) {
       const TrackPtr& t = tracks[i];
-      if (!(fov.DetectionProbability(t->Heaviest().mean) > 0.0)) continue;
-      const auto [it, inserted] = index.emplace(t->id, static_cast<int>(p.entries.size()));
-      if (inserted) {
+      const auto [it, inserted] = index.emplace(t->id, kOutside);
+      if (inserted && fov.DetectionProbability(t->Heaviest().mean) > 0.0) {
+        it->second = static_cast<int>(p.entries.size());
         p.entries.push_back(t);
         p.terms.push_back(ComputeEntryTerms(*t, x, measurements, setup));
         const double mult = existence.empty() ? 1.0 : existence[i];
         entry_existence.push_back(mult * settings.survival_probability);
       }
-      in_fov[h].push_back(it->second);
+      if (it->second != kOutside) in_fov[h].push_back(it->second);
     }
   }
   p.prior_entries = static_cast<int>(p.entries.size());
@@ -120,11 +121,10 @@ std::vector<SampledAssociation> SampleAssociations(const JointProblem& problem,
 
 namespace {
 
+/// A child hypothesis: the first sample giving it (which lists its entries) and its weight.
 struct Child {
-  TrackSet tracks;
   double log_weight = kNegInf;
-  int sample = 0;             ///< first sample giving this child
-  std::vector<int> assigned;  ///< measurements detected in it
+  int sample = 0;
 };
 
 /// A hash of a child's sorted entry ids (its key for merging duplicates).
@@ -188,15 +188,15 @@ UpdateResult BuildPosterior(const JointProblem& problem,
   std::vector<int> assigned;
   std::vector<std::uint64_t> key;
   const auto by_id = [](const TrackPtr* a, const TrackPtr* b) { return (*a)->id < (*b)->id; };
-  for (int s = 0; s < static_cast<int>(samples.size()); ++s) {
+  // The entries of sample s's child, in id order, into `tracks` (and its detected measurements
+  // into `assigned`): the prior entries (pass-through, or kept when missed), then the births kept
+  // (ids above every prior entry), then the new detection children (sorted: created here).
+  auto gather = [&](int s) {
     const SampledAssociation& sample = samples[s];
     const JointProblem::Parent& parent = problem.parents[sample.parent];
-    all_log_w.push_back(sample.log_weight);
     tracks.clear();
     detected.clear();
     assigned.clear();
-    // The prior entries in id order (pass-through, or kept when missed), then the births kept
-    // (ids above every prior entry), then the new detection children (sorted: created here).
     auto take = [&](std::size_t i) {
       const int g = sample.gamma[i];
       if (g == 0) tracks.push_back(&problem.entries[parent.rows[i]]);
@@ -220,20 +220,22 @@ UpdateResult BuildPosterior(const JointProblem& problem,
     if (!std::is_sorted(tracks.begin(), tracks.end(), by_id)) {
       std::sort(tracks.begin(), tracks.end(), by_id);
     }
+  };
+  // Children are merged by their id sets; their entries are copied only for those kept.
+  for (int s = 0; s < static_cast<int>(samples.size()); ++s) {
+    all_log_w.push_back(samples[s].log_weight);
+    gather(s);
     key.resize(tracks.size());
     for (std::size_t i = 0; i < key.size(); ++i) key[i] = (*tracks[i])->id;
     const auto [it, inserted] = seen.try_emplace(key, static_cast<int>(children.size()));
     if (inserted) {
       Child c;
       c.sample = s;
-      c.log_weight = sample.log_weight;
-      c.tracks.reserve(tracks.size());
-      for (const TrackPtr* t : tracks) c.tracks.push_back(*t);
-      c.assigned = assigned;
+      c.log_weight = samples[s].log_weight;
       children.push_back(std::move(c));
     } else {
       Child& d = children[it->second];
-      d.log_weight = LogAddExp(d.log_weight, sample.log_weight);
+      d.log_weight = LogAddExp(d.log_weight, samples[s].log_weight);
     }
   }
   UpdateResult result;
@@ -258,11 +260,15 @@ UpdateResult BuildPosterior(const JointProblem& problem,
   if (children.empty()) return result;
   Truncate(children, settings);
   result.hypotheses.reserve(children.size());
-  for (Child& c : children) {
+  for (const Child& c : children) {
+    gather(c.sample);
     const double w = std::exp(c.log_weight);
-    for (int j : c.assigned) result.measurement_assigned[j] += w;
+    for (int j : assigned) result.measurement_assigned[j] += w;
+    TrackSet entries;
+    entries.reserve(tracks.size());
+    for (const TrackPtr* t : tracks) entries.push_back(*t);
     result.hypotheses.push_back(
-        Hypothesis{std::make_shared<const TrackSet>(std::move(c.tracks)), c.log_weight});
+        Hypothesis{std::make_shared<const TrackSet>(std::move(entries)), c.log_weight});
   }
   const SampledAssociation& top = samples[children.front().sample];
   const JointProblem::Parent& parent = problem.parents[top.parent];
