@@ -171,10 +171,12 @@ std::uint64_t RowHash(int n, int g) {
 /// The state of one chain: the association, the owner of each measurement (row or -1; slot
 /// `measurements` is never owned) and the association's hash.
 struct ChainState {
-  Association gamma;
-  std::vector<int> owner;
+  explicit ChainState(GibbsScratch& scratch)
+      : gamma(scratch.gamma), owner(scratch.owner), cumulative(scratch.cumulative) {}
+  Association& gamma;
+  std::vector<int>& owner;
   std::uint64_t hash = 0;
-  std::vector<double> cumulative;  ///< scratch: running sums of a row's allowed weights
+  std::vector<double>& cumulative;  ///< running sums of a row's allowed weights
 };
 
 /// Sets gamma[n] = pick, keeping the owners and the hash; true when it changed.
@@ -298,15 +300,17 @@ class IntList {
   std::size_t size_ = 0;
 };
 
-/// The chain's rows by how they are resampled, in one allocation reused over its sweeps.
+/// The chain's rows by how they are resampled, in storage reused over its sweeps.
 struct ChainRows {
-  explicit ChainRows(int n_rows)
-      : storage(5 * static_cast<std::size_t>(n_rows)),
-        dense(storage.data()),
+  ChainRows(int n_rows, std::vector<int>& storage)
+      : dense(Reserve(storage, n_rows)),
         rare(storage.data() + n_rows),
         away(storage.data() + 2 * static_cast<std::ptrdiff_t>(n_rows)),
         due(storage.data() + 3 * static_cast<std::ptrdiff_t>(n_rows)) {}
-  std::vector<int> storage;
+  static int* Reserve(std::vector<int>& storage, int n_rows) {
+    storage.resize(5 * static_cast<std::size_t>(n_rows));
+    return storage.data();
+  }
   IntList dense;  ///< positions resampled every sweep with their own uniform
   IntList rare;   ///< positions of rare rows
   IntList away;   ///< rare rows not at their largest value after the last sweep
@@ -357,9 +361,10 @@ bool RunSweep(std::int64_t s, const SamplerRows& table, std::span<const int> ind
 /// chain is row index[n] of `table` (row n when index is empty).
 template <class Visit>
 void RunChain(const SamplerRows& table, std::span<const int> index, int measurements,
-              const Association& start, int samples, RandomStream& rng, Visit&& visit) {
-  ChainState state;
-  state.gamma = start;
+              const Association& start, int samples, RandomStream& rng, GibbsScratch& scratch,
+              Visit&& visit) {
+  ChainState state(scratch);
+  state.gamma.assign(start.begin(), start.end());
   for (std::size_t i = 0; i < start.size(); ++i) {
     state.hash += RowHash(static_cast<int>(i), start[i]);
   }
@@ -372,7 +377,7 @@ void RunChain(const SamplerRows& table, std::span<const int> index, int measurem
   ChainUniforms uniforms(rng.NextU64());
   state.cumulative.resize(static_cast<std::size_t>(table.widest));
   const int n_rows = static_cast<int>(start.size());
-  ChainRows rows(n_rows);
+  ChainRows rows(n_rows, scratch.rows);
   for (int n = 0; n < n_rows; ++n) {
     const int row = index.empty() ? n : index[n];
     if (table.rare[row] == 0) {
@@ -392,7 +397,13 @@ void RunChain(const SamplerRows& table, std::span<const int> index, int measurem
 /// A set of associations of one length, stored flat, with open addressing on their hashes.
 class AssociationSet {
  public:
-  explicit AssociationSet(std::size_t length) : length_(length), table_(16, -1) {}
+  /// An empty set in the scratch's buffers.
+  AssociationSet(std::size_t length, GibbsScratch& scratch)
+      : length_(length), store_(scratch.store), hashes_(scratch.hashes), table_(scratch.table) {
+    store_.clear();
+    hashes_.clear();
+    table_.assign(16, -1);
+  }
 
   /// Adds gamma (whose hash is `hash`) unless present.
   void Insert(const Association& gamma, std::uint64_t hash) {
@@ -437,9 +448,9 @@ class AssociationSet {
   }
 
   std::size_t length_;
-  std::vector<int> store_;
-  std::vector<std::uint64_t> hashes_;
-  std::vector<int> table_;  ///< member index or -1, size a power of two
+  std::vector<int>& store_;
+  std::vector<std::uint64_t>& hashes_;
+  std::vector<int>& table_;  ///< member index or -1, size a power of two
 };
 
 }  // namespace
@@ -449,21 +460,30 @@ std::vector<Association> GibbsSample(EtaRows rows, int measurements, const Assoc
   std::vector<Association> out;
   out.reserve(std::max(1, samples));
   const SamplerRows table = MakeSamplerRows(rows, measurements);
+  GibbsScratch scratch;
   RunChain(
-      table, {}, measurements, start, samples, rng,
+      table, {}, measurements, start, samples, rng, scratch,
       [&](const Association& g, std::uint64_t /*hash*/, bool /*changed*/) { out.push_back(g); });
   return out;
 }
 
 std::vector<Association> DistinctGibbsSamples(const SamplerRows& table, std::span<const int> index,
                                               int measurements, const Association& start,
-                                              int samples, RandomStream& rng) {
-  AssociationSet seen(start.size());
-  RunChain(table, index, measurements, start, samples, rng,
+                                              int samples, RandomStream& rng,
+                                              GibbsScratch& scratch) {
+  AssociationSet seen(start.size(), scratch);
+  RunChain(table, index, measurements, start, samples, rng, scratch,
            [&](const Association& g, std::uint64_t hash, bool changed) {
              if (changed) seen.Insert(g, hash);  // unchanged: the common case, already in
            });
   return seen.Sorted();
+}
+
+std::vector<Association> DistinctGibbsSamples(const SamplerRows& table, std::span<const int> index,
+                                              int measurements, const Association& start,
+                                              int samples, RandomStream& rng) {
+  GibbsScratch scratch;
+  return DistinctGibbsSamples(table, index, measurements, start, samples, rng, scratch);
 }
 
 std::vector<Association> DistinctGibbsSamples(EtaRows rows, int measurements,

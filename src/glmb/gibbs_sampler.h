@@ -4,6 +4,7 @@
 // assignment solver.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <span>
 #include <utility>
@@ -107,5 +108,23 @@ std::vector<Association> DistinctGibbsSamples(EtaRows rows, int measurements,
 std::vector<Association> DistinctGibbsSamples(const SamplerRows& table, std::span<const int> index,
                                               int measurements, const Association& start,
                                               int samples, RandomStream& rng);
+
+/// Buffers of the chains (their state, rows and set of distinct samples), which a caller running
+/// many chains reuses to save their allocations; their contents between calls mean nothing.
+struct GibbsScratch {
+  Association gamma;
+  std::vector<int> owner;
+  std::vector<double> cumulative;
+  std::vector<int> rows;
+  std::vector<int> store;
+  std::vector<std::uint64_t> hashes;
+  std::vector<int> table;
+};
+
+/// The same with the chain's buffers in `scratch`: the same samples as without it.
+std::vector<Association> DistinctGibbsSamples(const SamplerRows& table, std::span<const int> index,
+                                              int measurements, const Association& start,
+                                              int samples, RandomStream& rng,
+                                              GibbsScratch& scratch);
 
 }  // namespace phdslam::glmb

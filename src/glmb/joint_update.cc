@@ -95,6 +95,7 @@ std::vector<SampledAssociation> SampleAssociations(const JointProblem& problem,
   const double norm = LogSumExp(half_log_w);
   std::vector<SampledAssociation> out;
   const SamplerRows sampler_rows = MakeSamplerRows(problem.eta, problem.measurements);
+  GibbsScratch scratch;  // reused by every parent's chain
   for (int h = 0; h < static_cast<int>(problem.parents.size()); ++h) {
     const JointProblem::Parent& parent = problem.parents[h];
     const EtaRows eta = problem.EtaOf(static_cast<std::size_t>(h));
@@ -110,7 +111,7 @@ std::vector<SampledAssociation> SampleAssociations(const JointProblem& problem,
     std::vector<Association> distinct =
         t_h == 1 ? std::vector<Association>{*start}
                  : DistinctGibbsSamples(sampler_rows, parent.rows, problem.measurements, *start,
-                                        t_h, rng);
+                                        t_h, rng, scratch);
     for (Association& gamma : distinct) {
       const double lw = parent.log_weight + LogAssociationWeight(eta, gamma) + problem.log_ck;
       out.push_back(SampledAssociation{h, std::move(gamma), lw});
