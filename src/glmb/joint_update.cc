@@ -28,6 +28,40 @@ EtaRow MakeEtaRow(double e, const EntryTerms& terms, double log_kappa) {
   return row;
 }
 
+/// A map from track id to an int (its entry, or kOutside), by open addressing in one
+/// allocation sized for at most `capacity` ids.
+class IdIndex {
+ public:
+  static constexpr int kOutside = -1;
+
+  explicit IdIndex(std::size_t capacity) {
+    std::size_t n = 16;
+    while (n < 2 * capacity) n *= 2;
+    slots_.assign(n, Slot{});
+  }
+
+  /// The value of `id`, inserted as `value` when absent (then `inserted` is true).
+  std::pair<int*, bool> Emplace(std::uint64_t id, int value) {
+    const std::size_t mask = slots_.size() - 1;
+    for (std::size_t i = MixSeed(id) & mask;; i = (i + 1) & mask) {
+      Slot& slot = slots_[i];
+      if (!slot.used) {
+        slot = Slot{id, value, true};
+        return {&slot.value, true};
+      }
+      if (slot.id == id) return {&slot.value, false};
+    }
+  }
+
+ private:
+  struct Slot {
+    std::uint64_t id = 0;
+    int value = 0;
+    bool used = false;
+  };
+  std::vector<Slot> slots_;
+};
+
 }  // namespace
 
 JointProblem BuildJointProblem(std::span<const Hypothesis> prior, std::span<const double> existence,
@@ -39,24 +73,25 @@ JointProblem BuildJointProblem(std::span<const Hypothesis> prior, std::span<cons
   p.log_ck = -settings.clutter_rate + p.measurements * settings.log_clutter_intensity;
   // Out-of-FOV entries never enter the problem (they pass through, BuildPosterior). Each id is
   // tested once: `index` holds its entry, or kOutside; the hypotheses share most tracks.
-  constexpr int kOutside = -1;
   const models::FovView fov(*setup.sensor, x);
-  std::unordered_map<std::uint64_t, int> index;
+  std::size_t listed = 0;
+  for (const Hypothesis& h : prior) listed += h.tracks->size();
+  IdIndex index(listed);
   std::vector<double> entry_existence;
   std::vector<std::vector<int>> in_fov(prior.size());
   for (std::size_t h = 0; h < prior.size(); ++h) {
     const TrackSet& tracks = *prior[h].tracks;
     for (std::size_t i = 0; i < tracks.size(); ++i) {
       const TrackPtr& t = tracks[i];
-      const auto [it, inserted] = index.emplace(t->id, kOutside);
+      const auto [entry, inserted] = index.Emplace(t->id, IdIndex::kOutside);
       if (inserted && fov.DetectionProbability(t->Heaviest().mean) > 0.0) {
-        it->second = static_cast<int>(p.entries.size());
+        *entry = static_cast<int>(p.entries.size());
         p.entries.push_back(t);
         p.terms.push_back(ComputeEntryTerms(*t, x, measurements, setup));
         const double mult = existence.empty() ? 1.0 : existence[i];
         entry_existence.push_back(mult * settings.survival_probability);
       }
-      if (it->second != kOutside) in_fov[h].push_back(it->second);
+      if (*entry != IdIndex::kOutside) in_fov[h].push_back(*entry);
     }
   }
   p.prior_entries = static_cast<int>(p.entries.size());
