@@ -62,6 +62,39 @@ class IdIndex {
   std::vector<Slot> slots_;
 };
 
+/// log eta_e(gamma) of every entry e of a problem for gamma in -1..M, so that an association's
+/// weight is one look-up per row: the values of LogEta, summed in the same row order as
+/// LogAssociationWeight, for associations known to be valid.
+class LogEtaTable {
+ public:
+  LogEtaTable(std::span<const EtaRow> eta, int measurements)
+      : width_(static_cast<std::size_t>(measurements) + 2), values_(eta.size() * width_, kNegInf) {
+    for (std::size_t e = 0; e < eta.size(); ++e) {
+      double* row = values_.data() + e * width_;
+      row[0] = eta[e].log_death;
+      row[1] = eta[e].log_miss;
+      // Reversed, so that a repeated measurement keeps its first value, as LogEta finds it.
+      for (auto d = eta[e].detections.rbegin(); d != eta[e].detections.rend(); ++d) {
+        row[d->first + 2] = d->second;
+      }
+    }
+  }
+
+  /// sum_i log eta_{rows[i]}(gamma_i) for a valid gamma.
+  [[nodiscard]] double LogWeight(std::span<const int> rows, const Association& gamma) const {
+    double total = 0.0;
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      total += values_[static_cast<std::size_t>(rows[i]) * width_ +
+                       static_cast<std::size_t>(gamma[i] + 1)];
+    }
+    return total;
+  }
+
+ private:
+  std::size_t width_;
+  std::vector<double> values_;
+};
+
 }  // namespace
 
 JointProblem BuildJointProblem(std::span<const Hypothesis> prior, std::span<const double> existence,
@@ -131,6 +164,7 @@ std::vector<SampledAssociation> SampleAssociations(const JointProblem& problem,
   std::vector<SampledAssociation> out;
   const SamplerRows sampler_rows = MakeSamplerRows(problem.eta, problem.measurements);
   GibbsScratch scratch;  // reused by every parent's chain
+  const LogEtaTable log_eta(problem.eta, problem.measurements);
   for (int h = 0; h < static_cast<int>(problem.parents.size()); ++h) {
     const JointProblem::Parent& parent = problem.parents[h];
     const EtaRows eta = problem.EtaOf(static_cast<std::size_t>(h));
@@ -148,7 +182,8 @@ std::vector<SampledAssociation> SampleAssociations(const JointProblem& problem,
                  : DistinctGibbsSamples(sampler_rows, parent.rows, problem.measurements, *start,
                                         t_h, rng, scratch);
     for (Association& gamma : distinct) {
-      const double lw = parent.log_weight + LogAssociationWeight(eta, gamma) + problem.log_ck;
+      // Valid: a chain's sample, or a start checked above.
+      const double lw = parent.log_weight + log_eta.LogWeight(parent.rows, gamma) + problem.log_ck;
       out.push_back(SampledAssociation{h, std::move(gamma), lw});
     }
   }
