@@ -252,13 +252,16 @@ UpdateResult BuildPosterior(const JointProblem& problem,
   std::unordered_map<std::vector<std::uint64_t>, int, IdSetHash> seen;
   std::vector<double> all_log_w;
   all_log_w.reserve(samples.size());
-  // Scratch reused over the samples: the child's entries (pointers into the problem, the prior
-  // and the child cache, all stable here), the new detection children, the id key.
-  std::vector<const TrackPtr*> tracks;
-  std::vector<const TrackPtr*> detected;
+  // Scratch reused over the samples: the child's entries with their ids (pointers into the
+  // problem, the prior and the child cache, all stable here), the new detection children, the
+  // id key.
+  using TaggedTrack = std::pair<std::uint64_t, const TrackPtr*>;
+  std::vector<TaggedTrack> tracks;
+  std::vector<TaggedTrack> detected;
   std::vector<int> assigned;
   std::vector<std::uint64_t> key;
-  const auto by_id = [](const TrackPtr* a, const TrackPtr* b) { return (*a)->id < (*b)->id; };
+  const auto by_id = [](const TaggedTrack& a, const TaggedTrack& b) { return a.first < b.first; };
+  const auto tag = [](const TrackPtr& t) { return TaggedTrack{t->id, &t}; };
   // The entries of sample s's child, in id order, into `tracks` (and its detected measurements
   // into `assigned`): the prior entries (pass-through, or kept when missed), then the births kept
   // (ids above every prior entry), then the new detection children (sorted: created here).
@@ -270,9 +273,9 @@ UpdateResult BuildPosterior(const JointProblem& problem,
     assigned.clear();
     auto take = [&](std::size_t i) {
       const int g = sample.gamma[i];
-      if (g == 0) tracks.push_back(&problem.entries[parent.rows[i]]);
+      if (g == 0) tracks.push_back(tag(problem.entries[parent.rows[i]]));
       if (g > 0) {
-        detected.push_back(&child_of(parent.rows[i], g - 1));
+        detected.push_back(tag(child_of(parent.rows[i], g - 1)));
         assigned.push_back(g - 1);
       }
     };
@@ -282,7 +285,7 @@ UpdateResult BuildPosterior(const JointProblem& problem,
           problem.entries[parent.rows[r]] == t) {
         take(r++);
       } else {
-        tracks.push_back(&t);
+        tracks.push_back(tag(t));
       }
     }
     for (std::size_t i = parent.in_fov_rows; i < parent.rows.size(); ++i) take(i);
@@ -297,7 +300,7 @@ UpdateResult BuildPosterior(const JointProblem& problem,
     all_log_w.push_back(samples[s].log_weight);
     gather(s);
     key.resize(tracks.size());
-    for (std::size_t i = 0; i < key.size(); ++i) key[i] = (*tracks[i])->id;
+    for (std::size_t i = 0; i < key.size(); ++i) key[i] = tracks[i].first;
     const auto [it, inserted] = seen.try_emplace(key, static_cast<int>(children.size()));
     if (inserted) {
       Child c;
@@ -337,7 +340,7 @@ UpdateResult BuildPosterior(const JointProblem& problem,
     for (int j : assigned) result.measurement_assigned[j] += w;
     TrackSet entries;
     entries.reserve(tracks.size());
-    for (const TrackPtr* t : tracks) entries.push_back(*t);
+    for (const TaggedTrack& t : tracks) entries.push_back(*t.second);
     result.hypotheses.push_back(
         Hypothesis{std::make_shared<const TrackSet>(std::move(entries)), c.log_weight});
   }
