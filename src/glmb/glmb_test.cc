@@ -263,6 +263,24 @@ TEST(GibbsSampler, DistinctSamplingMatchesDeduplicatedSamples) {
             DistinctAssociations(GibbsSample(rows, 3, *start, 500, b)));
 }
 
+TEST(GibbsSampler, ReusedScratchSamplesAsFreshBuffers) {
+  // One scratch over chains of different sizes (as a joint problem's parents share it) gives
+  // each chain the samples it gets with buffers of its own.
+  const std::vector<EtaRow> large = EtaWithRareRows();
+  const std::vector<EtaRow> small = SmallEta();
+  GibbsScratch scratch;
+  for (const std::vector<EtaRow>* rows : {&large, &small, &large}) {
+    const SamplerRows table = MakeSamplerRows(*rows, 3);
+    const auto start = OptimalAssociation(*rows, 3);
+    ASSERT_TRUE(start.has_value());
+    RandomStream a(5);
+    RandomStream b(5);
+    const std::vector<Association> fresh = DistinctGibbsSamples(table, {}, 3, *start, 300, a);
+    EXPECT_GT(fresh.size(), 3u);
+    EXPECT_EQ(DistinctGibbsSamples(table, {}, 3, *start, 300, b, scratch), fresh);
+  }
+}
+
 TEST(GibbsSampler, SharedTableRowsSampleAsTheirOwnMatrix) {
   // A parent's rows picked out of a shared table (as JointProblem::eta is shared by parents)
   // sample exactly as the same rows copied into a matrix of their own.
