@@ -2,6 +2,7 @@
 """Estimates the one model of the `mrclam` scenario from the five robots of one MRCLAM sub-dataset.
 
 Usage: python3 datasets/estimate_mrclam_parameters.py DATA_DIR/utias-mrclam/MRCLAM_Dataset6 [--json]
+       python3 datasets/estimate_mrclam_parameters.py DATA_DIR/... --heading-drift 1,10,30,60
 
 Reads the folder's .dat files (the layout of datasets/mrclam.h), follows the scenario's rules
 (steps = images, Vicon truth interpolated with the heading unwrapped, steps in truth gaps longer
@@ -210,11 +211,53 @@ def estimate(folder):
     }
 
 
+def heading_drift(folder, sigma_w, windows):
+    """Heading residual of the integrated commands against the Vicon heading over windows of at
+    least T seconds (consecutive, non-overlapping, every image inside scored), per T: the number
+    of windows, the RMS residual and the RMS the model predicts (sigma_w^2 sum dt^2)."""
+    rows = []
+    for T in windows:
+        err, scale = [], []
+        for robot in ROBOTS:
+            truth, odometry, meas = load_robot(folder, robot)
+            first = max(odometry[0, 0], truth[0, 0])
+            images = np.unique(meas[(meas[:, 0] >= first) & (meas[:, 0] <= odometry[-1, 0]), 0])
+            pose, scored = interpolate_truth(truth, images)
+            a = 0
+            for j in range(1, len(images)):
+                if images[j] - images[a] < T:
+                    continue
+                if scored[a:j + 1].all():
+                    rel, s = odometry_window(odometry, images[a], images[j])
+                    err.append((pose[j, 2] - pose[a, 2]) - rel[2])
+                    scale.append(s)
+                a = j
+        err, scale = np.array(err), np.array(scale)
+        rows.append((T, len(err), float(np.sqrt(np.mean(err ** 2))),
+                     float(sigma_w * np.sqrt(np.mean(scale)))))
+    return rows
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("folder", type=pathlib.Path, help="an MRCLAM_DatasetN folder")
     parser.add_argument("--json", action="store_true", help="print JSON only")
+    parser.add_argument("--heading-drift", metavar="T,...",
+                        help="instead: the heading residual of the integrated commands over "
+                             "windows of at least T s against the model's sigma_w (e.g. 1,10,30,60)")
     args = parser.parse_args()
+    if args.heading_drift:
+        try:
+            windows = [float(t) for t in args.heading_drift.split(",")]
+        except ValueError:
+            sys.exit(f"--heading-drift: expected seconds separated by commas, got {args.heading_drift!r}")
+        if not windows or any(not (t > 0 and math.isfinite(t)) for t in windows):
+            sys.exit("--heading-drift: every window must be a positive number of seconds")
+        sigma_w = estimate(args.folder)["sigma_w_radps"]
+        print(f"window >= T s  windows  RMS heading residual (rad)  model RMS (rad, sigma_w {sigma_w:.4g})")
+        for T, n, rms, model in heading_drift(args.folder, sigma_w, windows):
+            print(f"{T:13g}  {n:7d}  {rms:26.4f}  {model:.4f}")
+        return
     result = estimate(args.folder)
     if args.json:
         print(json.dumps(result, indent=2))
