@@ -179,6 +179,9 @@ struct ChainState {
   std::vector<double>& cumulative;  ///< running sums of a row's allowed weights
 };
 
+/// The table row of chain row n: index[n], or n when the chain's rows are the whole table.
+int TableRow(std::span<const int> index, int n) { return index.empty() ? n : index[n]; }
+
 /// Sets gamma[n] = pick, keeping the owners and the hash; true when it changed.
 bool SetRow(int n, int pick, ChainState& state) {
   const int old = state.gamma[n];
@@ -271,7 +274,7 @@ class RareRowEvents {
 
  private:
   [[nodiscard]] double Leave(int n) const {
-    return table_.leave[static_cast<std::size_t>(index_.empty() ? n : index_[n])];
+    return table_.leave[static_cast<std::size_t>(TableRow(index_, n))];
   }
 
   std::span<const int> rare_;
@@ -322,8 +325,7 @@ struct ChainRows {
 /// value); true when the association changed.
 bool RunSweep(std::int64_t s, const SamplerRows& table, std::span<const int> index, ChainRows& rows,
               RareRowEvents& events, ChainState& state, ChainUniforms& uniforms) {
-  auto row_of = [&](int n) { return index.empty() ? n : index[n]; };
-  auto top_of = [&](int n) { return table.value[table.begin[row_of(n)]]; };
+  auto top_of = [&](int n) { return table.value[table.begin[TableRow(index, n)]]; };
   rows.due.clear();
   for (int n : rows.away) rows.due.push_back(2 * n);
   events.Sweep(s, uniforms, [&](int n) { rows.due.push_back(2 * n + 1); });
@@ -338,7 +340,7 @@ bool RunSweep(std::int64_t s, const SamplerRows& table, std::span<const int> ind
       const int n = rows.due[d] / 2;
       // An away row that also leaves appears twice (2 n, 2 n + 1): the second visit decides.
       if (d + 1 < rows.due.size() && rows.due[d + 1] / 2 == n) continue;
-      const int row = row_of(n);
+      const int row = TableRow(index, n);
       if (rows.due[d] % 2 == 1) {  // u above 1 / total: uniform on [1 / total, 1)
         const double floor_u = 1.0 / table.total[row];
         const double u = floor_u + (1.0 - floor_u) * uniforms.Next();
@@ -350,7 +352,7 @@ bool RunSweep(std::int64_t s, const SamplerRows& table, std::span<const int> ind
     }
     if (r < rows.dense.size()) {
       const int n = rows.dense[r];
-      changed |= ResampleRowAt(uniforms.Next(), table, row_of(n), n, state);
+      changed |= ResampleRowAt(uniforms.Next(), table, TableRow(index, n), n, state);
     }
   }
   return changed;
@@ -379,7 +381,7 @@ void RunChain(const SamplerRows& table, std::span<const int> index, int measurem
   const int n_rows = static_cast<int>(start.size());
   ChainRows rows(n_rows, scratch.rows);
   for (int n = 0; n < n_rows; ++n) {
-    const int row = index.empty() ? n : index[n];
+    const int row = TableRow(index, n);
     if (table.rare[row] == 0) {
       rows.dense.push_back(n);
       continue;

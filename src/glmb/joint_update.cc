@@ -73,10 +73,7 @@ class LogEtaTable {
       double* row = values_.data() + e * width_;
       row[0] = eta[e].log_death;
       row[1] = eta[e].log_miss;
-      // Reversed, so that a repeated measurement keeps its first value, as LogEta finds it.
-      for (auto d = eta[e].detections.rbegin(); d != eta[e].detections.rend(); ++d) {
-        row[d->first + 2] = d->second;
-      }
+      for (const auto& [j, v] : eta[e].detections) row[j + 2] = v;
     }
   }
 
