@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
-#include <unordered_map>
 
 #include "src/core/log_sum_exp.h"
 
@@ -189,20 +188,17 @@ std::vector<SampledAssociation> SampleAssociations(const JointProblem& problem,
 
 namespace {
 
-/// A child hypothesis: the first sample giving it (which lists its entries) and its weight.
+/// A child hypothesis: the first sample giving it (which lists its entries), its weight and the
+/// hash of its entry-id set (ChildIdHash).
 struct Child {
   double log_weight = kNegInf;
   int sample = 0;
+  std::uint64_t hash = 0;
 };
 
-/// A hash of a child's sorted entry ids (its key for merging duplicates).
-struct IdSetHash {
-  std::size_t operator()(const std::vector<std::uint64_t>& ids) const {
-    std::uint64_t h = 0x9e3779b97f4a7c15ULL;
-    for (std::uint64_t id : ids) h = MixSeed(h ^ id);
-    return static_cast<std::size_t>(h);
-  }
-};
+/// A child's entry-id set is hashed as the sum of one term per id, so that a sample's hash is its
+/// parent's pass-through part plus one term per row.
+std::uint64_t IdTerm(std::uint64_t id) { return MixSeed(id); }
 
 void NormaliseLogWeights(std::vector<Child>& children) {
   std::vector<double> lw;
@@ -226,6 +222,201 @@ void Truncate(std::vector<Child>& children, const UpdateSettings& settings) {
   NormaliseLogWeights(children);
 }
 
+/// The detection children of one update. Each (entry, measurement) pair takes its id from
+/// `next_id` at its first use, in the order of use; its track, the EKF child, is made only when a
+/// kept hypothesis holds it. Ids and tracks are those of making every child at its first use.
+class DetectionChildren {
+ public:
+  DetectionChildren(const JointProblem& problem, const Pose& x,
+                    std::span<const Measurement> measurements, const MeasurementSetup& setup,
+                    std::uint64_t& next_id)
+      : problem_(problem),
+        x_(x),
+        measurements_(measurements),
+        setup_(setup),
+        next_id_(next_id),
+        slots_(problem.entries.size() * static_cast<std::size_t>(problem.measurements)) {}
+
+  /// The id of the child of entry e detected by z_j, taken from next_id at its first use.
+  std::uint64_t Id(int e, int j) {
+    Slot& slot = At(e, j);
+    if (!slot.has_id) {
+      slot.id = next_id_++;
+      slot.has_id = true;
+    }
+    return slot.id;
+  }
+
+  /// The child's track, made at the first call; its id was taken before (Id).
+  const TrackPtr& TrackOf(int e, int j) {
+    Slot& slot = At(e, j);
+    if (!slot.track) {
+      std::optional<Track> c = DetectionChild(*problem_.entries[e], x_, measurements_[j], setup_);
+      // A gated pair always has a gated component, so c exists.
+      c->id = slot.id;
+      slot.track = std::make_shared<const Track>(std::move(*c));
+    }
+    return slot.track;
+  }
+
+ private:
+  struct Slot {
+    std::uint64_t id = 0;
+    bool has_id = false;
+    TrackPtr track;
+  };
+  Slot& At(int e, int j) {
+    return slots_[static_cast<std::size_t>(e) * static_cast<std::size_t>(problem_.measurements) +
+                  static_cast<std::size_t>(j)];
+  }
+
+  const JointProblem& problem_;
+  const Pose& x_;
+  std::span<const Measurement> measurements_;
+  const MeasurementSetup& setup_;
+  std::uint64_t& next_id_;
+  std::vector<Slot> slots_;
+};
+
+/// One entry of a child: its id and where its track is (a prior or problem entry, or the
+/// detection child of entry `entry` and measurement `measurement`).
+struct ChildEntry {
+  std::uint64_t id = 0;
+  const TrackPtr* track = nullptr;  ///< null for a detection child
+  int entry = -1;
+  int measurement = -1;
+};
+
+/// The children of the samples, keyed by entry-id set: each sample's set is hashed from its rows
+/// (ChildIdHash), and the sets themselves are listed only to confirm a hash match and for the
+/// children kept.
+class ChildIndex {
+ public:
+  ChildIndex(const JointProblem& problem, std::span<const SampledAssociation> samples,
+             DetectionChildren& detection)
+      : problem_(problem),
+        samples_(samples),
+        detection_(detection),
+        pass_through_(problem.parents.size()),
+        pass_through_done_(problem.parents.size(), 0),
+        table_(16, -1) {
+    entry_id_.reserve(problem.entries.size());
+    for (const TrackPtr& t : problem.entries) entry_id_.push_back(t->id);
+  }
+
+  /// Adds sample s to its child, or starts a child; detection ids are taken in row order.
+  void Add(int s) {
+    const std::uint64_t hash = SampleHash(s);
+    std::size_t mask = table_.size() - 1;
+    std::size_t i = hash & mask;
+    for (; table_[i] >= 0; i = (i + 1) & mask) {
+      Child& c = children_[table_[i]];
+      if (c.hash == hash && SameIds(c.sample, s)) {
+        c.log_weight = LogAddExp(c.log_weight, samples_[s].log_weight);
+        return;
+      }
+    }
+    table_[i] = static_cast<int>(children_.size());
+    children_.push_back(Child{samples_[s].log_weight, s, hash});
+    if (2 * children_.size() > table_.size()) Rehash();
+  }
+
+  std::vector<Child>& children() { return children_; }
+
+  /// The entries of sample s's child in id order, and its detected measurements in row order.
+  void Gather(int s, std::vector<ChildEntry>& entries, std::vector<int>& assigned) {
+    const SampledAssociation& sample = samples_[s];
+    const JointProblem::Parent& parent = problem_.parents[sample.parent];
+    entries.clear();
+    detected_.clear();
+    assigned.clear();
+    auto take = [&](std::size_t i) {
+      const int g = sample.gamma[i];
+      const int e = parent.rows[i];
+      if (g == 0) entries.push_back(ChildEntry{entry_id_[e], &problem_.entries[e]});
+      if (g > 0) {
+        detected_.push_back(ChildEntry{detection_.Id(e, g - 1), nullptr, e, g - 1});
+        assigned.push_back(g - 1);
+      }
+    };
+    std::size_t r = 0;
+    for (const TrackPtr& t : *parent.tracks) {
+      if (r < static_cast<std::size_t>(parent.in_fov_rows) &&
+          problem_.entries[parent.rows[r]] == t) {
+        take(r++);
+      } else {
+        entries.push_back(ChildEntry{t->id, &t});
+      }
+    }
+    for (std::size_t i = parent.in_fov_rows; i < parent.rows.size(); ++i) take(i);
+    // The prior entries come in id order, the births kept after them (ids above every prior
+    // entry), the detection children (created here) after those.
+    const auto by_id = [](const ChildEntry& a, const ChildEntry& b) { return a.id < b.id; };
+    std::sort(detected_.begin(), detected_.end(), by_id);
+    entries.insert(entries.end(), detected_.begin(), detected_.end());
+    if (!std::is_sorted(entries.begin(), entries.end(), by_id)) {
+      std::sort(entries.begin(), entries.end(), by_id);
+    }
+  }
+
+ private:
+  /// The sum of IdTerm over the entry ids of sample s's child.
+  std::uint64_t SampleHash(int s) {
+    const SampledAssociation& sample = samples_[s];
+    const JointProblem::Parent& parent = problem_.parents[sample.parent];
+    std::uint64_t hash = PassThroughHash(sample.parent);
+    for (std::size_t i = 0; i < parent.rows.size(); ++i) {
+      const int g = sample.gamma[i];
+      const int e = parent.rows[i];
+      if (g == 0) hash += IdTerm(entry_id_[e]);
+      if (g > 0) hash += IdTerm(detection_.Id(e, g - 1));
+    }
+    return hash;
+  }
+
+  /// The sum of IdTerm over parent h's entries outside the FOV (they pass through).
+  std::uint64_t PassThroughHash(int h) {
+    if (pass_through_done_[h] == 0) {
+      const JointProblem::Parent& parent = problem_.parents[h];
+      std::uint64_t hash = 0;
+      for (const TrackPtr& t : *parent.tracks) hash += IdTerm(t->id);
+      for (int i = 0; i < parent.in_fov_rows; ++i) hash -= IdTerm(entry_id_[parent.rows[i]]);
+      pass_through_[h] = hash;
+      pass_through_done_[h] = 1;
+    }
+    return pass_through_[h];
+  }
+
+  /// Whether the children of samples a and b hold the same entry ids.
+  bool SameIds(int a, int b) {
+    Gather(a, scratch_a_, assigned_);
+    Gather(b, scratch_b_, assigned_);
+    return std::equal(scratch_a_.begin(), scratch_a_.end(), scratch_b_.begin(), scratch_b_.end(),
+                      [](const ChildEntry& x, const ChildEntry& y) { return x.id == y.id; });
+  }
+
+  void Rehash() {
+    table_.assign(2 * table_.size(), -1);
+    const std::size_t mask = table_.size() - 1;
+    for (std::size_t k = 0; k < children_.size(); ++k) {
+      std::size_t i = children_[k].hash & mask;
+      while (table_[i] >= 0) i = (i + 1) & mask;
+      table_[i] = static_cast<int>(k);
+    }
+  }
+
+  const JointProblem& problem_;
+  std::span<const SampledAssociation> samples_;
+  DetectionChildren& detection_;
+  std::vector<std::uint64_t> entry_id_;
+  std::vector<std::uint64_t> pass_through_;
+  std::vector<char> pass_through_done_;
+  std::vector<Child> children_;
+  std::vector<int> table_;  ///< child index or -1 by hash, open addressing, a power of two
+  std::vector<ChildEntry> detected_, scratch_a_, scratch_b_;
+  std::vector<int> assigned_;
+};
+
 }  // namespace
 
 UpdateResult BuildPosterior(const JointProblem& problem,
@@ -234,80 +425,14 @@ UpdateResult BuildPosterior(const JointProblem& problem,
                             const MeasurementSetup& setup, const UpdateSettings& settings,
                             std::uint64_t& next_id) {
   const int m = problem.measurements;
-  std::vector<TrackPtr> child_cache(problem.entries.size() * static_cast<std::size_t>(m));
-  auto child_of = [&](int e, int j) -> const TrackPtr& {
-    TrackPtr& slot = child_cache[static_cast<std::size_t>(e) * m + j];
-    if (!slot) {
-      std::optional<Track> c = DetectionChild(*problem.entries[e], x, measurements[j], setup);
-      // A gated pair always has a gated component, so c exists.
-      c->id = next_id++;
-      slot = std::make_shared<const Track>(std::move(*c));
-    }
-    return slot;
-  };
-  std::vector<Child> children;
-  std::unordered_map<std::vector<std::uint64_t>, int, IdSetHash> seen;
+  DetectionChildren detection(problem, x, measurements, setup, next_id);
+  ChildIndex index(problem, samples, detection);
   std::vector<double> all_log_w;
   all_log_w.reserve(samples.size());
-  // Scratch reused over the samples: the child's entries with their ids (pointers into the
-  // problem, the prior and the child cache, all stable here), the new detection children, the
-  // id key.
-  using TaggedTrack = std::pair<std::uint64_t, const TrackPtr*>;
-  std::vector<TaggedTrack> tracks;
-  std::vector<TaggedTrack> detected;
-  std::vector<int> assigned;
-  std::vector<std::uint64_t> key;
-  const auto by_id = [](const TaggedTrack& a, const TaggedTrack& b) { return a.first < b.first; };
-  const auto tag = [](const TrackPtr& t) { return TaggedTrack{t->id, &t}; };
-  // The entries of sample s's child, in id order, into `tracks` (and its detected measurements
-  // into `assigned`): the prior entries (pass-through, or kept when missed), then the births kept
-  // (ids above every prior entry), then the new detection children (sorted: created here).
-  auto gather = [&](int s) {
-    const SampledAssociation& sample = samples[s];
-    const JointProblem::Parent& parent = problem.parents[sample.parent];
-    tracks.clear();
-    detected.clear();
-    assigned.clear();
-    auto take = [&](std::size_t i) {
-      const int g = sample.gamma[i];
-      if (g == 0) tracks.push_back(tag(problem.entries[parent.rows[i]]));
-      if (g > 0) {
-        detected.push_back(tag(child_of(parent.rows[i], g - 1)));
-        assigned.push_back(g - 1);
-      }
-    };
-    std::size_t r = 0;
-    for (const TrackPtr& t : *parent.tracks) {
-      if (r < static_cast<std::size_t>(parent.in_fov_rows) &&
-          problem.entries[parent.rows[r]] == t) {
-        take(r++);
-      } else {
-        tracks.push_back(tag(t));
-      }
-    }
-    for (std::size_t i = parent.in_fov_rows; i < parent.rows.size(); ++i) take(i);
-    std::sort(detected.begin(), detected.end(), by_id);
-    tracks.insert(tracks.end(), detected.begin(), detected.end());
-    if (!std::is_sorted(tracks.begin(), tracks.end(), by_id)) {
-      std::sort(tracks.begin(), tracks.end(), by_id);
-    }
-  };
-  // Children are merged by their id sets; their entries are copied only for those kept.
+  // Children are merged by their id sets; their tracks are made only for those kept.
   for (int s = 0; s < static_cast<int>(samples.size()); ++s) {
     all_log_w.push_back(samples[s].log_weight);
-    gather(s);
-    key.resize(tracks.size());
-    for (std::size_t i = 0; i < key.size(); ++i) key[i] = tracks[i].first;
-    const auto [it, inserted] = seen.try_emplace(key, static_cast<int>(children.size()));
-    if (inserted) {
-      Child c;
-      c.sample = s;
-      c.log_weight = samples[s].log_weight;
-      children.push_back(std::move(c));
-    } else {
-      Child& d = children[it->second];
-      d.log_weight = LogAddExp(d.log_weight, samples[s].log_weight);
-    }
+    index.Add(s);
   }
   UpdateResult result;
   result.log_normaliser = LogSumExp(all_log_w);
@@ -328,18 +453,23 @@ UpdateResult BuildPosterior(const JointProblem& problem,
       }
     }
   }
+  std::vector<Child>& children = index.children();
   if (children.empty()) return result;
   Truncate(children, settings);
   result.hypotheses.reserve(children.size());
+  std::vector<ChildEntry> entries;
+  std::vector<int> assigned;
   for (const Child& c : children) {
-    gather(c.sample);
+    index.Gather(c.sample, entries, assigned);
     const double w = std::exp(c.log_weight);
     for (int j : assigned) result.measurement_assigned[j] += w;
-    TrackSet entries;
-    entries.reserve(tracks.size());
-    for (const TaggedTrack& t : tracks) entries.push_back(*t.second);
+    TrackSet tracks;
+    tracks.reserve(entries.size());
+    for (const ChildEntry& t : entries) {
+      tracks.push_back(t.track != nullptr ? *t.track : detection.TrackOf(t.entry, t.measurement));
+    }
     result.hypotheses.push_back(
-        Hypothesis{std::make_shared<const TrackSet>(std::move(entries)), c.log_weight});
+        Hypothesis{std::make_shared<const TrackSet>(std::move(tracks)), c.log_weight});
   }
   const SampledAssociation& top = samples[children.front().sample];
   const JointProblem::Parent& parent = problem.parents[top.parent];
