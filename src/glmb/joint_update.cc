@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <numeric>
 
 #include "src/core/log_sum_exp.h"
@@ -298,7 +299,6 @@ class ChildIndex {
         samples_(samples),
         detection_(detection),
         pass_through_(problem.parents.size()),
-        pass_through_done_(problem.parents.size(), 0),
         table_(16, -1) {
     entry_id_.reserve(problem.entries.size());
     for (const TrackPtr& t : problem.entries) entry_id_.push_back(t->id);
@@ -328,30 +328,27 @@ class ChildIndex {
     const SampledAssociation& sample = samples_[s];
     const JointProblem::Parent& parent = problem_.parents[sample.parent];
     entries.clear();
+    kept_.clear();
     detected_.clear();
     assigned.clear();
-    auto take = [&](std::size_t i) {
+    auto take = [&](std::size_t i, std::vector<ChildEntry>& missed) {
       const int g = sample.gamma[i];
       const int e = parent.rows[i];
-      if (g == 0) entries.push_back(ChildEntry{entry_id_[e], &problem_.entries[e]});
+      if (g == 0) missed.push_back(ChildEntry{entry_id_[e], &problem_.entries[e]});
       if (g > 0) {
         detected_.push_back(ChildEntry{detection_.Id(e, g - 1), nullptr, e, g - 1});
         assigned.push_back(g - 1);
       }
     };
-    std::size_t r = 0;
-    for (const TrackPtr& t : *parent.tracks) {
-      if (r < static_cast<std::size_t>(parent.in_fov_rows) &&
-          problem_.entries[parent.rows[r]] == t) {
-        take(r++);
-      } else {
-        entries.push_back(ChildEntry{t->id, &t});
-      }
-    }
-    for (std::size_t i = parent.in_fov_rows; i < parent.rows.size(); ++i) take(i);
-    // The prior entries come in id order, the births kept after them (ids above every prior
-    // entry), the detection children (created here) after those.
+    for (int i = 0; i < parent.in_fov_rows; ++i) take(i, kept_);
+    // The prior entries in id order (the pass-through ones and the in-FOV rows each are), the
+    // births kept after them (ids above every prior entry), the detection children (created
+    // here) after those.
     const auto by_id = [](const ChildEntry& a, const ChildEntry& b) { return a.id < b.id; };
+    const std::span<const ChildEntry> pass = PassThrough(sample.parent);
+    std::merge(pass.begin(), pass.end(), kept_.begin(), kept_.end(), std::back_inserter(entries),
+               by_id);
+    for (std::size_t i = parent.in_fov_rows; i < parent.rows.size(); ++i) take(i, entries);
     std::sort(detected_.begin(), detected_.end(), by_id);
     entries.insert(entries.end(), detected_.begin(), detected_.end());
     if (!std::is_sorted(entries.begin(), entries.end(), by_id)) {
@@ -376,19 +373,41 @@ class ChildIndex {
 
   /// The sum of IdTerm over parent h's entries outside the FOV (they pass through).
   std::uint64_t PassThroughHash(int h) {
-    if (pass_through_done_[h] == 0) {
-      const JointProblem::Parent& parent = problem_.parents[h];
-      std::uint64_t hash = 0;
-      for (const TrackPtr& t : *parent.tracks) hash += IdTerm(t->id);
-      for (int i = 0; i < parent.in_fov_rows; ++i) hash -= IdTerm(entry_id_[parent.rows[i]]);
-      pass_through_[h] = hash;
-      pass_through_done_[h] = 1;
-    }
-    return pass_through_[h];
+    ListPassThrough(h);
+    return pass_through_[h].hash;
   }
 
-  /// Whether the children of samples a and b hold the same entry ids.
+  /// Parent h's entries outside the FOV, in the order of its entries (id order).
+  std::span<const ChildEntry> PassThrough(int h) {
+    ListPassThrough(h);
+    const PassThroughPart& part = pass_through_[h];
+    return std::span<const ChildEntry>(pass_through_entries_).subspan(part.begin, part.size);
+  }
+
+  void ListPassThrough(int h) {
+    PassThroughPart& part = pass_through_[h];
+    if (part.listed) return;
+    const JointProblem::Parent& parent = problem_.parents[h];
+    part.begin = pass_through_entries_.size();
+    std::size_t r = 0;
+    for (const TrackPtr& t : *parent.tracks) {
+      if (r < static_cast<std::size_t>(parent.in_fov_rows) &&
+          problem_.entries[parent.rows[r]] == t) {
+        ++r;  // an in-FOV row: its sample decides
+      } else {
+        pass_through_entries_.push_back(ChildEntry{t->id, &t});
+        part.hash += IdTerm(t->id);
+      }
+    }
+    part.size = pass_through_entries_.size() - part.begin;
+    part.listed = true;
+  }
+
+  /// Whether the children of samples a and b hold the same entry ids. Distinct samples of one
+  /// parent never do: a row whose values differ drops its entry, keeps it or replaces it by a
+  /// detection child, each with an id no other row holds.
   bool SameIds(int a, int b) {
+    if (samples_[a].parent == samples_[b].parent) return false;
     Gather(a, scratch_a_, assigned_);
     Gather(b, scratch_b_, assigned_);
     return std::equal(scratch_a_.begin(), scratch_a_.end(), scratch_b_.begin(), scratch_b_.end(),
@@ -409,11 +428,18 @@ class ChildIndex {
   std::span<const SampledAssociation> samples_;
   DetectionChildren& detection_;
   std::vector<std::uint64_t> entry_id_;
-  std::vector<std::uint64_t> pass_through_;
-  std::vector<char> pass_through_done_;
+  /// A parent's pass-through entries: pass_through_entries_[begin, begin + size) and their hash.
+  struct PassThroughPart {
+    std::size_t begin = 0;
+    std::size_t size = 0;
+    std::uint64_t hash = 0;
+    bool listed = false;
+  };
+  std::vector<PassThroughPart> pass_through_;
+  std::vector<ChildEntry> pass_through_entries_;
   std::vector<Child> children_;
   std::vector<int> table_;  ///< child index or -1 by hash, open addressing, a power of two
-  std::vector<ChildEntry> detected_, scratch_a_, scratch_b_;
+  std::vector<ChildEntry> kept_, detected_, scratch_a_, scratch_b_;
   std::vector<int> assigned_;
 };
 
