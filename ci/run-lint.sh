@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Format and static-analysis checks of the project's own C++ sources, warnings as errors.
+# Format and static-analysis checks of the project's own C++ sources, warnings as errors, and a
+# check that the tracked text files hold no control characters.
 #
 #   ci/run-lint.sh [BUILD_DIR]   (default build/release; it needs compile_commands.json)
 #
@@ -13,6 +14,15 @@ build="${1:-build/release}"
 if [[ ! -f "$build/compile_commands.json" ]]; then
   echo "run-lint: $build/compile_commands.json is missing: configure the build first" >&2
   exit 2
+fi
+
+# Control characters, tabs included (only newline and carriage return pass), in the tracked text
+# files: a mangled escape such as "\t" or "\a" in a generated document lands as one.
+text_files=(':(glob)**/*.md' ':(glob)**/*.cc' ':(glob)**/*.h' ':(glob)**/*.py' ':(glob)**/*.sh'
+  ':(glob)**/*.yaml' ':(glob)**/*.txt' ':(glob)**/*.cmake' ':(glob)**/*.html')
+if git grep -n -I -P '[\x00-\x09\x0b\x0c\x0e-\x1f\x7f]' -- "${text_files[@]}"; then
+  echo "run-lint: control characters in the text files above" >&2
+  exit 1
 fi
 
 echo "run-lint: clang-format on $(git ls-files '*.cc' '*.h' | wc -l) files"
