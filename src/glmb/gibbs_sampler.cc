@@ -426,17 +426,16 @@ class AssociationSet {
     Place(k, mask);
   }
 
-  /// The members in lexicographic order.
-  [[nodiscard]] std::vector<Association> Sorted() const {
-    std::vector<int> order(hashes_.size());
+  /// The members in lexicographic order, one after the other into `flat`; `order` is scratch.
+  void SortedInto(std::vector<int>& order, std::vector<int>& flat) const {
+    order.resize(hashes_.size());
     for (std::size_t k = 0; k < order.size(); ++k) order[k] = static_cast<int>(k);
     std::sort(order.begin(), order.end(), [&](int a, int b) {
       return std::lexicographical_compare(Row(a), Row(a) + length_, Row(b), Row(b) + length_);
     });
-    std::vector<Association> out;
-    out.reserve(order.size());
-    for (int k : order) out.emplace_back(Row(k), Row(k) + length_);
-    return out;
+    flat.clear();
+    flat.reserve(order.size() * length_);
+    for (int k : order) flat.insert(flat.end(), Row(k), Row(k) + length_);
   }
 
  private:
@@ -469,16 +468,30 @@ std::vector<Association> GibbsSample(EtaRows rows, int measurements, const Assoc
   return out;
 }
 
-std::vector<Association> DistinctGibbsSamples(const SamplerRows& table, std::span<const int> index,
-                                              int measurements, const Association& start,
-                                              int samples, RandomStream& rng,
-                                              GibbsScratch& scratch) {
+void DistinctGibbsSamples(const SamplerRows& table, std::span<const int> index, int measurements,
+                          const Association& start, int samples, RandomStream& rng,
+                          GibbsScratch& scratch, std::vector<int>& flat) {
   AssociationSet seen(start.size(), scratch);
   RunChain(table, index, measurements, start, samples, rng, scratch,
            [&](const Association& g, std::uint64_t hash, bool changed) {
              if (changed) seen.Insert(g, hash);  // unchanged: the common case, already in
            });
-  return seen.Sorted();
+  seen.SortedInto(scratch.order, flat);
+}
+
+std::vector<Association> DistinctGibbsSamples(const SamplerRows& table, std::span<const int> index,
+                                              int measurements, const Association& start,
+                                              int samples, RandomStream& rng,
+                                              GibbsScratch& scratch) {
+  std::vector<int> flat;
+  DistinctGibbsSamples(table, index, measurements, start, samples, rng, scratch, flat);
+  std::vector<Association> out;
+  if (start.empty()) out.emplace_back();  // the one association of a matrix without rows
+  for (std::size_t k = 0; !start.empty() && k < flat.size(); k += start.size()) {
+    out.emplace_back(flat.begin() + static_cast<std::ptrdiff_t>(k),
+                     flat.begin() + static_cast<std::ptrdiff_t>(k + start.size()));
+  }
+  return out;
 }
 
 std::vector<Association> DistinctGibbsSamples(const SamplerRows& table, std::span<const int> index,

@@ -119,6 +119,7 @@ struct GibbsScratch {
   std::vector<int> store;
   std::vector<std::uint64_t> hashes;
   std::vector<int> table;
+  std::vector<int> order;
 };
 
 /// The same with the chain's buffers in `scratch`: the same samples as without it.
@@ -126,5 +127,11 @@ std::vector<Association> DistinctGibbsSamples(const SamplerRows& table, std::spa
                                               int measurements, const Association& start,
                                               int samples, RandomStream& rng,
                                               GibbsScratch& scratch);
+
+/// The same samples written one after the other into `flat` (start.size() values each), for a
+/// caller that keeps them in its own form.
+void DistinctGibbsSamples(const SamplerRows& table, std::span<const int> index, int measurements,
+                          const Association& start, int samples, RandomStream& rng,
+                          GibbsScratch& scratch, std::vector<int>& flat);
 
 }  // namespace phdslam::glmb

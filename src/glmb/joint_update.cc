@@ -161,6 +161,7 @@ std::vector<SampledAssociation> SampleAssociations(const JointProblem& problem,
   std::vector<SampledAssociation> out;
   const SamplerRows sampler_rows = MakeSamplerRows(problem.eta, problem.measurements);
   GibbsScratch scratch;  // reused by every parent's chain
+  std::vector<int> flat;  // a chain's distinct samples, one after the other
   const LogEtaTable log_eta(problem.eta, problem.measurements);
   for (int h = 0; h < static_cast<int>(problem.parents.size()); ++h) {
     const JointProblem::Parent& parent = problem.parents[h];
@@ -174,14 +175,22 @@ std::vector<SampledAssociation> SampleAssociations(const JointProblem& problem,
     }
     if (!start) start = OptimalAssociation(eta, problem.measurements);
     if (!start) continue;
-    std::vector<Association> distinct =
-        t_h == 1 ? std::vector<Association>{*start}
-                 : DistinctGibbsSamples(sampler_rows, parent.rows, problem.measurements, *start,
-                                        t_h, rng, scratch);
-    for (Association& gamma : distinct) {
+    auto add = [&](Association gamma) {
       // Valid: a chain's sample, or a start checked above.
       const double lw = parent.log_weight + log_eta.LogWeight(parent.rows, gamma) + problem.log_ck;
       out.push_back(SampledAssociation{h, std::move(gamma), lw});
+    };
+    if (t_h == 1) {
+      add(std::move(*start));
+      continue;
+    }
+    DistinctGibbsSamples(sampler_rows, parent.rows, problem.measurements, *start, t_h, rng,
+                         scratch, flat);
+    const std::size_t length = start->size();
+    if (length == 0) add(Association{});  // the one association of a parent without rows
+    for (std::size_t k = 0; length > 0 && k < flat.size(); k += length) {
+      add(Association(flat.begin() + static_cast<std::ptrdiff_t>(k),
+                      flat.begin() + static_cast<std::ptrdiff_t>(k + length)));
     }
   }
   return out;
