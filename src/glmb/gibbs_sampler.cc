@@ -45,11 +45,11 @@ double LogAssociationWeight(EtaRows rows, const Association& gamma) {
 
 namespace {
 
-/// Every row at its own best value; nullopt when two rows want one measurement (or a row has no
-/// allowed value). When it exists it is the optimum: each factor is at its maximum.
-std::optional<Association> RowWiseBest(EtaRows rows, int measurements) {
-  Association gamma(rows.size());
-  std::vector<char> taken(measurements, 0);
+/// Every row at its own best value, into gamma; false when two rows want one measurement (or a
+/// row has no allowed value). When it exists it is the optimum: each factor is at its maximum.
+bool RowWiseBest(EtaRows rows, int measurements, Association& gamma, std::vector<char>& taken) {
+  gamma.resize(rows.size());
+  taken.assign(static_cast<std::size_t>(measurements), 0);
   for (std::size_t i = 0; i < rows.size(); ++i) {
     int g = rows[i].log_miss >= rows[i].log_death ? 0 : -1;
     double best = std::max(rows[i].log_miss, rows[i].log_death);
@@ -59,22 +59,26 @@ std::optional<Association> RowWiseBest(EtaRows rows, int measurements) {
         g = j + 1;
       }
     }
-    if (best == kNegInf) return std::nullopt;
+    if (best == kNegInf) return false;
     if (g > 0) {
-      if (taken[g - 1] != 0) return std::nullopt;
+      if (taken[g - 1] != 0) return false;
       taken[g - 1] = 1;
     }
     gamma[i] = g;
   }
-  return gamma;
+  return true;
 }
 
 }  // namespace
 
-std::optional<Association> OptimalAssociation(EtaRows rows, int measurements) {
+bool OptimalAssociation(EtaRows rows, int measurements, Association& out,
+                        std::vector<char>& taken) {
   const int p = static_cast<int>(rows.size());
-  if (p == 0) return Association{};
-  if (std::optional<Association> fast = RowWiseBest(rows, measurements)) return fast;
+  if (p == 0) {
+    out.clear();
+    return true;
+  }
+  if (RowWiseBest(rows, measurements, out, taken)) return true;
   Eigen::MatrixXd cost = Eigen::MatrixXd::Constant(p, p + measurements, assignment::kForbidden);
   for (int i = 0; i < p; ++i) {
     const double best_private = std::max(rows[i].log_death, rows[i].log_miss);
@@ -84,18 +88,25 @@ std::optional<Association> OptimalAssociation(EtaRows rows, int measurements) {
     }
   }
   const std::optional<assignment::Assignment> a = assignment::SolveLinearAssignment(cost);
-  if (!a) return std::nullopt;
-  Association gamma(p);
+  if (!a) return false;
+  out.resize(static_cast<std::size_t>(p));
   for (int i = 0; i < p; ++i) {
     const int c = a->row_to_col[i];
     if (c >= p) {
-      gamma[i] = c - p + 1;
+      out[i] = c - p + 1;
     } else {
       // Ties between death and miss go to "missed".
-      gamma[i] = rows[i].log_miss >= rows[i].log_death ? 0 : -1;
+      out[i] = rows[i].log_miss >= rows[i].log_death ? 0 : -1;
     }
   }
-  return gamma;
+  return true;
+}
+
+std::optional<Association> OptimalAssociation(EtaRows rows, int measurements) {
+  Association out;
+  std::vector<char> taken;
+  if (!OptimalAssociation(rows, measurements, out, taken)) return std::nullopt;
+  return out;
 }
 
 SamplerRows MakeSamplerRows(EtaRows rows, int measurements) {

@@ -59,6 +59,11 @@ double LogAssociationWeight(EtaRows rows, const Association& gamma);
 /// measurements]; nullopt when none is valid (some row has no allowed value left).
 std::optional<Association> OptimalAssociation(EtaRows rows, int measurements);
 
+/// The same into `out`, with `taken` as scratch, for a caller that reuses both; false when no
+/// valid association exists.
+bool OptimalAssociation(EtaRows rows, int measurements, Association& out,
+                        std::vector<char>& taken);
+
 /// Eta rows in the sampler's form, computed once for a table of rows that many chains share:
 /// each row's allowed values with their linear weights exp(log eta - row max), row r's values
 /// being [begin[r], begin[r + 1]): its largest value first (weight 1, the first of ties), then the

@@ -162,31 +162,33 @@ std::vector<SampledAssociation> SampleAssociations(const JointProblem& problem,
   const SamplerRows sampler_rows = MakeSamplerRows(problem.eta, problem.measurements);
   GibbsScratch scratch;  // reused by every parent's chain
   std::vector<int> flat;  // a chain's distinct samples, one after the other
+  Association start;      // a parent's start, and its scratch
+  std::vector<char> taken;
   const LogEtaTable log_eta(problem.eta, problem.measurements);
   for (int h = 0; h < static_cast<int>(problem.parents.size()); ++h) {
     const JointProblem::Parent& parent = problem.parents[h];
     const EtaRows eta = problem.EtaOf(static_cast<std::size_t>(h));
     const double share = std::exp(half_log_w[h] - norm) * settings.samples;
     const int t_h = std::max(1, static_cast<int>(std::lround(share)));
-    std::optional<Association> start;
+    bool have_start = false;
     if (!settings.optimal_start) {
-      start = Association(parent.rows.size(), 0);
-      if (LogAssociationWeight(eta, *start) == kNegInf) start.reset();
+      start.assign(parent.rows.size(), 0);
+      have_start = LogAssociationWeight(eta, start) > kNegInf;
     }
-    if (!start) start = OptimalAssociation(eta, problem.measurements);
-    if (!start) continue;
+    if (!have_start) have_start = OptimalAssociation(eta, problem.measurements, start, taken);
+    if (!have_start) continue;
     auto add = [&](Association gamma) {
       // Valid: a chain's sample, or a start checked above.
       const double lw = parent.log_weight + log_eta.LogWeight(parent.rows, gamma) + problem.log_ck;
       out.push_back(SampledAssociation{h, std::move(gamma), lw});
     };
     if (t_h == 1) {
-      add(std::move(*start));
+      add(start);
       continue;
     }
-    DistinctGibbsSamples(sampler_rows, parent.rows, problem.measurements, *start, t_h, rng,
+    DistinctGibbsSamples(sampler_rows, parent.rows, problem.measurements, start, t_h, rng,
                          scratch, flat);
-    const std::size_t length = start->size();
+    const std::size_t length = start.size();
     if (length == 0) add(Association{});  // the one association of a parent without rows
     for (std::size_t k = 0; length > 0 && k < flat.size(); k += length) {
       add(Association(flat.begin() + static_cast<std::ptrdiff_t>(k),
