@@ -108,9 +108,11 @@ JointProblem BuildJointProblem(std::span<const Hypothesis> prior, std::span<cons
   for (const Hypothesis& h : prior) listed += h.tracks->size();
   IdIndex index(listed);
   std::vector<double> entry_existence;
-  std::vector<std::vector<int>> in_fov(prior.size());
+  p.parents.resize(prior.size());
   for (std::size_t h = 0; h < prior.size(); ++h) {
     const TrackSet& tracks = *prior[h].tracks;
+    std::vector<int>& in_fov = p.parents[h].rows;  // the births follow below
+    in_fov.reserve(tracks.size() + births.size());
     for (std::size_t i = 0; i < tracks.size(); ++i) {
       const TrackPtr& t = tracks[i];
       const auto [entry, inserted] = index.Emplace(t->id, IdIndex::kOutside);
@@ -121,7 +123,7 @@ JointProblem BuildJointProblem(std::span<const Hypothesis> prior, std::span<cons
         const double mult = existence.empty() ? 1.0 : existence[i];
         entry_existence.push_back(mult * settings.survival_probability);
       }
-      if (*entry != IdIndex::kOutside) in_fov[h].push_back(*entry);
+      if (*entry != IdIndex::kOutside) in_fov.push_back(*entry);
     }
   }
   p.prior_entries = static_cast<int>(p.entries.size());
@@ -134,19 +136,15 @@ JointProblem BuildJointProblem(std::span<const Hypothesis> prior, std::span<cons
   for (std::size_t e = 0; e < p.entries.size(); ++e) {
     p.eta.push_back(MakeEtaRow(entry_existence[e], p.terms[e], settings.log_clutter_intensity));
   }
-  p.parents.reserve(prior.size());
   for (std::size_t h = 0; h < prior.size(); ++h) {
-    JointProblem::Parent parent;
+    JointProblem::Parent& parent = p.parents[h];
     parent.log_weight = prior[h].log_weight;
     parent.tracks = prior[h].tracks;
-    parent.rows.reserve(in_fov[h].size() + p.entries.size() - p.prior_entries);
-    parent.rows.assign(in_fov[h].begin(), in_fov[h].end());
     parent.in_fov_rows = static_cast<int>(parent.rows.size());
     // A birth outside the FOV cannot be detected: its row still decides born / not born.
     for (int b = p.prior_entries; b < static_cast<int>(p.entries.size()); ++b) {
       parent.rows.push_back(b);
     }
-    p.parents.push_back(std::move(parent));
   }
   return p;
 }
