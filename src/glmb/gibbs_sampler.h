@@ -61,8 +61,7 @@ std::optional<Association> OptimalAssociation(EtaRows rows, int measurements);
 
 /// The same into `out`, with `taken` as scratch, for a caller that reuses both; false when no
 /// valid association exists.
-bool OptimalAssociation(EtaRows rows, int measurements, Association& out,
-                        std::vector<char>& taken);
+bool OptimalAssociation(EtaRows rows, int measurements, Association& out, std::vector<char>& taken);
 
 /// Eta rows in the sampler's form, computed once for a table of rows that many chains share:
 /// each row's allowed values with their linear weights exp(log eta - row max), row r's values

@@ -158,7 +158,7 @@ std::vector<SampledAssociation> SampleAssociations(const JointProblem& problem,
   const double norm = LogSumExp(half_log_w);
   std::vector<SampledAssociation> out;
   const SamplerRows sampler_rows = MakeSamplerRows(problem.eta, problem.measurements);
-  GibbsScratch scratch;  // reused by every parent's chain
+  GibbsScratch scratch;   // reused by every parent's chain
   std::vector<int> flat;  // a chain's distinct samples, one after the other
   Association start;      // a parent's start, and its scratch
   std::vector<char> taken;
@@ -184,8 +184,8 @@ std::vector<SampledAssociation> SampleAssociations(const JointProblem& problem,
       add(start);
       continue;
     }
-    DistinctGibbsSamples(sampler_rows, parent.rows, problem.measurements, start, t_h, rng,
-                         scratch, flat);
+    DistinctGibbsSamples(sampler_rows, parent.rows, problem.measurements, start, t_h, rng, scratch,
+                         flat);
     const std::size_t length = start.size();
     if (length == 0) add(Association{});  // the one association of a parent without rows
     for (std::size_t k = 0; length > 0 && k < flat.size(); k += length) {
