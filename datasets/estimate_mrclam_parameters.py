@@ -215,14 +215,17 @@ def heading_drift(folder, sigma_w, windows):
     """Heading residual of the integrated commands against the Vicon heading over windows of at
     least T seconds (consecutive, non-overlapping, every image inside scored), per T: the number
     of windows, the RMS residual and the RMS the model predicts (sigma_w^2 sum dt^2)."""
+    robots = []
+    for robot in ROBOTS:
+        truth, odometry, meas = load_robot(folder, robot)
+        first = max(odometry[0, 0], truth[0, 0])
+        images = np.unique(meas[(meas[:, 0] >= first) & (meas[:, 0] <= odometry[-1, 0]), 0])
+        pose, scored = interpolate_truth(truth, images)
+        robots.append((odometry, images, pose, scored))
     rows = []
     for T in windows:
         err, scale = [], []
-        for robot in ROBOTS:
-            truth, odometry, meas = load_robot(folder, robot)
-            first = max(odometry[0, 0], truth[0, 0])
-            images = np.unique(meas[(meas[:, 0] >= first) & (meas[:, 0] <= odometry[-1, 0]), 0])
-            pose, scored = interpolate_truth(truth, images)
+        for odometry, images, pose, scored in robots:
             a = 0
             for j in range(1, len(images)):
                 if images[j] - images[a] < T:

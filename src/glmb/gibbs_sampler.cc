@@ -9,6 +9,7 @@
 
 #include "src/assignment/linear_assignment.h"
 #include "src/core/log_sum_exp.h"
+#include "src/glmb/hash_slots.h"
 
 namespace phdslam::glmb {
 
@@ -407,35 +408,30 @@ void RunChain(const SamplerRows& table, std::span<const int> index, int measurem
   }
 }
 
-/// A set of associations of one length, stored flat, with open addressing on their hashes.
+/// A set of associations of one length, stored flat, found by their hashes (HashSlots).
 class AssociationSet {
  public:
   /// An empty set in the scratch's buffers.
   AssociationSet(std::size_t length, GibbsScratch& scratch)
-      : length_(length), store_(scratch.store), hashes_(scratch.hashes), table_(scratch.table) {
+      : length_(length), store_(scratch.store), hashes_(scratch.hashes), slots_(scratch.table) {
     store_.clear();
     hashes_.clear();
-    table_.assign(16, -1);
   }
 
   /// Adds gamma (whose hash is `hash`) unless present.
   void Insert(const Association& gamma, std::uint64_t hash) {
-    std::size_t mask = table_.size() - 1;
-    for (std::size_t i = hash & mask;; i = (i + 1) & mask) {
-      const int k = table_[i];
-      if (k < 0) break;
-      if (hashes_[k] == hash && std::equal(gamma.begin(), gamma.end(), Row(k))) return;
-    }
+    const int found = slots_.Find(hash, [&](int k) {
+      return hashes_[k] == hash && std::equal(gamma.begin(), gamma.end(), Row(k));
+    });
+    if (found >= 0) return;
     const auto k = static_cast<int>(hashes_.size());
     hashes_.push_back(hash);
     store_.insert(store_.end(), gamma.begin(), gamma.end());
-    if (2 * hashes_.size() > table_.size()) {
-      table_.assign(2 * table_.size(), -1);
-      mask = table_.size() - 1;
-      for (int e = 0; e < k; ++e) Place(e, mask);
-    }
-    Place(k, mask);
+    slots_.Insert(k, [&](int e) { return hashes_[e]; });
   }
+
+  /// The number of members.
+  [[nodiscard]] std::size_t size() const { return hashes_.size(); }
 
   /// The members in lexicographic order, one after the other into `flat`; `order` is scratch.
   void SortedInto(std::vector<int>& order, std::vector<int>& flat) const {
@@ -453,16 +449,11 @@ class AssociationSet {
   [[nodiscard]] const int* Row(int k) const {
     return store_.data() + static_cast<std::size_t>(k) * length_;
   }
-  void Place(int k, std::size_t mask) {
-    std::size_t i = hashes_[k] & mask;
-    while (table_[i] >= 0) i = (i + 1) & mask;
-    table_[i] = k;
-  }
 
   std::size_t length_;
   std::vector<int>& store_;
   std::vector<std::uint64_t>& hashes_;
-  std::vector<int>& table_;  ///< member index or -1, size a power of two
+  HashSlots slots_;
 };
 
 }  // namespace
@@ -479,15 +470,16 @@ std::vector<Association> GibbsSample(EtaRows rows, int measurements, const Assoc
   return out;
 }
 
-void DistinctGibbsSamples(const SamplerRows& table, std::span<const int> index, int measurements,
-                          const Association& start, int samples, RandomStream& rng,
-                          GibbsScratch& scratch, std::vector<int>& flat) {
+std::size_t DistinctGibbsSamples(const SamplerRows& table, std::span<const int> index,
+                                 int measurements, const Association& start, int samples,
+                                 RandomStream& rng, GibbsScratch& scratch, std::vector<int>& flat) {
   AssociationSet seen(start.size(), scratch);
   RunChain(table, index, measurements, start, samples, rng, scratch,
            [&](const Association& g, std::uint64_t hash, bool changed) {
              if (changed) seen.Insert(g, hash);  // unchanged: the common case, already in
            });
   seen.SortedInto(scratch.order, flat);
+  return seen.size();
 }
 
 std::vector<Association> DistinctGibbsSamples(const SamplerRows& table, std::span<const int> index,
@@ -495,12 +487,13 @@ std::vector<Association> DistinctGibbsSamples(const SamplerRows& table, std::spa
                                               int samples, RandomStream& rng,
                                               GibbsScratch& scratch) {
   std::vector<int> flat;
-  DistinctGibbsSamples(table, index, measurements, start, samples, rng, scratch, flat);
+  const std::size_t count =
+      DistinctGibbsSamples(table, index, measurements, start, samples, rng, scratch, flat);
   std::vector<Association> out;
-  if (start.empty()) out.emplace_back();  // the one association of a matrix without rows
-  for (std::size_t k = 0; !start.empty() && k < flat.size(); k += start.size()) {
-    out.emplace_back(flat.begin() + static_cast<std::ptrdiff_t>(k),
-                     flat.begin() + static_cast<std::ptrdiff_t>(k + start.size()));
+  out.reserve(count);
+  for (std::size_t k = 0; k < count; ++k) {
+    const auto first = flat.begin() + static_cast<std::ptrdiff_t>(k * start.size());
+    out.emplace_back(first, first + static_cast<std::ptrdiff_t>(start.size()));
   }
   return out;
 }

@@ -122,7 +122,7 @@ struct GibbsScratch {
   std::vector<int> rows;
   std::vector<int> store;
   std::vector<std::uint64_t> hashes;
-  std::vector<int> table;
+  std::vector<int> table;  ///< HashSlots of the distinct samples
   std::vector<int> order;
 };
 
@@ -133,9 +133,10 @@ std::vector<Association> DistinctGibbsSamples(const SamplerRows& table, std::spa
                                               GibbsScratch& scratch);
 
 /// The same samples written one after the other into `flat` (start.size() values each), for a
-/// caller that keeps them in its own form.
-void DistinctGibbsSamples(const SamplerRows& table, std::span<const int> index, int measurements,
-                          const Association& start, int samples, RandomStream& rng,
-                          GibbsScratch& scratch, std::vector<int>& flat);
+/// caller that keeps them in its own form; returns their number (at least 1, also when
+/// start.size() is 0 and `flat` stays empty).
+std::size_t DistinctGibbsSamples(const SamplerRows& table, std::span<const int> index,
+                                 int measurements, const Association& start, int samples,
+                                 RandomStream& rng, GibbsScratch& scratch, std::vector<int>& flat);
 
 }  // namespace phdslam::glmb

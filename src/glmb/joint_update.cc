@@ -6,6 +6,7 @@
 #include <numeric>
 
 #include "src/core/log_sum_exp.h"
+#include "src/glmb/hash_slots.h"
 
 namespace phdslam::glmb {
 
@@ -184,13 +185,12 @@ std::vector<SampledAssociation> SampleAssociations(const JointProblem& problem,
       add(start);
       continue;
     }
-    DistinctGibbsSamples(sampler_rows, parent.rows, problem.measurements, start, t_h, rng, scratch,
-                         flat);
-    const std::size_t length = start.size();
-    if (length == 0) add(Association{});  // the one association of a parent without rows
-    for (std::size_t k = 0; length > 0 && k < flat.size(); k += length) {
-      add(Association(flat.begin() + static_cast<std::ptrdiff_t>(k),
-                      flat.begin() + static_cast<std::ptrdiff_t>(k + length)));
+    const std::size_t count = DistinctGibbsSamples(sampler_rows, parent.rows, problem.measurements,
+                                                   start, t_h, rng, scratch, flat);
+    const auto length = static_cast<std::ptrdiff_t>(start.size());
+    for (std::size_t k = 0; k < count; ++k) {
+      const auto first = flat.begin() + static_cast<std::ptrdiff_t>(k) * length;
+      add(Association(first, first + length));
     }
   }
   return out;
@@ -199,7 +199,7 @@ std::vector<SampledAssociation> SampleAssociations(const JointProblem& problem,
 namespace {
 
 /// A child hypothesis: the first sample giving it (which lists its entries), its weight and the
-/// hash of its entry-id set (ChildIdHash).
+/// hash of its entry-id set (ChildIndex::SampleHash).
 struct Child {
   double log_weight = kNegInf;
   int sample = 0;
@@ -298,7 +298,7 @@ struct ChildEntry {
 };
 
 /// The children of the samples, keyed by entry-id set: each sample's set is hashed from its rows
-/// (ChildIdHash), and the sets themselves are listed only to confirm a hash match and for the
+/// (SampleHash), and the sets themselves are listed only to confirm a hash match and for the
 /// children kept.
 class ChildIndex {
  public:
@@ -307,8 +307,7 @@ class ChildIndex {
       : problem_(problem),
         samples_(samples),
         detection_(detection),
-        pass_through_(problem.parents.size()),
-        table_(16, -1) {
+        pass_through_(problem.parents.size()) {
     entry_id_.reserve(problem.entries.size());
     for (const TrackPtr& t : problem.entries) entry_id_.push_back(t->id);
   }
@@ -316,18 +315,15 @@ class ChildIndex {
   /// Adds sample s to its child, or starts a child; detection ids are taken in row order.
   void Add(int s) {
     const std::uint64_t hash = SampleHash(s);
-    std::size_t mask = table_.size() - 1;
-    std::size_t i = hash & mask;
-    for (; table_[i] >= 0; i = (i + 1) & mask) {
-      Child& c = children_[table_[i]];
-      if (c.hash == hash && SameIds(c.sample, s)) {
-        c.log_weight = LogAddExp(c.log_weight, samples_[s].log_weight);
-        return;
-      }
+    const int found = slots_.Find(
+        hash, [&](int k) { return children_[k].hash == hash && SameIds(children_[k].sample, s); });
+    if (found >= 0) {
+      Child& c = children_[found];
+      c.log_weight = LogAddExp(c.log_weight, samples_[s].log_weight);
+      return;
     }
-    table_[i] = static_cast<int>(children_.size());
     children_.push_back(Child{samples_[s].log_weight, s, hash});
-    if (2 * children_.size() > table_.size()) Rehash();
+    slots_.Insert(static_cast<int>(children_.size()) - 1, [&](int e) { return children_[e].hash; });
   }
 
   std::vector<Child>& children() { return children_; }
@@ -423,16 +419,6 @@ class ChildIndex {
                       [](const ChildEntry& x, const ChildEntry& y) { return x.id == y.id; });
   }
 
-  void Rehash() {
-    table_.assign(2 * table_.size(), -1);
-    const std::size_t mask = table_.size() - 1;
-    for (std::size_t k = 0; k < children_.size(); ++k) {
-      std::size_t i = children_[k].hash & mask;
-      while (table_[i] >= 0) i = (i + 1) & mask;
-      table_[i] = static_cast<int>(k);
-    }
-  }
-
   const JointProblem& problem_;
   std::span<const SampledAssociation> samples_;
   DetectionChildren& detection_;
@@ -447,7 +433,8 @@ class ChildIndex {
   std::vector<PassThroughPart> pass_through_;
   std::vector<ChildEntry> pass_through_entries_;
   std::vector<Child> children_;
-  std::vector<int> table_;  ///< child index or -1 by hash, open addressing, a power of two
+  std::vector<int> table_;  ///< the storage of slots_
+  HashSlots slots_{table_};
   std::vector<ChildEntry> kept_, detected_, scratch_a_, scratch_b_;
   std::vector<int> assigned_;
 };
