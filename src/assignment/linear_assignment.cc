@@ -1,6 +1,8 @@
 #include "src/assignment/linear_assignment.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -26,7 +28,57 @@ void ValidateCostMatrix(const Eigen::MatrixXd& cost, const char* caller) {
   }
 }
 
+namespace {
+
+/// Each row's cheapest column into `row_to_col`, when these columns are distinct, each row's
+/// cheapest entry is finite and below the row's others by kRowMinimumMargin times the largest
+/// finite magnitude in the matrix, and no entry is NaN or -inf; false otherwise (the path search
+/// then decides, or ValidateCostMatrix names the bad entry).
+bool DistinctClearRowMinima(const Eigen::MatrixXd& cost, std::vector<int>& row_to_col) {
+  const double infinity = std::numeric_limits<double>::infinity();
+  const Eigen::Index rows = cost.rows();
+  const Eigen::Index cols = cost.cols();
+  if (rows > cols) return false;
+  row_to_col.assign(static_cast<std::size_t>(rows), -1);
+  std::vector<char> taken(static_cast<std::size_t>(cols), 0);
+  double largest = 0.0;         // the largest finite magnitude
+  double narrowest = infinity;  // the smallest gap between a row's two cheapest entries
+  for (Eigen::Index i = 0; i < rows; ++i) {
+    double best = infinity;
+    double second = infinity;
+    Eigen::Index best_col = -1;
+    for (Eigen::Index j = 0; j < cols; ++j) {
+      const double c = cost(i, j);
+      if (!(c > -infinity)) return false;  // NaN or -inf
+      if (c < infinity) largest = std::max(largest, std::abs(c));
+      if (c < best) {
+        second = best;
+        best = c;
+        best_col = j;
+      } else if (c < second) {
+        second = c;
+      }
+    }
+    if (best_col < 0 || taken[static_cast<std::size_t>(best_col)] != 0) return false;
+    taken[static_cast<std::size_t>(best_col)] = 1;
+    row_to_col[static_cast<std::size_t>(i)] = static_cast<int>(best_col);
+    narrowest = std::min(narrowest, second - best);
+  }
+  return narrowest > kRowMinimumMargin * largest;
+}
+
+}  // namespace
+
 std::optional<Assignment> SolveLinearAssignment(const Eigen::MatrixXd& cost) {
+  Assignment result;
+  if (DistinctClearRowMinima(cost, result.row_to_col)) {
+    for (int row = 0; row < cost.rows(); ++row) result.cost += cost(row, result.row_to_col[row]);
+    return result;
+  }
+  return SolveLinearAssignmentByPaths(cost);
+}
+
+std::optional<Assignment> SolveLinearAssignmentByPaths(const Eigen::MatrixXd& cost) {
   ValidateCostMatrix(cost, "SolveLinearAssignment");
   ShortestAugmentingPath solver;
   solver.Reset(cost);

@@ -128,5 +128,60 @@ TEST(SolveLinearAssignment, MatchesBruteForceOnLargerRectangularMatrices) {
   }
 }
 
+// A cost matrix shaped like the filters' association costs: `rows` landmarks, `measurements`
+// measurement columns (each landmark gated to a few, the rest forbidden), then one private
+// missed-detection column per landmark. Landmark i is usually cheapest at measurement i, so most
+// matrices have distinct row minima, and some share a measurement or tie within the margin.
+Eigen::MatrixXd FilterShapedCost(RandomStream& rng, int rows, int measurements) {
+  Eigen::MatrixXd cost = Eigen::MatrixXd::Constant(rows, measurements + rows, kForbidden);
+  for (int i = 0; i < rows; ++i) {
+    for (int j = 0; j < measurements; ++j) {
+      const bool near = j == i % measurements;
+      if (near || rng.Uniform() < 0.3) cost(i, j) = (near ? 0.0 : 4.0) + rng.Uniform(0.0, 6.0);
+    }
+    cost(i, measurements + i) = 3.0 + rng.Uniform(0.0, 4.0);
+    if (rng.Uniform() < 0.05) cost(i, measurements + i) = cost(i, i % measurements) + 1e-13;
+  }
+  return cost;
+}
+
+TEST(SolveLinearAssignment, RowMinimaShortcutGivesThePathSearchResultBitForBit) {
+  int distinct_minima = 0;
+  int shared_or_close = 0;
+  for (int trial = 0; trial < 4000; ++trial) {
+    RandomStream rng(DeriveSeed(HashName("linear_assignment_shortcut"), trial));
+    const int rows = 1 + static_cast<int>(rng.Uniform(0.0, 12.0));
+    const int measurements = 1 + static_cast<int>(rng.Uniform(0.0, 15.0));
+    const Eigen::MatrixXd cost = FilterShapedCost(rng, rows, measurements);
+    const auto fast = SolveLinearAssignment(cost);
+    const auto paths = SolveLinearAssignmentByPaths(cost);
+    SCOPED_TRACE(::testing::Message() << "trial " << trial << "\n" << cost);
+    ASSERT_EQ(fast.has_value(), paths.has_value());
+    if (!fast) continue;
+    EXPECT_EQ(fast->row_to_col, paths->row_to_col);
+    EXPECT_EQ(fast->cost, paths->cost);  // exact: the same entries summed in the same order
+    std::set<int> minima;
+    for (int i = 0; i < rows; ++i) {
+      Eigen::Index j = 0;
+      cost.row(i).minCoeff(&j);
+      minima.insert(static_cast<int>(j));
+    }
+    (static_cast<int>(minima.size()) == rows ? distinct_minima : shared_or_close)++;
+  }
+  // Both kinds occur, so both the shortcut and the path search are compared.
+  EXPECT_GT(distinct_minima, 1000);
+  EXPECT_GT(shared_or_close, 500);
+}
+
+TEST(SolveLinearAssignment, RowMinimaShortcutStillRejectsBadInput) {
+  Eigen::MatrixXd cost(2, 3);
+  cost << 0.0, 5.0, 5.0, 5.0, 0.0, 5.0;
+  cost(1, 2) = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(SolveLinearAssignment(cost), std::invalid_argument);
+  cost(1, 2) = -std::numeric_limits<double>::infinity();
+  EXPECT_THROW(SolveLinearAssignment(cost), std::invalid_argument);
+  EXPECT_THROW(SolveLinearAssignment(Eigen::MatrixXd::Zero(3, 2)), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace phdslam::assignment
