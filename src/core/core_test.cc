@@ -102,6 +102,51 @@ TEST(Gaussian, SymmetrizeGivesTheValuesOfTheMatrixExpressionBitForBit) {
   }
 }
 
+// Symmetric 2x2 matrices of every kind Cholesky2 meets: well and badly conditioned positive
+// definite ones over many scales, indefinite, singular, zero, negative and NaN ones.
+Eigen::Matrix2d RandomSymmetric2(RandomStream& rng, int trial) {
+  const double scale = std::pow(10.0, rng.Uniform(-8.0, 8.0));
+  Eigen::Matrix2d a;
+  a(0, 0) = scale * rng.Uniform(-0.2, 3.0);
+  a(1, 1) = scale * rng.Uniform(-0.2, 3.0);
+  const double bound = std::sqrt(std::abs(a(0, 0) * a(1, 1)));
+  a(1, 0) = bound * rng.Uniform(-1.05, 1.05);
+  if (trial % 97 == 0) a(1, 0) = std::sqrt(a(0, 0) * a(1, 1));  // singular, or NaN when < 0
+  if (trial % 89 == 0) a.setZero();
+  if (trial % 83 == 0) a(1, 1) = std::numeric_limits<double>::quiet_NaN();
+  a(0, 1) = a(1, 0);
+  return a;
+}
+
+TEST(Gaussian, Cholesky2GivesEigenLltsVerdictAndInverseBitForBit) {
+  RandomStream rng(11);
+  int positive_definite = 0;
+  int not_positive_definite = 0;
+  for (int trial = 0; trial < 200000; ++trial) {
+    const Eigen::Matrix2d a = RandomSymmetric2(rng, trial);
+    const Eigen::LLT<Eigen::Matrix2d> llt(a);
+    const Cholesky2 factor(a);
+    ASSERT_EQ(factor.positive_definite(), LltIsPositiveDefinite(llt)) << "trial " << trial << "\n"
+                                                                      << a;
+    if (!factor.positive_definite()) {
+      ++not_positive_definite;
+      continue;
+    }
+    ++positive_definite;
+    const Eigen::Matrix2d expected = llt.solve(Eigen::Matrix2d::Identity());
+    const Eigen::Matrix2d inverse = factor.Inverse();
+    for (int r = 0; r < 2; ++r) {
+      for (int c = 0; c < 2; ++c) {
+        ASSERT_EQ(inverse(r, c), expected(r, c))
+            << "trial " << trial << " (" << r << ", " << c << ")\n"
+            << a;  // bit for bit, not approximately
+      }
+    }
+  }
+  EXPECT_GT(positive_definite, 100000);
+  EXPECT_GT(not_positive_definite, 10000);
+}
+
 TEST(RandomStream, IsReproducibleAndSeedsAreIndependent) {
   RandomStream a(DeriveSeed(1, 2, 3));
   RandomStream b(DeriveSeed(1, 2, 3));

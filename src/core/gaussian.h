@@ -46,6 +46,49 @@ bool LltIsPositiveDefinite(const Llt& llt) {
   return true;
 }
 
+/// The Cholesky factor L (A = L L^T) of a symmetric 2x2 A, read from its lower triangle, with
+/// the operations of Eigen's LLT<Matrix2d> in their order: the factor, the verdict of
+/// LltIsPositiveDefinite and Inverse() (LLT::solve of the identity) are theirs bit for bit, without
+/// the blocked triangular solver Eigen runs for a matrix right-hand side however small.
+class Cholesky2 {
+ public:
+  explicit Cholesky2(const Eigen::Matrix2d& a) {
+    const double x0 = a(0, 0);
+    if (!(x0 > 0.0)) return;  // LLT stops at a pivot <= 0; a NaN pivot fails the check below
+    l00_ = std::sqrt(x0);
+    l10_ = a(1, 0) / l00_;
+    const double x1 = a(1, 1) - l10_ * l10_;
+    if (!(x1 > 0.0)) return;
+    l11_ = std::sqrt(x1);
+    positive_definite_ = std::isfinite(l00_) && std::isfinite(l11_);
+  }
+
+  /// Whether A is numerically positive definite (LltIsPositiveDefinite's test).
+  [[nodiscard]] bool positive_definite() const { return positive_definite_; }
+
+  /// A^-1, solved column by column as L y = e_j, then L^T x = y, each pivot applied as a product
+  /// with its reciprocal. Only for a positive-definite A.
+  [[nodiscard]] Eigen::Matrix2d Inverse() const {
+    const double r0 = 1.0 / l00_;
+    const double r1 = 1.0 / l11_;
+    Eigen::Matrix2d x;
+    for (int j = 0; j < 2; ++j) {
+      const double y0 = (j == 0 ? 1.0 : 0.0) * r0;
+      const double y1 = ((j == 1 ? 1.0 : 0.0) - y0 * l10_) * r1;
+      const double x1 = (y1 - 0.0) * r1;
+      x(1, j) = x1;
+      x(0, j) = (y0 - (0.0 + l10_ * x1)) * r0;
+    }
+    return x;
+  }
+
+ private:
+  double l00_ = 0.0;
+  double l10_ = 0.0;
+  double l11_ = 0.0;
+  bool positive_definite_ = false;
+};
+
 template <int N>
 std::optional<Eigen::Matrix<double, N, N>> CholeskyLower(const Eigen::Matrix<double, N, N>& p) {
   const Eigen::LLT<Eigen::Matrix<double, N, N>> llt(p);

@@ -111,9 +111,9 @@ struct PairTerms {
 
 /// D_p^-1 for the symmetrised 2x2 D_p, or nothing when D_p is not positive definite.
 std::optional<Mat2> InversePositiveDefinite2(const Mat2& d) {
-  const Eigen::LLT<Mat2> llt(d);
-  if (!LltIsPositiveDefinite(llt)) return std::nullopt;
-  return llt.solve(Mat2::Identity());
+  const Cholesky2 factor(d);
+  if (!factor.positive_definite()) return std::nullopt;
+  return factor.Inverse();
 }
 
 }  // namespace
@@ -206,7 +206,7 @@ JointIplResult JointIpl(const Pose& prior_mean, const Mat3& prior_cov,
       Mat2 c = pair.landmark_cov - t.gain * t.p_hmt.transpose();
       c = (0.5 * (c + c.transpose())).eval();
       next_conditional[p] = c;
-      conditional_failed = !LltIsPositiveDefinite(Eigen::LLT<Mat2>(c));
+      conditional_failed = !Cholesky2(c).positive_definite();
     }
     if (conditional_failed) {
       lin.cholesky_failed = true;
