@@ -12,12 +12,21 @@ constexpr int kViaSlackRow = -2;
 }  // namespace
 
 void ShortestAugmentingPath::Reset(const Eigen::MatrixXd& cost) {
-  rows_ = static_cast<int>(cost.rows());
-  cols_ = static_cast<int>(cost.cols());
+  ClearState(static_cast<int>(cost.rows()), static_cast<int>(cost.cols()));
   cost_.resize(static_cast<std::size_t>(rows_) * cols_);
   for (int i = 0; i < rows_; ++i) {
     for (int j = 0; j < cols_; ++j) this->cost(i, j) = cost(i, j);
   }
+}
+
+void ShortestAugmentingPath::Reset(int rows, int cols) {
+  ClearState(rows, cols);
+  cost_.assign(static_cast<std::size_t>(rows_) * cols_, kInf);
+}
+
+void ShortestAugmentingPath::ClearState(int rows, int cols) {
+  rows_ = rows;
+  cols_ = cols;
   col_for_row.assign(rows_, -1);
   row_for_col.assign(cols_, -1);
   row_dual.assign(rows_, 0.0);

@@ -41,6 +41,10 @@ class ShortestAugmentingPath {
   /// Copies `cost` (row-major), clears the assignment and the duals, activates everything.
   void Reset(const Eigen::MatrixXd& cost);
 
+  /// The same for a rows x cols problem with every pair forbidden (+inf), for a caller that then
+  /// sets the allowed entries with cost(i, j); reuses the buffers of earlier problems.
+  void Reset(int rows, int cols);
+
   int rows() const { return rows_; }
   int cols() const { return cols_; }
 
@@ -70,6 +74,8 @@ class ShortestAugmentingPath {
 
  private:
   bool Augment(int start_row, int target_col);
+  /// Sizes everything but the cost matrix to rows x cols; no assignment, zero duals, all active.
+  void ClearState(int rows, int cols);
 
   int rows_ = 0;
   int cols_ = 0;

@@ -1,13 +1,13 @@
 #include "src/glmb/gibbs_sampler.h"
 
-#include <Eigen/Core>
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <span>
+#include <stdexcept>
 
-#include "src/assignment/linear_assignment.h"
 #include "src/core/log_sum_exp.h"
 #include "src/glmb/hash_slots.h"
 
@@ -70,43 +70,172 @@ bool RowWiseBest(EtaRows rows, int measurements, Association& gamma, std::vector
   return true;
 }
 
+/// The better of death and miss for a row that takes no measurement; ties go to "missed".
+int PrivateValue(const EtaRow& row) { return row.log_miss >= row.log_death ? 0 : -1; }
+
+/// The row's own best value (the first of equal measurements, "missed" over "dead" at a tie).
+int OwnBestValue(const EtaRow& row) {
+  int g = PrivateValue(row);
+  double best = std::max(row.log_miss, row.log_death);
+  for (const auto& [j, v] : row.detections) {
+    if (v > best) {
+      best = v;
+      g = j + 1;
+    }
+  }
+  return g;
+}
+
+/// The root of measurement j's set in `parent` (path halving).
+int FindSet(std::vector<int>& parent, int j) {
+  while (parent[static_cast<std::size_t>(j)] != j) {
+    int& up = parent[static_cast<std::size_t>(j)];
+    up = parent[static_cast<std::size_t>(up)];
+    j = up;
+  }
+  return j;
+}
+
+/// Joins the sets of measurements a and b, the smaller root becoming the root.
+void JoinSets(std::vector<int>& parent, int a, int b) {
+  a = FindSet(parent, a);
+  b = FindSet(parent, b);
+  if (a != b) parent[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
+}
+
+/// The cost -log eta of an allowed value; a log eta of +inf is not a weight.
+double CostOfLogEta(double log_eta) {
+  if (log_eta == std::numeric_limits<double>::infinity()) {
+    throw std::invalid_argument("OptimalAssociation: an eta row holds log eta = +inf");
+  }
+  return -log_eta;
+}
+
+/// Sets the contested rows into groups that compete for no common measurement: two measurements
+/// are in one set when a row gates both, and a row belongs to the set of its measurements.
+/// Fills scratch.contested, .grouped and .group_begin, and `out` for the other rows; false when
+/// one of these has no allowed value.
+bool GroupRows(EtaRows rows, int measurements, Association& out, AssociationScratch& s) {
+  s.set_parent.resize(static_cast<std::size_t>(measurements));
+  for (int j = 0; j < measurements; ++j) s.set_parent[static_cast<std::size_t>(j)] = j;
+  s.contested.clear();
+  for (int i = 0; i < static_cast<int>(rows.size()); ++i) {
+    const EtaRow& row = rows[static_cast<std::size_t>(i)];
+    int first = -1;
+    for (const auto& [j, v] : row.detections) {
+      if (!(v > kNegInf)) continue;
+      if (first < 0) first = j;
+      JoinSets(s.set_parent, first, j);
+    }
+    if (first >= 0) {
+      s.contested.push_back(first);  // the row's first allowed measurement, for now
+      s.contested.push_back(i);
+      continue;
+    }
+    // Only the private column is left to this row, and no other row can take it.
+    if (!(std::max(row.log_death, row.log_miss) > kNegInf)) return false;
+    out[static_cast<std::size_t>(i)] = PrivateValue(row);
+  }
+  // A counting sort of the rows by their set's root, stable, so each group stays ascending.
+  s.group_begin.assign(static_cast<std::size_t>(measurements) + 1, 0);
+  for (std::size_t k = 0; k < s.contested.size(); k += 2) {
+    s.contested[k] = FindSet(s.set_parent, s.contested[k]);
+    ++s.group_begin[static_cast<std::size_t>(s.contested[k]) + 1];
+  }
+  for (int j = 0; j < measurements; ++j) {
+    s.group_begin[static_cast<std::size_t>(j) + 1] += s.group_begin[static_cast<std::size_t>(j)];
+  }
+  s.grouped.resize(s.contested.size() / 2);
+  s.column_of.assign(s.group_begin.begin(), s.group_begin.end() - 1);  // fill positions
+  for (std::size_t k = 0; k < s.contested.size(); k += 2) {
+    const auto root = static_cast<std::size_t>(s.contested[k]);
+    s.grouped[static_cast<std::size_t>(s.column_of[root]++)] = s.contested[k + 1];
+  }
+  return true;
+}
+
+/// The optimal values of `group` (rows that share measurements only among themselves, ascending)
+/// into out: each row's own best value when no two of them want one measurement, else the linear
+/// assignment of the rows to [one private column each | the group's measurements, ascending],
+/// solved by the path search (SolveLinearAssignmentByPaths' steps, in its order). `s.taken` and
+/// `s.column_of` enter all zero and -1 on the group's measurements. False when the group has no
+/// valid association.
+bool SolveGroup(EtaRows rows, std::span<const int> group, Association& out, AssociationScratch& s) {
+  bool collide = false;
+  for (const int i : group) {
+    const int g = OwnBestValue(rows[static_cast<std::size_t>(i)]);
+    out[static_cast<std::size_t>(i)] = g;
+    if (g > 0 && s.taken[static_cast<std::size_t>(g - 1)]++ != 0) collide = true;
+  }
+  if (!collide) return true;
+  s.measurement_of.clear();
+  for (const int i : group) {
+    for (const auto& [j, v] : rows[static_cast<std::size_t>(i)].detections) {
+      if (v > kNegInf && s.column_of[static_cast<std::size_t>(j)] < 0) {
+        s.column_of[static_cast<std::size_t>(j)] = 0;
+        s.measurement_of.push_back(j);
+      }
+    }
+  }
+  std::sort(s.measurement_of.begin(), s.measurement_of.end());
+  const auto k = static_cast<int>(group.size());
+  for (std::size_t c = 0; c < s.measurement_of.size(); ++c) {
+    s.column_of[static_cast<std::size_t>(s.measurement_of[c])] = k + static_cast<int>(c);
+  }
+  s.solver.Reset(k, k + static_cast<int>(s.measurement_of.size()));
+  for (int r = 0; r < k; ++r) {
+    const EtaRow& row = rows[static_cast<std::size_t>(group[r])];
+    const double best_private = std::max(row.log_death, row.log_miss);
+    if (best_private > kNegInf) s.solver.cost(r, r) = CostOfLogEta(best_private);
+    for (const auto& [j, v] : row.detections) {
+      if (v > kNegInf) s.solver.cost(r, s.column_of[static_cast<std::size_t>(j)]) = CostOfLogEta(v);
+    }
+  }
+  for (int r = 0; r < k; ++r) {
+    if (!s.solver.AugmentToFreeColumn(r)) return false;
+  }
+  for (int r = 0; r < k; ++r) {
+    const int c = s.solver.col_for_row[static_cast<std::size_t>(r)];
+    const EtaRow& row = rows[static_cast<std::size_t>(group[r])];
+    out[static_cast<std::size_t>(group[r])] =
+        c >= k ? s.measurement_of[static_cast<std::size_t>(c - k)] + 1 : PrivateValue(row);
+  }
+  return true;
+}
+
 }  // namespace
 
 bool OptimalAssociation(EtaRows rows, int measurements, Association& out,
-                        std::vector<char>& taken) {
+                        AssociationScratch& scratch) {
   const int p = static_cast<int>(rows.size());
   if (p == 0) {
     out.clear();
     return true;
   }
-  if (RowWiseBest(rows, measurements, out, taken)) return true;
-  Eigen::MatrixXd cost = Eigen::MatrixXd::Constant(p, p + measurements, assignment::kForbidden);
-  for (int i = 0; i < p; ++i) {
-    const double best_private = std::max(rows[i].log_death, rows[i].log_miss);
-    if (best_private > kNegInf) cost(i, i) = -best_private;
-    for (const auto& [j, v] : rows[i].detections) {
-      if (v > kNegInf) cost(i, p + j) = -v;
-    }
-  }
-  const std::optional<assignment::Assignment> a = assignment::SolveLinearAssignment(cost);
-  if (!a) return false;
+  if (RowWiseBest(rows, measurements, out, scratch.taken)) return true;
+  // The rows without an allowed measurement keep the better of death and miss; the others fall
+  // into groups that compete for no common measurement, each solved on its own. Equal in real
+  // arithmetic to one assignment of all rows to [private columns | measurements], and to it bit
+  // for bit but at exact ties, since the path search of one group never reaches another's columns.
   out.resize(static_cast<std::size_t>(p));
-  for (int i = 0; i < p; ++i) {
-    const int c = a->row_to_col[i];
-    if (c >= p) {
-      out[i] = c - p + 1;
-    } else {
-      // Ties between death and miss go to "missed".
-      out[i] = rows[i].log_miss >= rows[i].log_death ? 0 : -1;
-    }
+  if (!GroupRows(rows, measurements, out, scratch)) return false;
+  scratch.taken.assign(static_cast<std::size_t>(measurements), 0);
+  scratch.column_of.assign(static_cast<std::size_t>(measurements), -1);
+  for (int root = 0; root < measurements; ++root) {
+    const int begin = scratch.group_begin[static_cast<std::size_t>(root)];
+    const int end = scratch.group_begin[static_cast<std::size_t>(root) + 1];
+    if (begin == end) continue;
+    const std::span<const int> group(scratch.grouped.data() + begin,
+                                     static_cast<std::size_t>(end - begin));
+    if (!SolveGroup(rows, group, out, scratch)) return false;
   }
   return true;
 }
 
 std::optional<Association> OptimalAssociation(EtaRows rows, int measurements) {
   Association out;
-  std::vector<char> taken;
-  if (!OptimalAssociation(rows, measurements, out, taken)) return std::nullopt;
+  AssociationScratch scratch;
+  if (!OptimalAssociation(rows, measurements, out, scratch)) return std::nullopt;
   return out;
 }
 

@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "src/assignment/shortest_augmenting_path.h"
 #include "src/core/random.h"
 
 namespace phdslam::glmb {
@@ -54,14 +55,29 @@ double LogEta(const EtaRow& row, int gamma);
 /// sum_i log eta_i(gamma_i); -inf when any value is forbidden or two rows share a measurement.
 double LogAssociationWeight(EtaRows rows, const Association& gamma);
 
-/// The highest-weight valid association (minimum total cost -log eta), from the linear
-/// assignment of the rows to [one private column each: the better of death and miss | the M
-/// measurements]; nullopt when none is valid (some row has no allowed value left).
+/// The highest-weight valid association (minimum total cost -log eta): each row at its own best
+/// value when no two of them want one measurement, else the better of death and miss for every row
+/// without an allowed measurement and, for the rows with one, the linear assignment to [one private
+/// column each: the better of death and miss | the M measurements]; nullopt when none is valid
+/// (some row has no allowed value left).
 std::optional<Association> OptimalAssociation(EtaRows rows, int measurements);
 
-/// The same into `out`, with `taken` as scratch, for a caller that reuses both; false when no
-/// valid association exists.
-bool OptimalAssociation(EtaRows rows, int measurements, Association& out, std::vector<char>& taken);
+/// The buffers of OptimalAssociation, for a caller that solves many eta matrices.
+struct AssociationScratch {
+  std::vector<char> taken;
+  std::vector<int> set_parent;      ///< disjoint sets of the measurements
+  std::vector<int> contested;       ///< rows with an allowed measurement
+  std::vector<int> group_begin;     ///< per set root: where its rows start in `grouped`
+  std::vector<int> grouped;         ///< the contested rows by set, ascending within a set
+  std::vector<int> column_of;       ///< a measurement's column in its group's problem
+  std::vector<int> measurement_of;  ///< a group's measurements, ascending
+  assignment::ShortestAugmentingPath solver;
+};
+
+/// The same into `out`, with the buffers of `scratch`, for a caller that reuses both; false when
+/// no valid association exists.
+bool OptimalAssociation(EtaRows rows, int measurements, Association& out,
+                        AssociationScratch& scratch);
 
 /// Eta rows in the sampler's form, computed once for a table of rows that many chains share:
 /// each row's allowed values with their linear weights exp(log eta - row max), row r's values

@@ -5,10 +5,13 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <set>
+#include <stdexcept>
 
+#include "src/assignment/linear_assignment.h"
 #include "src/assignment/murty.h"
 #include "src/core/angles.h"
 #include "src/core/log_sum_exp.h"
@@ -354,6 +357,97 @@ TEST(GibbsSampler, OptimalAssociationOnRandomConflictingProblems) {
     EXPECT_NEAR(LogAssociationWeight(rows, *opt), best, 1e-12) << trial;
   }
   EXPECT_GT(conflicts, 20);
+}
+
+/// The optimal association as computed before the rows without a measurement were set aside: all
+/// rows in one assignment of [private columns | measurements].
+std::optional<Association> OptimalAssociationOfAllRows(const std::vector<EtaRow>& rows, int m) {
+  const int p = static_cast<int>(rows.size());
+  Eigen::MatrixXd cost = Eigen::MatrixXd::Constant(p, p + m, assignment::kForbidden);
+  for (int i = 0; i < p; ++i) {
+    const double best_private = std::max(rows[i].log_death, rows[i].log_miss);
+    if (best_private > kNegInf) cost(i, i) = -best_private;
+    for (const auto& [j, v] : rows[i].detections) {
+      if (v > kNegInf) cost(i, p + j) = -v;
+    }
+  }
+  const std::optional<assignment::Assignment> a = assignment::SolveLinearAssignment(cost);
+  if (!a) return std::nullopt;
+  Association out(static_cast<std::size_t>(p));
+  for (int i = 0; i < p; ++i) {
+    const int c = a->row_to_col[i];
+    out[i] = c >= p ? c - p + 1 : (rows[i].log_miss >= rows[i].log_death ? 0 : -1);
+  }
+  return out;
+}
+
+/// True when the rows' own best values collide or some row has none: the solver's case.
+bool RowWiseBestFails(const std::vector<EtaRow>& rows, int m) {
+  std::vector<char> taken(static_cast<std::size_t>(m), 0);
+  for (const EtaRow& row : rows) {
+    int g = 0;
+    double best = std::max(row.log_miss, row.log_death);
+    for (const auto& [j, v] : row.detections) {
+      if (v > best) {
+        best = v;
+        g = j + 1;
+      }
+    }
+    if (best == kNegInf) return true;
+    if (g > 0 && taken[g - 1]++ != 0) return true;
+  }
+  return false;
+}
+
+/// An eta matrix shaped like the filters' on a large map: many tracks out of view (death and miss
+/// only, some with forbidden detections), a few in view gating neighbouring measurements.
+std::vector<EtaRow> MapShapedEta(RandomStream& rng, int p, int m, double in_view) {
+  std::vector<EtaRow> rows(static_cast<std::size_t>(p));
+  for (EtaRow& row : rows) {
+    row.log_death = rng.Uniform() < 0.1 ? kNegInf : std::log(rng.Uniform(0.001, 0.1));
+    row.log_miss = rng.Uniform() < 0.02 ? kNegInf : std::log(rng.Uniform(0.01, 0.5));
+    if (m > 0 && rng.Uniform() < in_view) {
+      const int centre = static_cast<int>(rng.Uniform() * m);
+      for (int j = std::max(0, centre - 1); j <= std::min(m - 1, centre + 2); ++j) {
+        if (rng.Uniform() < 0.8) row.detections.emplace_back(j, std::log(rng.Uniform(1e-3, 50.0)));
+      }
+    } else if (m > 0 && rng.Uniform() < 0.1) {
+      row.detections.emplace_back(static_cast<int>(rng.Uniform() * m), kNegInf);
+    }
+  }
+  return rows;
+}
+
+TEST(GibbsSampler, OptimalAssociationOfContestedRowsEqualsTheAssignmentOfAllRows) {
+  RandomStream rng(45);
+  int solved = 0;
+  int infeasible = 0;
+  for (int trial = 0; trial < 6000; ++trial) {
+    const int p = 1 + static_cast<int>(rng.Uniform() * 160);
+    const int m = static_cast<int>(rng.Uniform() * 31);
+    const std::vector<EtaRow> rows = MapShapedEta(rng, p, m, rng.Uniform(0.02, 0.4));
+    if (!RowWiseBestFails(rows, m)) continue;
+    const std::optional<Association> all = OptimalAssociationOfAllRows(rows, m);
+    const std::optional<Association> contested = OptimalAssociation(rows, m);
+    ASSERT_EQ(all.has_value(), contested.has_value()) << trial;
+    if (!all) {
+      ++infeasible;
+      continue;
+    }
+    ++solved;
+    ASSERT_EQ(*all, *contested) << trial;
+  }
+  // Both the solver's case and the infeasible one are compared, many times each.
+  EXPECT_GT(solved, 1500);
+  EXPECT_GT(infeasible, 100);
+}
+
+TEST(GibbsSampler, OptimalAssociationRefusesAnInfiniteLogEtaItMustWeigh) {
+  // Two rows want measurement 0, so the solver weighs them, and one of its weights is +inf.
+  std::vector<EtaRow> rows(2);
+  rows[0].detections = {{0, std::numeric_limits<double>::infinity()}};
+  rows[1].detections = {{0, 1.0}};
+  EXPECT_THROW((void)OptimalAssociation(rows, 1), std::invalid_argument);
 }
 
 TEST(GibbsSampler, DistinctSamplesContainMurtysRankedAssociations) {

@@ -162,7 +162,7 @@ std::vector<SampledAssociation> SampleAssociations(const JointProblem& problem,
   GibbsScratch scratch;   // reused by every parent's chain
   std::vector<int> flat;  // a chain's distinct samples, one after the other
   Association start;      // a parent's start, and its scratch
-  std::vector<char> taken;
+  AssociationScratch association_scratch;
   const LogEtaTable log_eta(problem.eta, problem.measurements);
   for (int h = 0; h < static_cast<int>(problem.parents.size()); ++h) {
     const JointProblem::Parent& parent = problem.parents[h];
@@ -174,7 +174,9 @@ std::vector<SampledAssociation> SampleAssociations(const JointProblem& problem,
       start.assign(parent.rows.size(), 0);
       have_start = LogAssociationWeight(eta, start) > kNegInf;
     }
-    if (!have_start) have_start = OptimalAssociation(eta, problem.measurements, start, taken);
+    if (!have_start) {
+      have_start = OptimalAssociation(eta, problem.measurements, start, association_scratch);
+    }
     if (!have_start) continue;
     auto add = [&](Association gamma) {
       // Valid: a chain's sample, or a start checked above.
