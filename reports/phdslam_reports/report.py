@@ -72,7 +72,7 @@ from .results import (
     ResultsFolder,
 )
 from .smoother_posterior import posterior_gaps, posterior_sentence
-from .stats import relative_difference, stack_ragged, standard_error_of_values
+from .stats import nan_mean, relative_difference, stack_ragged, standard_error_of_values
 from .style import save_figure
 from .sweep_table import SweepTable, read_sweep_table, sweep_point_of, sweep_root_of
 from .tables_shared import matched_paper_tables, ours_with_se, paper_table_rows
@@ -457,7 +457,7 @@ class ReportBuilder:
                                              if s.estimator.startswith(REFERENCE_SMOOTHER) else ""),
                   "name"), (str(s.particles), ""), (str(s.runs), ""),
                  (f"[{s.low:.3f}, {s.high:.3f}]", ""),
-                 (format_value(float(np.nanmean(s.mean))), ""),
+                 (format_value(nan_mean(s.mean)), ""),
                  (format_value(s.median), ""),
                  (f"{100 * s.inside:.1f} %", ""),
                  (f"{100 * s.coverage:.1f} %" if np.isfinite(s.coverage) else "-", "")]
@@ -742,7 +742,7 @@ class ReportBuilder:
         for p in points:
             rows.append([(format_value(p.clutter_rate), ""), (self._name(p.group.estimator), "name"),
                          (str(p.group.particles), ""), (str(p.rmse.runs), "")]
-                        + [(format_value(float(np.nanmean(a))) if a.size else "\u2014", "")
+                        + [(format_value(nan_mean(a)), "")
                            for a in (p.rmse.x, p.rmse.y, p.rmse.heading_deg)]
                         + [(cell(p.ospa), ""), (cell(p.step_ms), ""), (cell(p.false_landmarks), "")])
         return table_html(["clutter rate", "Estimator", "N", "runs", "RMSE x (m)", "RMSE y (m)",

@@ -102,6 +102,14 @@ def column_percentile(matrix: np.ndarray, pct: float) -> np.ndarray:
     return np.where(count > 0, result, np.nan)
 
 
+def nan_mean(values: np.ndarray) -> float:
+    """Mean of the values that are not NaN, as numpy's nanmean (an infinite value stays in it), but
+    NaN without nanmean's empty-slice warning when every value is NaN or there is none."""
+    values = np.asarray(values, dtype=float)
+    present = values[~np.isnan(values)]
+    return float(present.mean()) if present.size else math.nan
+
+
 def stack_ragged(series: Sequence[np.ndarray]) -> np.ndarray:
     """Rows of unequal length as one matrix padded with NaN."""
     width = max((len(s) for s in series), default=0)

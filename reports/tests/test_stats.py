@@ -30,6 +30,18 @@ class StandardErrorTest(unittest.TestCase):
         self.assertTrue(math.isnan(stats.standard_error_of_values([3.0])))
 
 
+class NanMeanTest(unittest.TestCase):
+    def test_mean_of_the_values_that_are_not_nan(self):
+        self.assertAlmostEqual(stats.nan_mean(np.array([1.0, math.nan, 3.0])), 2.0)
+        self.assertEqual(stats.nan_mean(np.array([1.0, math.inf])), math.inf)
+
+    def test_no_value_gives_nan_without_a_warning(self):
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")
+            self.assertTrue(math.isnan(stats.nan_mean(np.array([math.nan, math.nan]))))
+            self.assertTrue(math.isnan(stats.nan_mean(np.array([]))))
+
+
 class FlagTest(unittest.TestCase):
     def test_relative_difference(self):
         self.assertAlmostEqual(stats.relative_difference(3.0, 2.5), 0.2)
