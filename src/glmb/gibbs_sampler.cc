@@ -46,21 +46,33 @@ double LogAssociationWeight(EtaRows rows, const Association& gamma) {
 
 namespace {
 
+/// The better of death and miss for a row that takes no measurement; ties go to "missed".
+int PrivateValue(const EtaRow& row) { return row.log_miss >= row.log_death ? 0 : -1; }
+
+/// A row's own best value and its log eta (-inf when the row allows no value).
+struct OwnBest {
+  int value = 0;
+  double log_eta = kNegInf;
+};
+
+/// The row's own best value: the first of equal measurements, "missed" over "dead" at a tie.
+OwnBest OwnBestOf(const EtaRow& row) {
+  OwnBest best{PrivateValue(row), std::max(row.log_miss, row.log_death)};
+  for (const auto& [j, v] : row.detections) {
+    if (v > best.log_eta) best = OwnBest{j + 1, v};
+  }
+  return best;
+}
+
 /// Every row at its own best value, into gamma; false when two rows want one measurement (or a
 /// row has no allowed value). When it exists it is the optimum: each factor is at its maximum.
 bool RowWiseBest(EtaRows rows, int measurements, Association& gamma, std::vector<char>& taken) {
   gamma.resize(rows.size());
   taken.assign(static_cast<std::size_t>(measurements), 0);
   for (std::size_t i = 0; i < rows.size(); ++i) {
-    int g = rows[i].log_miss >= rows[i].log_death ? 0 : -1;
-    double best = std::max(rows[i].log_miss, rows[i].log_death);
-    for (const auto& [j, v] : rows[i].detections) {
-      if (v > best) {
-        best = v;
-        g = j + 1;
-      }
-    }
-    if (best == kNegInf) return false;
+    const OwnBest best = OwnBestOf(rows[i]);
+    const int g = best.value;
+    if (best.log_eta == kNegInf) return false;
     if (g > 0) {
       if (taken[g - 1] != 0) return false;
       taken[g - 1] = 1;
@@ -68,22 +80,6 @@ bool RowWiseBest(EtaRows rows, int measurements, Association& gamma, std::vector
     gamma[i] = g;
   }
   return true;
-}
-
-/// The better of death and miss for a row that takes no measurement; ties go to "missed".
-int PrivateValue(const EtaRow& row) { return row.log_miss >= row.log_death ? 0 : -1; }
-
-/// The row's own best value (the first of equal measurements, "missed" over "dead" at a tie).
-int OwnBestValue(const EtaRow& row) {
-  int g = PrivateValue(row);
-  double best = std::max(row.log_miss, row.log_death);
-  for (const auto& [j, v] : row.detections) {
-    if (v > best) {
-      best = v;
-      g = j + 1;
-    }
-  }
-  return g;
 }
 
 /// The root of measurement j's set in `parent` (path halving).
@@ -163,7 +159,7 @@ bool GroupRows(EtaRows rows, int measurements, Association& out, AssociationScra
 bool SolveGroup(EtaRows rows, std::span<const int> group, Association& out, AssociationScratch& s) {
   bool collide = false;
   for (const int i : group) {
-    const int g = OwnBestValue(rows[static_cast<std::size_t>(i)]);
+    const int g = OwnBestOf(rows[static_cast<std::size_t>(i)]).value;
     out[static_cast<std::size_t>(i)] = g;
     if (g > 0 && s.taken[static_cast<std::size_t>(g - 1)]++ != 0) collide = true;
   }

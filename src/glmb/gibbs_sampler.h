@@ -65,11 +65,11 @@ std::optional<Association> OptimalAssociation(EtaRows rows, int measurements);
 /// The buffers of OptimalAssociation, for a caller that solves many eta matrices.
 struct AssociationScratch {
   std::vector<char> taken;
-  std::vector<int> set_parent;      ///< disjoint sets of the measurements
-  std::vector<int> contested;       ///< rows with an allowed measurement
-  std::vector<int> group_begin;     ///< per set root: where its rows start in `grouped`
-  std::vector<int> grouped;         ///< the contested rows by set, ascending within a set
-  std::vector<int> column_of;       ///< a measurement's column in its group's problem
+  std::vector<int> set_parent;   ///< disjoint sets of the measurements
+  std::vector<int> contested;    ///< pairs (set of its first measurement, row) of the rows with one
+  std::vector<int> group_begin;  ///< per set root: where its rows start in `grouped`
+  std::vector<int> grouped;      ///< the contested rows by set, ascending within a set
+  std::vector<int> column_of;    ///< a measurement's column in its group's problem
   std::vector<int> measurement_of;  ///< a group's measurements, ascending
   assignment::ShortestAugmentingPath solver;
 };
