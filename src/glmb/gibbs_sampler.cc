@@ -330,6 +330,13 @@ bool SetRow(int n, int pick, ChainState& state) {
   return true;
 }
 
+/// Whether a row's largest value is its pick for u without the running sums: the value is free (its
+/// owner slot holds -1) or row n's own, and u times the row's total with every value allowed is
+/// below 1 (ResampleRowAt).
+bool TopIsPick(int top_owner, int n, double u, double total) {
+  return (top_owner == -1 || top_owner == n) && u * total < 1.0;
+}
+
 /// Resamples gamma[n], whose values are row `row` of `rows`, from its conditional given u, the
 /// uniform of this row and sweep; true when it changed. The pick is the first allowed value (in
 /// the row's order) whose running sum of allowed weights exceeds u times their total. The largest
@@ -344,10 +351,7 @@ bool ResampleRowAt(double u, const SamplerRows& rows, int row, int n, ChainState
   const int* slot = rows.slot.data() + first;
   const double* weight = rows.weight.data() + first;
   const int* owner = state.owner.data();
-  const int o_top = owner[slot[0]];
-  if ((o_top == -1 || o_top == n) && u * rows.total[row] < 1.0) {
-    return SetRow(n, value[0], state);
-  }
+  if (TopIsPick(owner[slot[0]], n, u, rows.total[row])) return SetRow(n, value[0], state);
   double* cumulative = state.cumulative.data();
   double total = 0.0;
   int last_allowed = -1;
@@ -440,21 +444,33 @@ class IntList {
   std::size_t size_ = 0;
 };
 
+/// Chain row n, of table row `row`, as a dense row: its largest value and owner slot, and the
+/// row's total (+inf for a row without values, whose every visit then takes ResampleRowAt).
+DenseChainRow DenseRowOf(const SamplerRows& table, int row, int n, int measurements) {
+  const int first = table.begin[row];
+  if (table.begin[row + 1] == first) {
+    return {n, row, measurements, 0, std::numeric_limits<double>::infinity()};
+  }
+  return {n, row, table.slot[first], table.value[first], table.total[row]};
+}
+
 /// The chain's rows by how they are resampled, in storage reused over its sweeps.
 struct ChainRows {
-  ChainRows(int n_rows, std::vector<int>& storage)
-      : dense(Reserve(storage, n_rows)),
-        rare(storage.data() + n_rows),
-        away(storage.data() + 2 * static_cast<std::ptrdiff_t>(n_rows)),
-        due(storage.data() + 3 * static_cast<std::ptrdiff_t>(n_rows)) {}
+  ChainRows(int n_rows, std::vector<int>& storage, std::vector<DenseChainRow>& dense_storage)
+      : dense(dense_storage),
+        rare(Reserve(storage, n_rows)),
+        away(storage.data() + n_rows),
+        due(storage.data() + 2 * static_cast<std::ptrdiff_t>(n_rows)) {
+    dense.clear();
+  }
   static int* Reserve(std::vector<int>& storage, int n_rows) {
-    storage.resize(5 * static_cast<std::size_t>(n_rows));
+    storage.resize(4 * static_cast<std::size_t>(n_rows));
     return storage.data();
   }
-  IntList dense;  ///< positions resampled every sweep with their own uniform
-  IntList rare;   ///< positions of rare rows
-  IntList away;   ///< rare rows not at their largest value after the last sweep
-  IntList due;    ///< this sweep's rare rows to visit: 2 n + (1 when it leaves); at most 2 per row
+  std::vector<DenseChainRow>& dense;  ///< rows resampled every sweep with their own uniform
+  IntList rare;                       ///< positions of rare rows
+  IntList away;                       ///< rare rows not at their largest value after the last sweep
+  IntList due;  ///< this sweep's rare rows to visit: 2 n + (1 when it leaves); at most 2 per row
 };
 
 /// Visits the rows of sweep s in order: the dense ones from their conditionals, the due rare
@@ -472,7 +488,7 @@ bool RunSweep(std::int64_t s, const SamplerRows& table, std::span<const int> ind
   std::size_t d = 0;
   const int n_rows = static_cast<int>(state.gamma.size());
   for (std::size_t r = 0; r <= rows.dense.size(); ++r) {
-    const int until = r < rows.dense.size() ? rows.dense[r] : n_rows;
+    const int until = r < rows.dense.size() ? rows.dense[r].n : n_rows;
     for (; d < rows.due.size() && rows.due[d] / 2 < until; ++d) {
       const int n = rows.due[d] / 2;
       // An away row that also leaves appears twice (2 n, 2 n + 1): the second visit decides.
@@ -488,8 +504,13 @@ bool RunSweep(std::int64_t s, const SamplerRows& table, std::span<const int> ind
       if (state.gamma[n] != top_of(n)) rows.away.push_back(n);
     }
     if (r < rows.dense.size()) {
-      const int n = rows.dense[r];
-      changed |= ResampleRowAt(uniforms.Next(), table, TableRow(index, n), n, state);
+      // ResampleRowAt's shortcut from the chain's copy of the row's look-ups, then the row itself.
+      const DenseChainRow& dense = rows.dense[r];
+      const double u = uniforms.Next();
+      changed |=
+          TopIsPick(state.owner[static_cast<std::size_t>(dense.top_slot)], dense.n, u, dense.total)
+              ? SetRow(dense.n, dense.top_value, state)
+              : ResampleRowAt(u, table, dense.row, dense.n, state);
     }
   }
   return changed;
@@ -516,11 +537,11 @@ void RunChain(const SamplerRows& table, std::span<const int> index, int measurem
   ChainUniforms uniforms(rng.NextU64());
   state.cumulative.resize(static_cast<std::size_t>(table.widest));
   const int n_rows = static_cast<int>(start.size());
-  ChainRows rows(n_rows, scratch.rows);
+  ChainRows rows(n_rows, scratch.rows, scratch.dense);
   for (int n = 0; n < n_rows; ++n) {
     const int row = TableRow(index, n);
     if (table.rare[row] == 0) {
-      rows.dense.push_back(n);
+      rows.dense.push_back(DenseRowOf(table, row, n, measurements));
       continue;
     }
     rows.rare.push_back(n);

@@ -129,6 +129,16 @@ std::vector<Association> DistinctGibbsSamples(const SamplerRows& table, std::spa
                                               int measurements, const Association& start,
                                               int samples, RandomStream& rng);
 
+/// A row that a chain resamples at every sweep, with the look-ups of its common case (its largest
+/// value free and u times its total below 1), copied from SamplerRows once per chain.
+struct DenseChainRow {
+  int n = 0;           ///< the chain's row
+  int row = 0;         ///< its row of the SamplerRows table
+  int top_slot = 0;    ///< the owner slot of its largest value
+  int top_value = 0;   ///< its largest value
+  double total = 0.0;  ///< SamplerRows::total of the row
+};
+
 /// Buffers of the chains (their state, rows and set of distinct samples), which a caller running
 /// many chains reuses to save their allocations; their contents between calls mean nothing.
 struct GibbsScratch {
@@ -136,6 +146,7 @@ struct GibbsScratch {
   std::vector<int> owner;
   std::vector<double> cumulative;
   std::vector<int> rows;
+  std::vector<DenseChainRow> dense;
   std::vector<int> store;
   std::vector<std::uint64_t> hashes;
   std::vector<int> table;  ///< HashSlots of the distinct samples
