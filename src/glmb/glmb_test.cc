@@ -8,6 +8,7 @@
 #include <limits>
 #include <map>
 #include <numbers>
+#include <random>
 #include <set>
 #include <stdexcept>
 
@@ -659,8 +660,10 @@ TEST(KernelProposal, PoseUpdateOfOneDetectionIsTheEkfUpdate) {
   ASSERT_EQ(problem.terms[0].detections.size(), 1u);
   EXPECT_LT((problem.terms[0].detections[0].s - s).norm(), 1e-12);
   // Collapse of {detected, missed}: the moments of the two-component mixture.
-  const std::vector<SampledAssociation> samples{{0, Association{0}, std::log(0.25)},
-                                                {0, Association{1}, std::log(0.75)}};
+  const Association missed{0};
+  const Association detected{1};
+  const std::vector<SampledAssociation> samples{{0, missed, std::log(0.25)},
+                                                {0, detected, std::log(0.75)}};
   const KernelProposal kp =
       BuildKernelProposal(problem, samples, kPose, sigma0, std::span(&z, 1), f.sensor.noise_cov,
                           KernelAssociations::kAll, KernelForm::kCollapse);
@@ -671,6 +674,65 @@ TEST(KernelProposal, PoseUpdateOfOneDetectionIsTheEkfUpdate) {
   EXPECT_LT((kp.mixture.means[0] - mu).norm(), 1e-12);
   EXPECT_LT((kp.mixture.covs[0] - expected).norm(), 1e-12);
   EXPECT_NEAR(kp.log_marginal, 0.0, 1e-12);
+}
+
+TEST(KernelProposal, MixtureComponentsAreEachSamplesOwnPoseUpdate) {
+  // Four landmarks, each detected once, and one clutter measurement; the samples are every
+  // association of rows in {missed, own detection, clutter} with at most one row on the clutter,
+  // in lexicographic order (neighbours share their first rows, as a parent's samples do) and then
+  // shuffled. Each component of the mixture must equal the sample's pose update from scratch.
+  Fixture f(0.9, 0.95, 0.05, 1.0);
+  const Mat3 sigma0 = Vec3(0.04, 0.05, 0.002).asDiagonal();
+  f.setup.pose_cov = sigma0;
+  const std::array<Landmark, 4> landmarks{Landmark(3.0, 2.5), Landmark(4.5, 4.0),
+                                          Landmark(0.5, 5.0), Landmark(2.0, -1.0)};
+  std::vector<TrackPtr> tracks;
+  std::vector<Measurement> scan;
+  for (std::size_t i = 0; i < landmarks.size(); ++i) {
+    tracks.push_back(MakeTrack(i + 1, Label{1, static_cast<int>(i)}, landmarks[i],
+                               Vec2(0.02, 0.03).asDiagonal()));
+    scan.push_back(models::PredictMeasurement(kPose, landmarks[i]) +
+                   Vec2(0.01 * static_cast<double>(i), -0.003));
+  }
+  scan.emplace_back(6.0, 0.4);
+  const JointProblem problem =
+      BuildJointProblem(Single(tracks), {}, {}, kPose, scan, f.setup, f.settings);
+  ASSERT_EQ(problem.parents.size(), 1u);
+  ASSERT_EQ(problem.parents[0].rows.size(), landmarks.size());
+  std::vector<Association> associations;
+  for (int code = 0; code < 81; ++code) {
+    Association gamma;
+    int on_clutter = 0;
+    for (int i = 0, c = code; i < 4; ++i, c /= 3) {
+      const int choice = c % 3;  // 0 missed, 1 its own measurement, 2 the clutter
+      gamma.push_back(choice == 0 ? 0 : choice == 1 ? i + 1 : 5);
+      on_clutter += choice == 2 ? 1 : 0;
+    }
+    if (on_clutter <= 1) associations.push_back(gamma);
+  }
+  std::sort(associations.begin(), associations.end());
+  const std::size_t sorted = associations.size();
+  std::vector<Association> shuffled(associations.begin(), associations.end());
+  std::mt19937_64 engine(7);
+  std::shuffle(shuffled.begin(), shuffled.end(), engine);
+  associations.insert(associations.end(), shuffled.begin(), shuffled.end());
+  std::vector<SampledAssociation> samples;
+  samples.reserve(associations.size());
+  for (const Association& gamma : associations) samples.push_back({0, gamma, 0.0});
+  const KernelProposal kp =
+      BuildKernelProposal(problem, samples, kPose, sigma0, scan, f.sensor.noise_cov,
+                          KernelAssociations::kAll, KernelForm::kMixture);
+  ASSERT_EQ(kp.mixture.size(), 2 * sorted);
+  for (std::size_t k = 0; k < associations.size(); ++k) {
+    Pose mean = kPose;
+    Mat3 cov = sigma0;
+    UpdatePoseWithAssociation(problem, problem.parents[0], associations[k], scan,
+                              f.sensor.noise_cov, mean, cov);
+    for (int r = 0; r < 3; ++r) {
+      EXPECT_EQ(kp.mixture.means[k](r), mean(r)) << "sample " << k;
+      for (int c = 0; c < 3; ++c) EXPECT_EQ(kp.mixture.covs[k](r, c), cov(r, c)) << "sample " << k;
+    }
+  }
 }
 
 TEST(Lmb, RoundTripThroughDeltaGlmbIsTheIdentity) {

@@ -12,25 +12,92 @@
 
 namespace phdslam::glmb {
 
+namespace {
+
+/// One detected row of UpdatePoseWithAssociation: entry `track` detected by z.
+void UpdatePoseWithDetection(const Track& track, const Measurement& z, const Mat2& noise_cov,
+                             Pose& mean, Mat3& cov) {
+  const TrackComponent& c = track.Heaviest();
+  const models::RangeBearingJacobians jac = models::MeasurementJacobians(mean, c.mean);
+  Vec2 nu = z - models::PredictMeasurement(mean, c.mean);
+  nu(1) = WrapAngle(nu(1));
+  Mat2 noise = jac.hm * c.cov * jac.hm.transpose() + noise_cov;
+  Symmetrize(noise);
+  Mat2 s = jac.hx * cov * jac.hx.transpose() + noise;
+  Symmetrize(s);
+  const Mat32 k = cov * jac.hx.transpose() * s.inverse();
+  const Mat3 a = Mat3::Identity() - k * jac.hx;
+  mean += k * nu;
+  cov = a * cov * a.transpose() + k * noise * k.transpose();
+  Symmetrize(cov);
+}
+
+/// UpdatePoseWithAssociation for a sequence of samples, each resuming from the states its
+/// predecessor passed through on the rows the two share (the same parent and the same values on
+/// rows [0, L)): the same updates in the same order, so the same poses bit for bit. A parent's
+/// distinct samples come in lexicographic order, so that neighbours share their first rows.
+class PoseUpdatesByPrefix {
+ public:
+  PoseUpdatesByPrefix(const JointProblem& problem, std::span<const Measurement> measurements,
+                      const Mat2& noise_cov, const Pose& mean, const Mat3& cov)
+      : problem_(problem), measurements_(measurements), noise_cov_(noise_cov) {
+    states_.push_back(State{mean, cov});
+  }
+
+  /// The updated pose of `sample` into mean and cov.
+  void Update(const SampledAssociation& sample, Pose& mean, Mat3& cov) {
+    const JointProblem::Parent& parent = problem_.parents[sample.parent];
+    const std::span<const int> gamma = sample.gamma;
+    std::size_t shared = 0;
+    if (sample.parent == last_parent_) {
+      while (shared < gamma.size() && gamma[shared] == last_gamma_[shared]) ++shared;
+    }
+    // after_[i]: the number of updates through row i of the last sample; states_[k] the state
+    // after k of them.
+    const std::size_t done = shared > 0 ? after_[shared - 1] : 0;
+    states_.resize(done + 1);
+    after_.resize(gamma.size());
+    for (std::size_t i = shared; i < gamma.size(); ++i) {
+      const int g = gamma[i];
+      if (g > 0) {
+        State next = states_.back();
+        UpdatePoseWithDetection(*problem_.entries[parent.rows[i]], measurements_[g - 1], noise_cov_,
+                                next.mean, next.cov);
+        states_.push_back(next);
+      }
+      after_[i] = states_.size() - 1;
+    }
+    last_parent_ = sample.parent;
+    last_gamma_ = gamma;
+    mean = states_.back().mean;
+    cov = states_.back().cov;
+  }
+
+ private:
+  struct State {
+    Pose mean;
+    Mat3 cov;
+  };
+  const JointProblem& problem_;
+  std::span<const Measurement> measurements_;
+  const Mat2& noise_cov_;
+  std::vector<State> states_;
+  std::vector<std::size_t> after_;
+  int last_parent_ = -1;
+  std::span<const int> last_gamma_;  ///< a view of the last sample's values
+};
+
+}  // namespace
+
 void UpdatePoseWithAssociation(const JointProblem& problem, const JointProblem::Parent& parent,
-                               const Association& gamma, std::span<const Measurement> measurements,
-                               const Mat2& noise_cov, Pose& mean, Mat3& cov) {
+                               std::span<const int> gamma,
+                               std::span<const Measurement> measurements, const Mat2& noise_cov,
+                               Pose& mean, Mat3& cov) {
   for (std::size_t i = 0; i < parent.rows.size(); ++i) {
     const int g = gamma[i];
     if (g <= 0) continue;
-    const TrackComponent& c = problem.entries[parent.rows[i]]->Heaviest();
-    const models::RangeBearingJacobians jac = models::MeasurementJacobians(mean, c.mean);
-    Vec2 nu = measurements[g - 1] - models::PredictMeasurement(mean, c.mean);
-    nu(1) = WrapAngle(nu(1));
-    Mat2 noise = jac.hm * c.cov * jac.hm.transpose() + noise_cov;
-    Symmetrize(noise);
-    Mat2 s = jac.hx * cov * jac.hx.transpose() + noise;
-    Symmetrize(s);
-    const Mat32 k = cov * jac.hx.transpose() * s.inverse();
-    const Mat3 a = Mat3::Identity() - k * jac.hx;
-    mean += k * nu;
-    cov = a * cov * a.transpose() + k * noise * k.transpose();
-    Symmetrize(cov);
+    UpdatePoseWithDetection(*problem.entries[parent.rows[i]], measurements[g - 1], noise_cov, mean,
+                            cov);
   }
 }
 
@@ -58,11 +125,11 @@ KernelProposal BuildKernelProposal(const JointProblem& problem,
   }
   std::vector<filters::PoseMoments> parts;
   parts.reserve(used.size());
+  PoseUpdatesByPrefix updates(problem, measurements, noise_cov, mean, cov);
   for (std::size_t s : used) {
-    Pose mu = mean;
-    Mat3 sigma = cov;
-    UpdatePoseWithAssociation(problem, problem.parents[samples[s].parent], samples[s].gamma,
-                              measurements, noise_cov, mu, sigma);
+    Pose mu;
+    Mat3 sigma;
+    updates.Update(samples[s], mu, sigma);
     parts.push_back(filters::PoseMoments{log_w[s] - out.log_marginal, mu, sigma});
   }
   if (form == KernelForm::kMixture || parts.size() == 1) {

@@ -23,8 +23,9 @@ struct KernelProposal {
 /// measurement j) in row order updates the pose with H_x at the current mean and noise
 /// H_m P_e H_m' + R (the entry's heaviest component), Joseph form, symmetrised.
 void UpdatePoseWithAssociation(const JointProblem& problem, const JointProblem::Parent& parent,
-                               const Association& gamma, std::span<const Measurement> measurements,
-                               const Mat2& noise_cov, Pose& mean, Mat3& cov);
+                               std::span<const int> gamma,
+                               std::span<const Measurement> measurements, const Mat2& noise_cov,
+                               Pose& mean, Mat3& cov);
 
 /// The proposal from `samples` (from a problem built at `mean` with pose_cov = `cov`). With no
 /// samples it is N(mean, cov) and log_marginal = -inf.
