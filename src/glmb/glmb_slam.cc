@@ -83,10 +83,10 @@ std::optional<filters::ProposalOutput> GlmbMapModel::Propose(
   const JointProblem problem =
       BuildJointProblem(map.hypotheses, {}, map.births, input.predicted_mean, input.measurements,
                         setup, common_.settings());
-  const std::vector<SampledAssociation> samples =
+  const SampledAssociations sampled =
       SampleAssociations(problem, common_.settings(), common_.rng());
   KernelProposal kernel = BuildKernelProposal(
-      problem, samples, input.predicted_mean, input.predicted_cov, input.measurements,
+      problem, sampled.samples, input.predicted_mean, input.predicted_cov, input.measurements,
       setup.noise_cov, params.kernel_associations, params.kernel_form);
   filters::ProposalOutput out;
   out.mixture = std::move(kernel.mixture);

@@ -79,7 +79,7 @@ class LogEtaTable {
   }
 
   /// sum_i log eta_{rows[i]}(gamma_i) for a valid gamma.
-  [[nodiscard]] double LogWeight(std::span<const int> rows, const Association& gamma) const {
+  [[nodiscard]] double LogWeight(std::span<const int> rows, std::span<const int> gamma) const {
     double total = 0.0;
     for (std::size_t i = 0; i < rows.size(); ++i) {
       total += values_[static_cast<std::size_t>(rows[i]) * width_ +
@@ -150,14 +150,14 @@ JointProblem BuildJointProblem(std::span<const Hypothesis> prior, std::span<cons
   return p;
 }
 
-std::vector<SampledAssociation> SampleAssociations(const JointProblem& problem,
-                                                   const UpdateSettings& settings,
-                                                   RandomStream& rng) {
+SampledAssociations SampleAssociations(const JointProblem& problem, const UpdateSettings& settings,
+                                       RandomStream& rng) {
   std::vector<double> half_log_w;
   half_log_w.reserve(problem.parents.size());
   for (const JointProblem::Parent& h : problem.parents) half_log_w.push_back(0.5 * h.log_weight);
   const double norm = LogSumExp(half_log_w);
-  std::vector<SampledAssociation> out;
+  SampledAssociations out;
+  std::vector<std::size_t> first_value;  // each sample's first value in out.values
   const SamplerRows sampler_rows = MakeSamplerRows(problem.eta, problem.measurements);
   GibbsScratch scratch;   // reused by every parent's chain
   std::vector<int> flat;  // a chain's distinct samples, one after the other
@@ -178,10 +178,12 @@ std::vector<SampledAssociation> SampleAssociations(const JointProblem& problem,
       have_start = OptimalAssociation(eta, problem.measurements, start, association_scratch);
     }
     if (!have_start) continue;
-    auto add = [&](Association gamma) {
+    auto add = [&](std::span<const int> gamma) {
       // Valid: a chain's sample, or a start checked above.
       const double lw = parent.log_weight + log_eta.LogWeight(parent.rows, gamma) + problem.log_ck;
-      out.push_back(SampledAssociation{h, std::move(gamma), lw});
+      first_value.push_back(out.values.size());
+      out.values.insert(out.values.end(), gamma.begin(), gamma.end());
+      out.samples.push_back(SampledAssociation{h, {}, lw});
     };
     if (t_h == 1) {
       add(start);
@@ -189,11 +191,14 @@ std::vector<SampledAssociation> SampleAssociations(const JointProblem& problem,
     }
     const std::size_t count = DistinctGibbsSamples(sampler_rows, parent.rows, problem.measurements,
                                                    start, t_h, rng, scratch, flat);
-    const auto length = static_cast<std::ptrdiff_t>(start.size());
     for (std::size_t k = 0; k < count; ++k) {
-      const auto first = flat.begin() + static_cast<std::ptrdiff_t>(k) * length;
-      add(Association(first, first + length));
+      add(std::span<const int>(flat).subspan(k * start.size(), start.size()));
     }
+  }
+  // The views, once the buffer has stopped growing.
+  for (std::size_t k = 0; k < out.samples.size(); ++k) {
+    const std::size_t rows = problem.parents[out.samples[k].parent].rows.size();
+    out.samples[k].gamma = std::span<const int>(out.values).subspan(first_value[k], rows);
   }
   return out;
 }
@@ -250,14 +255,10 @@ class DetectionChildren {
         slots_(problem.entries.size() * static_cast<std::size_t>(problem.measurements)) {}
 
   /// The id of the child of entry e detected by z_j, taken from next_id at its first use.
-  std::uint64_t Id(int e, int j) {
-    Slot& slot = At(e, j);
-    if (!slot.has_id) {
-      slot.id = next_id_++;
-      slot.has_id = true;
-    }
-    return slot.id;
-  }
+  std::uint64_t Id(int e, int j) { return Named(e, j).id; }
+
+  /// IdTerm of that id, computed once.
+  std::uint64_t IdTermOf(int e, int j) { return Named(e, j).id_term; }
 
   /// The child's track, made at the first call; its id was taken before (Id).
   const TrackPtr& TrackOf(int e, int j) {
@@ -274,9 +275,20 @@ class DetectionChildren {
  private:
   struct Slot {
     std::uint64_t id = 0;
+    std::uint64_t id_term = 0;
     bool has_id = false;
     TrackPtr track;
   };
+  /// The slot of (e, j) with its id, taken from next_id at its first use.
+  Slot& Named(int e, int j) {
+    Slot& slot = At(e, j);
+    if (!slot.has_id) {
+      slot.id = next_id_++;
+      slot.id_term = IdTerm(slot.id);
+      slot.has_id = true;
+    }
+    return slot;
+  }
   Slot& At(int e, int j) {
     return slots_[static_cast<std::size_t>(e) * static_cast<std::size_t>(problem_.measurements) +
                   static_cast<std::size_t>(j)];
@@ -311,7 +323,11 @@ class ChildIndex {
         detection_(detection),
         pass_through_(problem.parents.size()) {
     entry_id_.reserve(problem.entries.size());
-    for (const TrackPtr& t : problem.entries) entry_id_.push_back(t->id);
+    entry_id_term_.reserve(problem.entries.size());
+    for (const TrackPtr& t : problem.entries) {
+      entry_id_.push_back(t->id);
+      entry_id_term_.push_back(IdTerm(t->id));
+    }
   }
 
   /// Adds sample s to its child, or starts a child; detection ids are taken in row order.
@@ -372,8 +388,8 @@ class ChildIndex {
     for (std::size_t i = 0; i < parent.rows.size(); ++i) {
       const int g = sample.gamma[i];
       const int e = parent.rows[i];
-      if (g == 0) hash += IdTerm(entry_id_[e]);
-      if (g > 0) hash += IdTerm(detection_.Id(e, g - 1));
+      if (g == 0) hash += entry_id_term_[e];
+      if (g > 0) hash += detection_.IdTermOf(e, g - 1);
     }
     return hash;
   }
@@ -425,6 +441,7 @@ class ChildIndex {
   std::span<const SampledAssociation> samples_;
   DetectionChildren& detection_;
   std::vector<std::uint64_t> entry_id_;
+  std::vector<std::uint64_t> entry_id_term_;  ///< IdTerm of entry_id_
   /// A parent's pass-through entries: pass_through_entries_[begin, begin + size) and their hash.
   struct PassThroughPart {
     std::size_t begin = 0;
@@ -516,9 +533,9 @@ UpdateResult JointUpdate(std::span<const Hypothesis> prior, std::span<const doub
   at_pose.pose_cov.setZero();
   const JointProblem problem =
       BuildJointProblem(prior, existence, births, x, measurements, at_pose, settings);
-  const std::vector<SampledAssociation> samples = SampleAssociations(problem, settings, rng);
+  const SampledAssociations sampled = SampleAssociations(problem, settings, rng);
   UpdateResult result =
-      BuildPosterior(problem, samples, x, measurements, at_pose, settings, next_id);
+      BuildPosterior(problem, sampled.samples, x, measurements, at_pose, settings, next_id);
   if (result.hypotheses.empty()) {
     result.hypotheses.assign(prior.begin(), prior.end());
     result.log_normaliser = kNegInf;

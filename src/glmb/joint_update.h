@@ -67,15 +67,28 @@ JointProblem BuildJointProblem(std::span<const Hypothesis> prior, std::span<cons
 /// log w_h + sum_i log eta_i(gamma_i) + c_k.
 struct SampledAssociation {
   int parent = 0;
-  Association gamma;
+  std::span<const int> gamma;  ///< a view of the values it was sampled into (SampledAssociations)
   double log_weight = 0.0;
+};
+
+/// The sampled associations of a joint problem, their values one after the other in one buffer
+/// that their views point into. Movable (the buffer moves with them), not copyable.
+struct SampledAssociations {
+  SampledAssociations() = default;
+  SampledAssociations(SampledAssociations&&) = default;
+  SampledAssociations& operator=(SampledAssociations&&) = default;
+  SampledAssociations(const SampledAssociations&) = delete;
+  SampledAssociations& operator=(const SampledAssociations&) = delete;
+  ~SampledAssociations() = default;
+
+  std::vector<int> values;
+  std::vector<SampledAssociation> samples;
 };
 
 /// T_h = round(H_upd sqrt(w_h) / sum sqrt(w_h')), at least 1, samples per parent; distinct
 /// samples in parent order. A parent without a valid association contributes nothing.
-std::vector<SampledAssociation> SampleAssociations(const JointProblem& problem,
-                                                   const UpdateSettings& settings,
-                                                   RandomStream& rng);
+SampledAssociations SampleAssociations(const JointProblem& problem, const UpdateSettings& settings,
+                                       RandomStream& rng);
 
 struct UpdateResult {
   std::vector<Hypothesis> hypotheses;  ///< normalised, pruned and capped, descending weight
