@@ -85,6 +85,7 @@ void EvaluateTrajectory(const RunRecord& record, const datasets::Scenario& scena
       ev.metrics.position_m.Add(ev.position_error_m[k]);
       ev.metrics.heading_deg.Add(ev.heading_error_deg[k]);
     }
+    const double threshold = EllipsoidThreshold(3);
     for (std::size_t k = 0; k < n && k < record.pose_covs.size(); ++k) {
       if (!truth.PoseScored(k)) continue;
       if (!record.pose_covs[k] || !CholeskyLower<3>(*record.pose_covs[k])) continue;
@@ -95,7 +96,7 @@ void EvaluateTrajectory(const RunRecord& record, const datasets::Scenario& scena
         if (!std::isfinite(nees)) continue;
         ev.pose_nees[k] = nees;
         ev.metrics.pose_nees.Add(nees);
-        if (nees <= EllipsoidThreshold(3)) ++ev.metrics.pose_coverage_inside;
+        if (nees <= threshold) ++ev.metrics.pose_coverage_inside;
       } catch (const std::invalid_argument&) {
         // Not symmetric positive definite by PoseNees' test: this step has no NEES.
       }
