@@ -157,7 +157,6 @@ SampledAssociations SampleAssociations(const JointProblem& problem, const Update
   for (const JointProblem::Parent& h : problem.parents) half_log_w.push_back(0.5 * h.log_weight);
   const double norm = LogSumExp(half_log_w);
   SampledAssociations out;
-  std::vector<std::size_t> first_value;  // each sample's first value in out.values
   const SamplerRows sampler_rows = MakeSamplerRows(problem.eta, problem.measurements);
   GibbsScratch scratch;   // reused by every parent's chain
   std::vector<int> flat;  // a chain's distinct samples, one after the other
@@ -181,7 +180,6 @@ SampledAssociations SampleAssociations(const JointProblem& problem, const Update
     auto add = [&](std::span<const int> gamma) {
       // Valid: a chain's sample, or a start checked above.
       const double lw = parent.log_weight + log_eta.LogWeight(parent.rows, gamma) + problem.log_ck;
-      first_value.push_back(out.values.size());
       out.values.insert(out.values.end(), gamma.begin(), gamma.end());
       out.samples.push_back(SampledAssociation{h, {}, lw});
     };
@@ -195,10 +193,12 @@ SampledAssociations SampleAssociations(const JointProblem& problem, const Update
       add(std::span<const int>(flat).subspan(k * start.size(), start.size()));
     }
   }
-  // The views, once the buffer has stopped growing.
-  for (std::size_t k = 0; k < out.samples.size(); ++k) {
-    const std::size_t rows = problem.parents[out.samples[k].parent].rows.size();
-    out.samples[k].gamma = std::span<const int>(out.values).subspan(first_value[k], rows);
+  // The views, once the buffer has stopped growing: the samples' values lie one after the other.
+  std::size_t first = 0;
+  for (SampledAssociation& sample : out.samples) {
+    const std::size_t rows = problem.parents[sample.parent].rows.size();
+    sample.gamma = std::span<const int>(out.values).subspan(first, rows);
+    first += rows;
   }
   return out;
 }
