@@ -3,6 +3,8 @@
 #include <Eigen/LU>
 #include <cmath>
 #include <limits>
+#include <numbers>
+#include <optional>
 #include <vector>
 
 #include "src/core/angles.h"
@@ -145,6 +147,103 @@ TEST(Gaussian, Cholesky2GivesEigenLltsVerdictAndInverseBitForBit) {
   }
   EXPECT_GT(positive_definite, 100000);
   EXPECT_GT(not_positive_definite, 10000);
+}
+
+// Symmetric 3x3 matrices of every kind Cholesky3 meets: well and badly conditioned positive
+// definite ones over many scales, indefinite, singular, zero and NaN ones.
+Eigen::Matrix3d RandomSymmetric3(RandomStream& rng, int trial) {
+  const double scale = std::pow(10.0, rng.Uniform(-8.0, 8.0));
+  Eigen::Matrix3d b;
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) b(r, c) = rng.Uniform(-1.0, 1.0);
+  }
+  Eigen::Matrix3d a = scale * (b * b.transpose());
+  for (int i = 0; i < 3; ++i) a(i, i) += scale * rng.Uniform(-0.05, 0.3);
+  if (trial % 97 == 0) {  // singular: the third row the sum of the others
+    a.row(2) = a.row(0) + a.row(1);
+    a.col(2) = a.row(2).transpose();
+  }
+  if (trial % 89 == 0) a.setZero();
+  if (trial % 83 == 0) a(2, 1) = a(1, 2) = std::numeric_limits<double>::quiet_NaN();
+  if (trial % 79 == 0) a(0, 0) = -a(0, 0);
+  return a;
+}
+
+TEST(Gaussian, Cholesky3GivesEigenLltsValuesBitForBit) {
+  RandomStream rng(13);
+  int positive_definite = 0;
+  int not_positive_definite = 0;
+  for (int trial = 0; trial < 200000; ++trial) {
+    const Eigen::Matrix3d a = RandomSymmetric3(rng, trial);
+    const Eigen::LLT<Eigen::Matrix3d> llt(a);
+    const Cholesky3 factor(a);
+    ASSERT_EQ(factor.positive_definite(), LltIsPositiveDefinite(llt)) << "trial " << trial << "\n"
+                                                                      << a;
+    if (!factor.positive_definite()) {
+      ++not_positive_definite;
+      continue;
+    }
+    ++positive_definite;
+    const Eigen::Vector3d r(rng.Normal(), rng.Normal(), rng.Normal());
+    Eigen::Matrix3d b;
+    for (int c = 0; c < 3; ++c)
+      b.col(c) = Eigen::Vector3d(rng.Normal(), rng.Normal(), rng.Normal());
+    const Eigen::Matrix3d l = llt.matrixL();
+    // Bit for bit, not approximately.
+    ASSERT_EQ(factor.LogDet(), 2.0 * llt.matrixLLT().diagonal().array().log().sum()) << trial;
+    const Eigen::Vector3d lower = l.triangularView<Eigen::Lower>().solve(r);
+    const Eigen::Vector3d full = llt.solve(r);
+    ASSERT_EQ(factor.SolveLower(r), lower) << trial;
+    ASSERT_EQ(factor.Solve(r), full) << trial;
+    ASSERT_EQ(factor.TraceOfSolve(b), llt.solve(b).trace()) << trial;
+    ASSERT_EQ(factor.L(), l) << trial;
+    ASSERT_EQ(factor.LogDiagonalSum(), l.diagonal().array().log().sum()) << trial;
+    const Eigen::Matrix3d l_inverse =
+        l.triangularView<Eigen::Lower>().solve(Eigen::Matrix3d::Identity());
+    ASSERT_EQ(factor.InverseOfL(), l_inverse) << trial;
+  }
+  EXPECT_GT(positive_definite, 100000);
+  EXPECT_GT(not_positive_definite, 5000);
+}
+
+/// LogNormalPdf's general path (Eigen's LLT and triangular solver), which N = 2 and 3 bypass.
+template <int N>
+std::optional<double> LogNormalPdfByEigen(const Eigen::Matrix<double, N, 1>& x,
+                                          const Eigen::Matrix<double, N, 1>& mu,
+                                          const Eigen::Matrix<double, N, N>& s) {
+  const auto l = CholeskyLower<N>(s);
+  if (!l) return std::nullopt;
+  const Eigen::Matrix<double, N, 1> w = l->template triangularView<Eigen::Lower>().solve(x - mu);
+  const double log_det = 2.0 * l->diagonal().array().log().sum();
+  return -0.5 * (N * std::log(2.0 * std::numbers::pi) + log_det + w.squaredNorm());
+}
+
+TEST(Gaussian, LogNormalPdfOfTwoAndThreeDimensionsIsTheGeneralPathsBitForBit) {
+  RandomStream rng(17);
+  int compared = 0;
+  for (int trial = 0; trial < 100000; ++trial) {
+    const Eigen::Matrix2d s2 = RandomSymmetric2(rng, trial);
+    const Eigen::Matrix3d s3 = RandomSymmetric3(rng, trial);
+    const double spread = std::pow(10.0, rng.Uniform(-6.0, 6.0));
+    const Eigen::Vector2d x2(spread * rng.Normal(), spread * rng.Normal());
+    const Eigen::Vector2d mu2(rng.Normal(), rng.Normal());
+    const Eigen::Vector3d x3(spread * rng.Normal(), spread * rng.Normal(), rng.Normal());
+    const Eigen::Vector3d mu3(rng.Normal(), rng.Normal(), rng.Normal());
+    const std::optional<double> got2 = LogNormalPdf<2>(x2, mu2, s2);
+    const std::optional<double> want2 = LogNormalPdfByEigen<2>(x2, mu2, s2);
+    const std::optional<double> got3 = LogNormalPdf<3>(x3, mu3, s3);
+    const std::optional<double> want3 = LogNormalPdfByEigen<3>(x3, mu3, s3);
+    ASSERT_EQ(got2.has_value(), want2.has_value()) << trial;
+    ASSERT_EQ(got3.has_value(), want3.has_value()) << trial;
+    if (got2) {
+      ASSERT_EQ(*got2, *want2) << trial;
+    }
+    if (got3) {
+      ASSERT_EQ(*got3, *want3) << trial;
+    }
+    compared += (got2 ? 1 : 0) + (got3 ? 1 : 0);
+  }
+  EXPECT_GT(compared, 150000);
 }
 
 TEST(RandomStream, IsReproducibleAndSeedsAreIndependent) {

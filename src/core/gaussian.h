@@ -14,6 +14,9 @@
 #include <limits>
 #include <numbers>
 #include <optional>
+#include <type_traits>
+
+#include "src/core/cholesky3.h"
 
 namespace phdslam {
 
@@ -66,6 +69,15 @@ class Cholesky2 {
   /// Whether A is numerically positive definite (LltIsPositiveDefinite's test).
   [[nodiscard]] bool positive_definite() const { return positive_definite_; }
 
+  /// log det A as 2 * L.diagonal().array().log().sum(). Only for a positive-definite A.
+  [[nodiscard]] double LogDet() const { return 2.0 * (std::log(l00_) + std::log(l11_)); }
+
+  /// L^-1 r as L.triangularView<Lower>().solve(r): forward substitution dividing by each pivot.
+  [[nodiscard]] Eigen::Vector2d SolveLower(const Eigen::Vector2d& r) const {
+    const double w0 = r(0) / l00_;
+    return {w0, (r(1) - l10_ * w0) / l11_};
+  }
+
   /// A^-1, solved column by column as L y = e_j, then L^T x = y, each pivot applied as a product
   /// with its reciprocal. Only for a positive-definite A.
   [[nodiscard]] Eigen::Matrix2d Inverse() const {
@@ -107,15 +119,25 @@ Eigen::Matrix<double, N, N> PsdSquareRoot(const Eigen::Matrix<double, N, N>& p) 
 }
 
 /// log N(x; mu, S) via a Cholesky factor of S; nullopt when S is not positive definite.
+/// For N = 2 and 3 through Cholesky2 and Cholesky3, which give Eigen's LLT values bit for bit: the
+/// same result as the general path, at a fraction of its cost.
 template <int N>
 std::optional<double> LogNormalPdf(const Eigen::Matrix<double, N, 1>& x,
                                    const Eigen::Matrix<double, N, 1>& mu,
                                    const Eigen::Matrix<double, N, N>& s) {
-  const auto l = CholeskyLower<N>(s);
-  if (!l) return std::nullopt;
-  const Eigen::Matrix<double, N, 1> w = l->template triangularView<Eigen::Lower>().solve(x - mu);
-  const double log_det = 2.0 * l->diagonal().array().log().sum();
-  return -0.5 * (N * std::log(2.0 * std::numbers::pi) + log_det + w.squaredNorm());
+  if constexpr (N == 2 || N == 3) {
+    using Factor = std::conditional_t<N == 2, Cholesky2, Cholesky3>;
+    const Factor factor(s);
+    if (!factor.positive_definite()) return std::nullopt;
+    const Eigen::Matrix<double, N, 1> w = factor.SolveLower(x - mu);
+    return -0.5 * (N * std::log(2.0 * std::numbers::pi) + factor.LogDet() + w.squaredNorm());
+  } else {
+    const auto l = CholeskyLower<N>(s);
+    if (!l) return std::nullopt;
+    const Eigen::Matrix<double, N, 1> w = l->template triangularView<Eigen::Lower>().solve(x - mu);
+    const double log_det = 2.0 * l->diagonal().array().log().sum();
+    return -0.5 * (N * std::log(2.0 * std::numbers::pi) + log_det + w.squaredNorm());
+  }
 }
 
 /// A pre-gate for the test nu' S^-1 nu < gate with a 2x2 positive-definite S: when

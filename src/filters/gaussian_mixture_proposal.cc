@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "src/core/cholesky3.h"
 #include "src/core/gaussian.h"
 #include "src/core/log_sum_exp.h"
 
@@ -17,11 +18,13 @@ void PrepareProposal(GaussianMixtureProposal mixture, PreparedProposal& out) {
   out.log_norm.assign(n, kNegInf);
   out.inv_chol.assign(n, Mat3::Zero());
   for (std::size_t t = 0; t < n; ++t) {
-    out.chol[t] = CholeskyLower<3>(mixture.covs[t]);
-    if (out.chol[t]) {
-      const Mat3& l = *out.chol[t];
-      out.inv_chol[t] = l.triangularView<Eigen::Lower>().solve(Mat3::Identity());
-      out.log_norm[t] = -1.5 * std::log(2.0 * std::numbers::pi) - l.diagonal().array().log().sum();
+    // Cholesky3 gives CholeskyLower<3>, the triangular solve of the identity and the log
+    // diagonal sum bit for bit.
+    const Cholesky3 factor(mixture.covs[t]);
+    if (factor.positive_definite()) {
+      out.chol[t] = factor.L();
+      out.inv_chol[t] = factor.InverseOfL();
+      out.log_norm[t] = -1.5 * std::log(2.0 * std::numbers::pi) - factor.LogDiagonalSum();
     }
   }
   out.mixture = std::move(mixture);

@@ -3,8 +3,9 @@
 // freedom per range-bearing measurement when the filter is consistent.
 #pragma once
 
-#include <Eigen/Cholesky>
+#include <cmath>
 
+#include "src/core/gaussian.h"
 #include "src/core/types.h"
 
 namespace phdslam::filters {
@@ -14,11 +15,12 @@ struct InnovationStats {
   int count = 0;         ///< measurements in the sum
 
   /// Adds one innovation (bearing residual already wrapped) with its covariance; an S that is not
-  /// positive definite or a non-finite NIS is left out.
+  /// positive definite or a non-finite NIS is left out. For every finite S the NIS is Eigen's
+  /// LLT<Mat2>::matrixL().solve(nu).squaredNorm() bit for bit (Cholesky2).
   void Add(const Vec2& nu, const Mat2& s) {
-    const Eigen::LLT<Mat2> llt(s);
-    if (llt.info() != Eigen::Success) return;
-    const double nis = llt.matrixL().solve(nu).squaredNorm();
+    const Cholesky2 factor(s);
+    if (!factor.positive_definite()) return;
+    const double nis = factor.SolveLower(nu).squaredNorm();
     if (!std::isfinite(nis)) return;
     nis_sum += nis;
     ++count;

@@ -1,10 +1,11 @@
 #include "src/filters/ipl.h"
 
-#include <Eigen/Cholesky>
 #include <Eigen/LU>
 #include <cmath>
+#include <limits>
 
 #include "src/core/angles.h"
+#include "src/core/cholesky3.h"
 #include "src/core/gaussian.h"
 #include "src/models/range_bearing_model.h"
 
@@ -12,27 +13,25 @@ namespace phdslam::filters {
 
 namespace {
 
-/// The Cholesky factorisation of a 3x3 covariance with its log-determinant.
+/// The Cholesky factorisation of a 3x3 covariance with its log-determinant (NaN when it is not
+/// positive definite).
 struct Factorised3 {
-  Eigen::LLT<Mat3> llt;
+  Cholesky3 llt;
   double log_det;
   /// What CholeskyLower<3> accepts.
-  [[nodiscard]] bool PositiveDefinite() const { return LltIsPositiveDefinite(llt); }
+  [[nodiscard]] bool PositiveDefinite() const { return llt.positive_definite(); }
 };
 
 Factorised3 Factorise(const Mat3& p) {
-  Factorised3 f{Eigen::LLT<Mat3>(p), 0.0};
-  // The diagonal of L, read in place.
-  f.log_det = 2.0 * f.llt.matrixLLT().diagonal().array().log().sum();
-  return f;
+  const Cholesky3 llt(p);
+  return {llt, llt.positive_definite() ? llt.LogDet() : std::numeric_limits<double>::quiet_NaN()};
 }
 
 /// KL(N(m0, P0) || N(m1, P1)) given log det P0 and the factorisation of P1.
 double KlDivergenceFactorised(const Vec3& m0, const Mat3& p0, double log_det0, const Vec3& m1,
                               const Factorised3& p1) {
   const Vec3 dm = m1 - m0;
-  return 0.5 *
-         ((p1.llt.solve(p0)).trace() - log_det0 + p1.log_det - 3.0 + dm.dot(p1.llt.solve(dm)));
+  return 0.5 * (p1.llt.TraceOfSolve(p0) - log_det0 + p1.log_det - 3.0 + dm.dot(p1.llt.Solve(dm)));
 }
 
 }  // namespace

@@ -44,7 +44,8 @@ IplResult PartitionedIpl(const Pose& prior_mean, const Mat3& prior_cov,
                          std::span<const IplPair> pairs, const Mat2& noise_cov,
                          const IplOptions& options);
 
-/// KL(N(m0, P0) || N(m1, P1)) for 3-D Gaussians, the convergence measure of the IPL.
+/// KL(N(m0, P0) || N(m1, P1)) for 3-D Gaussians with positive-definite P0 and P1, the convergence
+/// measure of the IPL.
 double KlDivergence3(const Vec3& m0, const Mat3& p0, const Vec3& m1, const Mat3& p1);
 
 }  // namespace phdslam::filters

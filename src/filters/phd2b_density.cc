@@ -1,6 +1,5 @@
 #include "src/filters/phd2b_density.h"
 
-#include <Eigen/Cholesky>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -11,6 +10,7 @@
 
 #include "src/assignment/linear_assignment.h"
 #include "src/core/angles.h"
+#include "src/core/cholesky3.h"
 #include "src/core/gaussian.h"
 #include "src/core/log_sum_exp.h"
 #include "src/filters/gm_ipl_density.h"
@@ -195,7 +195,7 @@ JointIplResult JointIpl(const Pose& prior_mean, const Mat3& prior_cov,
       lin.nis_stopped = true;
       break;
     }
-    bool conditional_failed = !LltIsPositiveDefinite(Eigen::LLT<Mat3>(pose_cov));
+    bool conditional_failed = !Cholesky3(pose_cov).positive_definite();
     next_mean.head<3>() = prior_mean + pose_step;
     for (Eigen::Index p = 0; p < num_pairs && !conditional_failed; ++p) {
       const PairTerms& t = terms[p];
