@@ -3,8 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/LU>
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <numbers>
+#include <vector>
 
 #include "src/core/angles.h"
 #include "src/models/range_bearing_model.h"
@@ -165,6 +168,39 @@ TEST(PruneAndMerge, PrunesButKeepsTheLeaderAndKillsWideComponents) {
   EXPECT_EQ(killed[0].log_weight, params.spread_kill_log_weight);
   params.reference_spread_kill = false;
   EXPECT_EQ(PruneAndMerge({wide}, params)[0].log_weight, 0.0);
+}
+
+TEST(PruneAndMerge, KeepsTheOrderOfAStableSortByDescendingWeight) {
+  // Components 1 km apart never merge, so the output is the input in sorted order. Weights from
+  // a set of four give ties, which keep their input order; lengths up to 40 cover both the short
+  // lists' insertion and the long lists' stable_sort.
+  MapParams params;
+  params.prune_log_weight = -1e300;
+  std::uint64_t state = 12345;
+  const auto next = [&state]() {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return static_cast<int>(state >> 60);  // 0-15
+  };
+  for (int length = 1; length <= 40; ++length) {
+    for (int trial = 0; trial < 50; ++trial) {
+      std::vector<GaussianComponent> components;
+      components.reserve(static_cast<std::size_t>(length));
+      for (int i = 0; i < length; ++i) {
+        components.push_back(
+            {Landmark(1000.0 * i, 0.0), Mat2::Identity(), -1.0 - static_cast<double>(next() % 4)});
+      }
+      std::vector<GaussianComponent> expected = components;
+      std::stable_sort(expected.begin(), expected.end(),
+                       [](const GaussianComponent& a, const GaussianComponent& b) {
+                         return a.log_weight > b.log_weight;
+                       });
+      const std::vector<GaussianComponent> merged = PruneAndMerge(components, params);
+      ASSERT_EQ(merged.size(), expected.size());
+      for (std::size_t k = 0; k < merged.size(); ++k) {
+        ASSERT_EQ(merged[k].mean(0), expected[k].mean(0)) << "length " << length << ", " << k;
+      }
+    }
+  }
 }
 
 TEST(GmPhdMapReduce, ActivePassiveSplitFollowsTheEnlargedFov) {
