@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <new>
 #include <set>
@@ -18,6 +19,7 @@
 #include "validation/runner/execution/out_of_memory_valve.h"
 #include "validation/runner/execution/progress_line.h"
 #include "validation/runner/execution/run_estimator.h"
+#include "validation/runner/execution/seed_scenarios.h"
 #include "validation/runner/io/list_arguments.h"
 #include "validation/runner/io/results_io.h"
 #include "validation/runner/io/results_layout.h"
@@ -303,10 +305,13 @@ MonteCarloReport RunMonteCarlo(const MonteCarloPlan& plan, const MonteCarloSetti
   MonteCarloReport report = prepared.report;
   std::filesystem::create_directories(settings.out);
   WriteFileAtomically(settings.out / kConfigFile, JsonFileText(prepared.config));
+  // The jobs go seed by seed, so each worker's seed and the next are enough to keep.
+  SeedScenarios scenarios(plan.scenario.make,
+                          static_cast<std::size_t>(std::max(1, report.jobs)) + 1);
   if (!todo.empty() && !plan.seeds.empty() &&
       !std::filesystem::exists(settings.out / kTruthMapFile)) {
     WriteRootTruthMap(settings.out,
-                      plan.scenario.make(*std::min_element(plan.seeds.begin(), plan.seeds.end())));
+                      *scenarios.Get(*std::min_element(plan.seeds.begin(), plan.seeds.end())));
   }
 
   ProgressLine progress(todo.size(), settings.show_progress);
@@ -326,7 +331,8 @@ MonteCarloReport RunMonteCarlo(const MonteCarloPlan& plan, const MonteCarloSetti
     const std::filesystem::path folder =
         RunFolder(settings.out, selection.entry.name, job.particles, job.seed);
     try {
-      const datasets::Scenario scenario = plan.scenario.make(job.seed);
+      const std::shared_ptr<const datasets::Scenario> kept = scenarios.Get(job.seed);
+      const datasets::Scenario& scenario = *kept;
       progress.RunStarted(scenario.steps.size());
       WriteTruthFiles(settings.out, scenario, std::to_string(i));
       const filters::EstimatorContext context = scenario.PublicContext();
