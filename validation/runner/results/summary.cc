@@ -417,6 +417,9 @@ std::optional<GroupNis> SummariseGroupNis(const std::vector<const std::vector<do
   double total_sum = 0.0;
   double total_count = 0.0;
   std::size_t inside = 0;
+  // The 95 % band of the mean NIS by measurement count: the counts repeat from step to step, and
+  // each band costs two chi-square quantiles.
+  std::map<double, std::pair<double, double>> band_of_count;
   for (std::size_t k = 0; k < steps; ++k) {
     double sum = 0.0;
     double count = 0.0;
@@ -426,8 +429,14 @@ std::optional<GroupNis> SummariseGroupNis(const std::vector<const std::vector<do
     }
     if (count <= 0.0) continue;
     const double a = sum / count;
-    const double lower = ChiSquareQuantile(0.025, 2.0 * count) / count;
-    const double upper = ChiSquareQuantile(0.975, 2.0 * count) / count;
+    auto band = band_of_count.find(count);
+    if (band == band_of_count.end()) {
+      band = band_of_count
+                 .emplace(count, std::pair{ChiSquareQuantile(0.025, 2.0 * count) / count,
+                                           ChiSquareQuantile(0.975, 2.0 * count) / count})
+                 .first;
+    }
+    const auto [lower, upper] = band->second;
     if (a >= lower && a <= upper) ++inside;
     averaged.push_back(a);
     total_sum += sum;
