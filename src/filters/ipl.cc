@@ -16,22 +16,24 @@ namespace {
 /// The Cholesky factorisation of a 3x3 covariance with its log-determinant (NaN when it is not
 /// positive definite).
 struct Factorised3 {
-  Cholesky3 llt;
+  Cholesky3 factor;
   double log_det;
   /// What CholeskyLower<3> accepts.
-  [[nodiscard]] bool PositiveDefinite() const { return llt.positive_definite(); }
+  [[nodiscard]] bool PositiveDefinite() const { return factor.positive_definite(); }
 };
 
 Factorised3 Factorise(const Mat3& p) {
-  const Cholesky3 llt(p);
-  return {llt, llt.positive_definite() ? llt.LogDet() : std::numeric_limits<double>::quiet_NaN()};
+  const Cholesky3 factor(p);
+  return {factor,
+          factor.positive_definite() ? factor.LogDet() : std::numeric_limits<double>::quiet_NaN()};
 }
 
 /// KL(N(m0, P0) || N(m1, P1)) given log det P0 and the factorisation of P1.
 double KlDivergenceFactorised(const Vec3& m0, const Mat3& p0, double log_det0, const Vec3& m1,
                               const Factorised3& p1) {
   const Vec3 dm = m1 - m0;
-  return 0.5 * (p1.llt.TraceOfSolve(p0) - log_det0 + p1.log_det - 3.0 + dm.dot(p1.llt.Solve(dm)));
+  return 0.5 *
+         (p1.factor.TraceOfSolve(p0) - log_det0 + p1.log_det - 3.0 + dm.dot(p1.factor.Solve(dm)));
 }
 
 }  // namespace

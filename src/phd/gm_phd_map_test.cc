@@ -5,11 +5,11 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <numbers>
 #include <vector>
 
 #include "src/core/angles.h"
+#include "src/core/random.h"
 #include "src/models/range_bearing_model.h"
 
 namespace phdslam::phd {
@@ -176,18 +176,14 @@ TEST(PruneAndMerge, KeepsTheOrderOfAStableSortByDescendingWeight) {
   // lists' insertion and the long lists' stable_sort.
   MapParams params;
   params.prune_log_weight = -1e300;
-  std::uint64_t state = 12345;
-  const auto next = [&state]() {
-    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
-    return static_cast<int>(state >> 60);  // 0-15
-  };
+  RandomStream rng(12345);
   for (int length = 1; length <= 40; ++length) {
     for (int trial = 0; trial < 50; ++trial) {
       std::vector<GaussianComponent> components;
       components.reserve(static_cast<std::size_t>(length));
       for (int i = 0; i < length; ++i) {
-        components.push_back(
-            {Landmark(1000.0 * i, 0.0), Mat2::Identity(), -1.0 - static_cast<double>(next() % 4)});
+        const double tier = std::floor(rng.Uniform(0.0, 4.0));  // 0, 1, 2 or 3
+        components.push_back({Landmark(1000.0 * i, 0.0), Mat2::Identity(), -1.0 - tier});
       }
       std::vector<GaussianComponent> expected = components;
       std::stable_sort(expected.begin(), expected.end(),
