@@ -68,22 +68,30 @@ class CsvTable:
 
 #: Largest magnitude of a number in a results file. Beyond it (or infinite) a value is refused
 #: with its file, line and column: the statistics of such a column (squares, sums) would
-#: overflow, and no metric of a run reaches it (phdslam writes empty cells for non-finite values).
+#: overflow, and no metric of a run reaches it (phdslam writes empty cells for non-finite values),
+#: except the consistency statistics below.
 MAX_MAGNITUDE = 1e100
+
+#: Columns of consistency statistics (NEES, NIS and their bands). A filter whose particles
+#: collapse onto a few poses (no resampling) reports a near-singular pose covariance, and its NEES
+#: reaches 1e300 while finite; phdslam writes it as computed. These columns may hold any finite
+#: number; an infinite one is refused as in every column.
+UNBOUNDED_COLUMN = re.compile(r"(?:^|_)(?:nees|nis)(?:_|$)")
 
 
 def _check_magnitudes(table: CsvTable, allow_infinite: bool) -> None:
     """Raises ResultsFormatError at the first huge (or, unless allowed, infinite) number."""
     for name, values in table.numeric.items():
+        unbounded = UNBOUNDED_COLUMN.search(name) is not None
         with np.errstate(invalid="ignore"):
-            huge = np.abs(values) > MAX_MAGNITUDE
+            huge = np.isinf(values) if unbounded else np.abs(values) > MAX_MAGNITUDE
             bad = np.flatnonzero(huge & np.isfinite(values) if allow_infinite else huge)
         if bad.size:
             row = int(bad[0])
+            limit = "infinite" if unbounded else f"infinite or beyond +-{MAX_MAGNITUDE:.0e}"
             raise ResultsFormatError(
                 f"{table.path}, line {table.line(row)}, column '{name}': {values[row]:.6g} is "
-                f"infinite or beyond +-{MAX_MAGNITUDE:.0e} (not a plausible metric); "
-                f"{bad.size} such value(s) in the column")
+                f"{limit} (not a plausible metric); {bad.size} such value(s) in the column")
 
 
 _EMPTY_CELL = re.compile(r"(?:(?<=,)|^)(?=,|$)", re.MULTILINE)

@@ -267,6 +267,63 @@ class MalformedInputTest(unittest.TestCase):
         self.assertIn("not a results folder", str(caught.exception))
 
 
+def add_column(path: Path, name: str, value: str) -> None:
+    """Appends column ``name`` with ``value`` in every row."""
+    lines = path.read_text().splitlines()
+    lines = [lines[0] + "," + name] + [line + "," + value for line in lines[1:]]
+    path.write_text("\n".join(lines) + "\n")
+
+
+def set_cell(path: Path, row: int, column: str, value: str) -> None:
+    """Sets the cell of data row ``row`` (0-based) in ``column``."""
+    lines = path.read_text().splitlines()
+    header = lines[0].split(",")
+    cells = lines[row + 1].split(",")
+    cells[header.index(column)] = value
+    lines[row + 1] = ",".join(cells)
+    path.write_text("\n".join(lines) + "\n")
+
+
+class MagnitudeBoundTest(unittest.TestCase):
+    """Numbers beyond 1e100 are refused, but for the consistency statistics: a filter whose
+    particles collapse without resampling writes a NEES of 1e300 and more, as it is."""
+
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.results = make_results_folder(Path(self.tmp.name) / "r", FixtureSpec(
+            groups=(("phd3", 10),), steps=10, seeds=(1, 2), nees=True))
+        self.out = Path(self.tmp.name) / "out"
+        self.steps = self.results / "runs" / "phd3-N10" / "seed-2" / "steps.csv"
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def test_nees_of_a_collapsed_filter_is_read_and_reported(self):
+        set_cell(self.steps, 3, "nees", "1e+300")
+        add_column(self.results / "runs.csv", "pose_nees_mean", "4.62967442e+304")
+        add_column(self.results / "summary.csv", "pose_nees_mean", "2.972976172e+240")
+        build_report([self.results], self.out)
+        self.assertTrue((self.out / "index.html").is_file())
+        with contextlib.redirect_stdout(io.StringIO()):
+            self.assertEqual(tables.main([str(self.results)]), 0)
+        runs = read_csv(self.results / "runs.csv", text_columns=("estimator",))
+        self.assertEqual(runs.num("pose_nees_mean")[0], 4.62967442e+304)
+
+    def test_infinite_nees_is_refused(self):
+        set_cell(self.steps, 3, "nees", "inf")
+        with self.assertRaises(ResultsFormatError) as caught:
+            build_report([self.results], self.out)
+        self.assertIn(f"{self.steps}, line 5, column 'nees': inf is infinite",
+                      str(caught.exception))
+
+    def test_huge_error_metric_is_refused(self):
+        set_cell(self.steps, 3, "pos_err_m", "1e+300")
+        with self.assertRaises(ResultsFormatError) as caught:
+            build_report([self.results], self.out)
+        self.assertIn(f"{self.steps}, line 5, column 'pos_err_m': 1e+300 is infinite or beyond "
+                      "+-1e+100", str(caught.exception))
+
+
 class CsvReaderTest(unittest.TestCase):
     def test_empty_cells_are_nan_and_comments_skipped(self):
         with tempfile.TemporaryDirectory() as tmp:
