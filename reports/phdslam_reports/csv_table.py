@@ -74,8 +74,9 @@ MAX_MAGNITUDE = 1e100
 
 #: Columns of consistency statistics (NEES, NIS and their bands). A filter whose particles
 #: collapse onto a few poses (no resampling) reports a near-singular pose covariance, and its NEES
-#: reaches 1e300 while finite; phdslam writes it as computed. These columns may hold any finite
-#: number; an infinite one is refused as in every column.
+#: reaches 1e300 while finite; phdslam writes it as computed. These statistics are never negative,
+#: so these columns may hold any finite number down to -MAX_MAGNITUDE; below it, or infinite, a
+#: value is refused as in every column.
 UNBOUNDED_COLUMN = re.compile(r"(?:^|_)(?:nees|nis)(?:_|$)")
 
 
@@ -84,11 +85,13 @@ def _check_magnitudes(table: CsvTable, allow_infinite: bool) -> None:
     for name, values in table.numeric.items():
         unbounded = UNBOUNDED_COLUMN.search(name) is not None
         with np.errstate(invalid="ignore"):
-            huge = np.isinf(values) if unbounded else np.abs(values) > MAX_MAGNITUDE
+            huge = (np.isinf(values) | (values < -MAX_MAGNITUDE)) if unbounded else \
+                np.abs(values) > MAX_MAGNITUDE
             bad = np.flatnonzero(huge & np.isfinite(values) if allow_infinite else huge)
         if bad.size:
             row = int(bad[0])
-            limit = "infinite" if unbounded else f"infinite or beyond +-{MAX_MAGNITUDE:.0e}"
+            limit = f"infinite or below -{MAX_MAGNITUDE:.0e}" if unbounded else \
+                f"infinite or beyond +-{MAX_MAGNITUDE:.0e}"
             raise ResultsFormatError(
                 f"{table.path}, line {table.line(row)}, column '{name}': {values[row]:.6g} is "
                 f"{limit} (not a plausible metric); {bad.size} such value(s) in the column")

@@ -309,12 +309,13 @@ class MagnitudeBoundTest(unittest.TestCase):
         runs = read_csv(self.results / "runs.csv", text_columns=("estimator",))
         self.assertEqual(runs.num("pose_nees_mean")[0], 4.62967442e+304)
 
-    def test_infinite_nees_is_refused(self):
-        set_cell(self.steps, 3, "nees", "inf")
-        with self.assertRaises(ResultsFormatError) as caught:
-            build_report([self.results], self.out)
-        self.assertIn(f"{self.steps}, line 5, column 'nees': inf is infinite",
-                      str(caught.exception))
+    def test_infinite_or_hugely_negative_nees_is_refused(self):
+        for value in ("inf", "-1e+300"):
+            set_cell(self.steps, 3, "nees", value)
+            with self.assertRaises(ResultsFormatError) as caught:
+                build_report([self.results], self.out)
+            self.assertIn(f"{self.steps}, line 5, column 'nees': {value} is infinite or below "
+                          "-1e+100", str(caught.exception))
 
     def test_huge_error_metric_is_refused(self):
         set_cell(self.steps, 3, "pos_err_m", "1e+300")
