@@ -309,6 +309,16 @@ class MagnitudeBoundTest(unittest.TestCase):
         runs = read_csv(self.results / "runs.csv", text_columns=("estimator",))
         self.assertEqual(runs.num("pose_nees_mean")[0], 4.62967442e+304)
 
+    def test_nees_near_the_double_range_is_drawn(self):
+        # Means of 1e267 (which a log axis of matplotlib cannot label) and of +inf (a sum over
+        # the runs beyond the double range) at two steps.
+        for seed in (1, 2):
+            steps = self.results / "runs" / "phd3-N10" / f"seed-{seed}" / "steps.csv"
+            set_cell(steps, 3, "nees", "1e+267")
+            set_cell(steps, 5, "nees", "1.7e+308")
+        build_report([self.results], self.out)
+        self.assertTrue((self.out / "nees.png").is_file())
+
     def test_infinite_or_hugely_negative_nees_is_refused(self):
         for value in ("inf", "-1e+300"):
             set_cell(self.steps, 3, "nees", value)

@@ -14,6 +14,10 @@ from ..style import estimator_colour, panel_grid
 POSE_DOF = 3
 #: chi2.ppf(0.95, 3): a pose NEES at or below it puts the truth inside the 95 % ellipsoid.
 COVERAGE_THRESHOLD = 7.814727903251178
+#: Highest run-averaged NEES drawn. A filter whose particles collapse reaches 1e300 (and a mean
+#: over runs then overflows to infinity), which a log axis cannot label; such steps are drawn at
+#: this ceiling and the legend says so.
+DRAW_CEILING = 1e100
 
 
 @dataclass
@@ -48,7 +52,8 @@ def nees_series(estimator: str, particles: int, matrix: np.ndarray) -> NeesSerie
     runs = matrix.shape[0]
     complete = np.all(np.isfinite(matrix), axis=0)
     mean = np.full(matrix.shape[1], np.nan)
-    mean[complete] = np.mean(matrix[:, complete], axis=0)
+    with np.errstate(over="ignore"):  # a sum beyond the double range is +inf: outside the bounds
+        mean[complete] = np.mean(matrix[:, complete], axis=0)
     low, high = nees_bounds(runs, POSE_DOF)
     values = matrix[np.isfinite(matrix)]
     coverage = float(np.mean(values <= COVERAGE_THRESHOLD))
@@ -63,12 +68,15 @@ def plot_nees(series: list[NeesSeries], display_name: Callable[[str], str] = str
     estimators = [s.estimator for s in series]
     for ax, s in zip(axes, series):
         k = np.arange(s.mean.size)
-        ax.plot(k, s.mean, color=estimator_colour(s.estimator, estimators), lw=1.0,
-                label=f"mean NEES over {s.runs} runs")
+        clipped = bool(np.any(s.mean > DRAW_CEILING))  # NaN compares false
+        ax.plot(k, np.minimum(s.mean, DRAW_CEILING), color=estimator_colour(s.estimator, estimators),
+                lw=1.0, label=f"mean NEES over {s.runs} runs" +
+                (f" (above {DRAW_CEILING:.0e} drawn at it)" if clipped else ""))
         ax.axhline(s.low, color="#333", ls="--", lw=1.0, label="95 % chi-square bounds")
         ax.axhline(s.high, color="#333", ls="--", lw=1.0)
         ax.axhline(POSE_DOF, color="#888", ls=":", lw=1.0, label=f"expected ({POSE_DOF})")
-        positive = s.mean[np.isfinite(s.mean) & (s.mean > 0)]
+        drawn = np.minimum(s.mean, DRAW_CEILING)
+        positive = drawn[np.isfinite(drawn) & (drawn > 0)]
         if positive.size and positive.max() / max(positive.min(), 1e-12) > 50:
             ax.set_yscale("log")
         ax.set_title(f"{display_name(s.estimator)}, N = {s.particles}: "
