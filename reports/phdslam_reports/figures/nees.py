@@ -68,14 +68,14 @@ def plot_nees(series: list[NeesSeries], display_name: Callable[[str], str] = str
     estimators = [s.estimator for s in series]
     for ax, s in zip(axes, series):
         k = np.arange(s.mean.size)
+        drawn = np.minimum(s.mean, DRAW_CEILING)  # NaN stays NaN, +inf becomes the ceiling
         clipped = bool(np.any(s.mean > DRAW_CEILING))  # NaN compares false
-        ax.plot(k, np.minimum(s.mean, DRAW_CEILING), color=estimator_colour(s.estimator, estimators),
-                lw=1.0, label=f"mean NEES over {s.runs} runs" +
+        ax.plot(k, drawn, color=estimator_colour(s.estimator, estimators), lw=1.0,
+                label=f"mean NEES over {s.runs} runs" +
                 (f" (above {DRAW_CEILING:.0e} drawn at it)" if clipped else ""))
         ax.axhline(s.low, color="#333", ls="--", lw=1.0, label="95 % chi-square bounds")
         ax.axhline(s.high, color="#333", ls="--", lw=1.0)
         ax.axhline(POSE_DOF, color="#888", ls=":", lw=1.0, label=f"expected ({POSE_DOF})")
-        drawn = np.minimum(s.mean, DRAW_CEILING)
         positive = drawn[np.isfinite(drawn) & (drawn > 0)]
         if positive.size and positive.max() / max(positive.min(), 1e-12) > 50:
             ax.set_yscale("log")
