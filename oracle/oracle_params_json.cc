@@ -1,5 +1,7 @@
 #include "oracle/oracle_params_json.h"
 
+#include "src/filters/draw_streams_field.h"
+
 namespace phdslam::oracle {
 
 const params::ParameterTable<OracleParams>& OracleParamsTable() {
@@ -19,6 +21,7 @@ const params::ParameterTable<OracleParams>& OracleParamsTable() {
       params::DiagonalField<P, 3>(
           "pose_regularisation", [](auto& p) -> auto& { return p.pose_regularisation; },
           AtLeast(0.0)),
+      filters::DrawStreamsField<P>(),
   });
   return table;
 }

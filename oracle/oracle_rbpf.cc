@@ -173,6 +173,7 @@ std::unique_ptr<OracleRbpf> MakeKnownAssociationFilter(
   skeleton.ess_threshold = params.ess_threshold;
   skeleton.pose_regularisation = params.pose_regularisation;
   skeleton.reuse_parent_proposal = false;
+  skeleton.draw_streams = params.draw_streams;
   return std::make_unique<OracleRbpf>(std::move(context), skeleton, std::move(model),
                                       std::move(density), stream_seed);
 }

@@ -41,6 +41,8 @@ struct OracleParams {
   double ipl_kl_tolerance = 1e-3;
   /// Q_n, added once per step before propagation.
   Mat3 pose_regularisation = Vec3(1e-9, 1e-9, 1e-18).asDiagonal();
+  /// Sequential (default) or keyed random draws (common random numbers, ci/GATES.md).
+  DrawStreams draw_streams = DrawStreams::kSequential;
 
   /// Throws std::invalid_argument naming the field: particles >= 1; ess_threshold >= 0;
   /// ipl_iterations >= 1; ipl_kl_tolerance >= 0; pose_regularisation finite and symmetric.

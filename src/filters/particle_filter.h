@@ -50,6 +50,7 @@
 
 #include "src/core/draw_replay.h"
 #include "src/core/gaussian.h"
+#include "src/core/keyed_stream.h"
 #include "src/core/random.h"
 #include "src/core/step_data.h"
 #include "src/filters/estimator.h"
@@ -164,6 +165,7 @@ class ParticleFilter final : public OnlineEstimator {
         params_(std::move(params)),
         model_(std::move(model)),
         density_(std::move(density)),
+        stream_seed_(stream_seed),
         rng_(stream_seed) {
     const int n = std::max(1, params_.particles);
     particles_.resize(n);
@@ -206,10 +208,19 @@ class ParticleFilter final : public OnlineEstimator {
 
  private:
   double DrawUniform(int particle, DrawPurpose purpose) {
-    return replay_ ? replay_->Next(step_index_, particle, purpose, 0) : rng_.Uniform();
+    if (replay_) return replay_->Next(step_index_, particle, purpose, 0);
+    if (params_.draw_streams == DrawStreams::kKeyed) {
+      return DrawKeyStream(stream_seed_, step_index_, particle, purpose).Uniform();
+    }
+    return rng_.Uniform();
   }
   Vec3 DrawNormals(int particle) {
     Vec3 xi;
+    if (!replay_ && params_.draw_streams == DrawStreams::kKeyed) {
+      KeyedStream keyed = DrawKeyStream(stream_seed_, step_index_, particle, DrawPurpose::kPose);
+      xi << keyed.Normal(), keyed.Normal(), keyed.Normal();
+      return xi;
+    }
     if (!replay_) {
       xi << rng_.Normal(), rng_.Normal(), rng_.Normal();
       return xi;
@@ -226,6 +237,7 @@ class ParticleFilter final : public OnlineEstimator {
   ParticleFilterParams params_;
   Model model_;
   std::unique_ptr<ImportanceDensity> density_;
+  std::uint64_t stream_seed_;
   RandomStream rng_;
   std::shared_ptr<DrawReplay> replay_;
   StepObserver<ParticleType>* observer_ = nullptr;

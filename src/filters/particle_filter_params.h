@@ -1,6 +1,7 @@
 // Parameters of the particle-filter skeleton (particle_filter.h).
 #pragma once
 
+#include "src/core/keyed_stream.h"
 #include "src/core/types.h"
 
 namespace phdslam::filters {
@@ -21,6 +22,9 @@ struct ParticleFilterParams {
   Mat3 pose_regularisation = Vec3(1e-9, 1e-9, 1e-18).asDiagonal();
   /// Copies of one resampled parent share one proposal (no effect on results).
   bool reuse_parent_proposal = true;
+  /// Where the random draws come from: one sequential stream, or keyed streams per (step,
+  /// particle, purpose) for common random numbers between versions of a filter.
+  DrawStreams draw_streams = DrawStreams::kSequential;
 };
 
 }  // namespace phdslam::filters

@@ -44,6 +44,9 @@ struct PhdSlamParams {
   /// Reference code: copies of one resampled parent share one proposal (a speed optimisation
   /// with no effect on results).
   bool reuse_parent_proposal = true;
+  /// Random draws from one sequential stream (default) or keyed per (step, particle, purpose):
+  /// common random numbers between versions of the filter (ci/GATES.md).
+  DrawStreams draw_streams = DrawStreams::kSequential;
 };
 
 }  // namespace phdslam::filters

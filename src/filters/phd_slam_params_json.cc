@@ -1,6 +1,7 @@
 #include "src/filters/phd_slam_params_json.h"
 
 #include "src/core/parameter_table.h"
+#include "src/filters/draw_streams_field.h"
 #include "src/filters/map_params_json.h"
 
 namespace phdslam::filters {
@@ -47,6 +48,7 @@ const params::ParameterTable<PhdSlamParams>& PhdSlamParamsTable() {
                {RbPhdWeighting::kSingleFeature, "single-feature"}}),
           params::BoolField<P>(
               "reuse_parent_proposal", [](auto& p) -> auto& { return p.reuse_parent_proposal; }),
+          DrawStreamsField<P>(),
       },
   }));
   return table;

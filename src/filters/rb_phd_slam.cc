@@ -70,6 +70,7 @@ ParticleFilterParams SkeletonParams(const PhdSlamParams& params) {
   s.ess_threshold = params.ess_threshold;
   s.pose_regularisation = params.pose_regularisation;
   s.reuse_parent_proposal = params.reuse_parent_proposal;
+  s.draw_streams = params.draw_streams;
   return s;
 }
 
