@@ -9,6 +9,7 @@
 //   phdslam parent-weights  single-cluster vs RB-PHD-SLAM parent weights after one scan
 //   phdslam export    a scenario's filter inputs and truth per seed, for external filters
 //   phdslam ingest    an external filter's outputs into a results folder
+//   phdslam data      fetch the data sets into the data folder, check what it holds
 //
 // Exit codes: 0 success, 1 a run or evaluation failed (or a file could not be read), 2 a usage
 // error (bad option, experiment file or list; unknown name; conflicting results folders),
@@ -26,6 +27,7 @@
 #include <string>
 #include <vector>
 
+#include "apps/phdslam/data_command.h"
 #include "apps/phdslam/exit_codes.h"
 #include "apps/phdslam/interchange_commands.h"
 #include "apps/phdslam/option_without_value.h"
@@ -286,6 +288,8 @@ int Main(int argc, char** argv) {
   AddParentWeightsCommand(app, parent_weights_arguments);
   AddExportCommand(app, export_arguments);
   AddIngestCommand(app, ingest_arguments);
+  DataArguments data_arguments;
+  AddDataCommand(app, data_arguments);
   app.add_subcommand("list", "List the known scenarios (with their options) and estimators");
   if (const std::string option = OptionWithoutValue(app, argc, argv); !option.empty()) {
     std::cerr << "phdslam: error: " << option << " needs a value (see phdslam --help)\n";
@@ -306,6 +310,7 @@ int Main(int argc, char** argv) {
     if (app.got_subcommand("parent-weights")) return ParentWeights(parent_weights_arguments);
     if (app.got_subcommand("export")) return Export(export_arguments);
     if (app.got_subcommand("ingest")) return Ingest(ingest_arguments);
+    if (app.got_subcommand("data")) return Data(app, data_arguments);
     return List();
   } catch (const std::bad_alloc& e) {
     std::cerr << "phdslam: error: out of memory (" << e.what() << ") in 'phdslam "
