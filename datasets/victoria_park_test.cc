@@ -485,7 +485,7 @@ TEST_F(VictoriaParkRealDataTest, ScanAndDetectionCounts) {
 TEST_F(VictoriaParkRealDataTest, MatAndTextControlsAgree) {
   // A folder that links the real files except aa3_dr.mat, so the loader reads inputs.dat.
   const TempDataDir dir("real_text");
-  const fs::path real = *RealDataRoot() / "victoria-park";
+  const fs::path real = *found_.dir / "victoria-park";
   for (const char* f : {"measurements.dat", "inputs.dat", "aa3_gpsx.mat"}) {
     fs::create_symlink(fs::absolute(real / f), dir.folder() / f);
   }
