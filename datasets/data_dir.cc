@@ -49,7 +49,7 @@ std::filesystem::path ResolveDataDirFor(const std::optional<std::string>& flag,
   const DataDirSetting setting = DataDirFromSettings(flag);
   const std::filesystem::path external_missing = FirstMissing(setting.dir, files);
   if (external_missing.empty()) return setting.dir;
-  const std::filesystem::path bundled = BundledDataDir();
+  std::filesystem::path bundled = BundledDataDir();
   const std::filesystem::path bundled_missing = FirstMissing(bundled, files);
   if (bundled_missing.empty()) return bundled;
   throw std::runtime_error("data file '" + external_missing.generic_string() +
