@@ -51,8 +51,8 @@ constexpr double kGlmbClutterRate = 15.0;
 
 const datasets::Scenario& PaperScenario() {
   static const datasets::Scenario scenario = [] {
-    const auto env =
-        datasets::LoadPaperSyntheticEnvironment(datasets::ResolveDataDir(std::nullopt));
+    const auto env = datasets::LoadPaperSyntheticEnvironment(
+        datasets::ResolveDataDirFor(std::nullopt, datasets::PaperSyntheticDataFiles()));
     return datasets::MakePaperSyntheticScenario(env, 1);
   }();
   return scenario;

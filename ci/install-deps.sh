@@ -20,6 +20,7 @@ packages=(
   python3 python3-matplotlib python3-numpy python3-scipy python3-yaml
   clang-format clang-tidy lld
   clang-14 libclang-rt-14-dev valgrind
+  curl unzip  # phdslam data fetch: downloads and the MRCLAM archive
 )
 for option in "$@"; do
   case "$option" in

@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets of fuzz/ with clang under AddressSanitizer + UndefinedBehavior-
 # Sanitizer (build/fuzz, PHDSLAM_FUZZ=ON) and runs each for SECONDS (default 20), as many at once
-# as there are cores, on a seed corpus made at run time from the data folder ($PHDSLAM_DATA, else
-# ../shared/datasets; nothing of it is kept in the repository) and the experiment files. Prints
+# as there are cores, on a seed corpus made at run time from the data files (the synthetic scenario
+# from the data folder, $PHDSLAM_DATA else ../shared/datasets, or from the repository's copy in
+# datasets/data; Victoria Park and MRCLAM seeds only when the data folder holds them, and then
+# CI=true or PHDSLAM_REQUIRE_DATA=1 makes their absence an error) and the experiment files. Prints
 # each target's executions per second and total executions; exits non-zero when a target crashes,
 # leaks or trips a sanitizer (the input is kept as build/fuzz/artifacts/<target>-crash-*; turn it
 # into a regression test).
@@ -30,20 +32,41 @@ cmake --build "$build" -j "$(nproc 2>/dev/null || echo 2)" --target "${targets[@
 corpus=$build/corpus
 rm -rf "$corpus" && mkdir -p "$corpus"/{mat_file,victoria_park,tum_trajectory,map_csv,experiment_file,mrclam} \
   "$corpus"/{scenario_options,ingest_readers}
-cp "$data/phdslam3-synthetic/Environment_SLAM.mat" "$data/victoria-park/aa3_gpsx.mat" \
-  "$corpus/mat_file/"
-{ printf '\x00'; head -n 60 "$data/victoria-park/measurements.dat"; } >"$corpus/victoria_park/m"
-{ printf '\x01'; head -n 60 "$data/victoria-park/inputs.dat"; } >"$corpus/victoria_park/i"
-awk 'NR <= 60 { printf "%s %s %s 0 0 0 %.6f %.6f\n", $1, $2, $3, sin($3 / 2), cos($3 / 2) }' \
-  "$data/victoria-park/inputs.dat" >"$corpus/tum_trajectory/t.tum"
-awk 'BEGIN { print "x,y,weight,pxx,pxy,pyy" } !/^#/ && NF >= 3 { print $2 "," $3 ",1,0.01,0,0.01" }' \
-  "$data/utias-mrclam/MRCLAM_Dataset6/Landmark_Groundtruth.dat" >"$corpus/map_csv/m.csv"
+synthetic=$data/phdslam3-synthetic/Environment_SLAM.mat
+[[ -f "$synthetic" ]] || synthetic=datasets/data/phdslam3-synthetic/Environment_SLAM.mat
+cp "$synthetic" "$corpus/mat_file/"
+# A data set absent from the data folder leaves its targets with the other seeds (or none, where
+# libFuzzer starts from an empty input); in CI it is an error.
+have_data_set() {
+  if [[ -f "$data/$2" ]]; then return 0; fi
+  if [[ "${CI:-}" == "true" || "${PHDSLAM_REQUIRE_DATA:-}" == "1" ]]; then
+    echo "run-fuzz: data set '$1' not in the data folder '$data' (no $2): required here" >&2
+    exit 1
+  fi
+  echo "run-fuzz: data set '$1' not in the data folder '$data' (no $2): its seeds skipped" >&2
+  return 1
+}
+if have_data_set victoria-park victoria-park/measurements.dat; then
+  cp "$data/victoria-park/aa3_gpsx.mat" "$corpus/mat_file/"
+  { printf '\x00'; head -n 60 "$data/victoria-park/measurements.dat"; } >"$corpus/victoria_park/m"
+  { printf '\x01'; head -n 60 "$data/victoria-park/inputs.dat"; } >"$corpus/victoria_park/i"
+  awk 'NR <= 60 { printf "%s %s %s 0 0 0 %.6f %.6f\n", $1, $2, $3, sin($3 / 2), cos($3 / 2) }' \
+    "$data/victoria-park/inputs.dat" >"$corpus/tum_trajectory/t.tum"
+else
+  printf '0 0 0 0 0 0 0 1\n1 1 0.5 0 0 0 0 1\n' >"$corpus/tum_trajectory/t.tum"
+fi
 cp validation/experiments/*.yaml "$corpus/experiment_file/"
 mrclam=$data/utias-mrclam/MRCLAM_Dataset6
-{ printf '\x02'; head -n 64 "$mrclam/Robot1_Groundtruth.dat"; } >"$corpus/mrclam/g"
-{ printf '\x03'; head -n 64 "$mrclam/Robot1_Odometry.dat"; } >"$corpus/mrclam/o"
-{ printf '\x04'; head -n 64 "$mrclam/Robot1_Measurement.dat"; } >"$corpus/mrclam/m"
-{ printf '\x00'; cat "$mrclam/Barcodes.dat"; } >"$corpus/mrclam/b"
+if have_data_set mrclam utias-mrclam/MRCLAM_Dataset6/Robot1_Measurement.dat; then
+  awk 'BEGIN { print "x,y,weight,pxx,pxy,pyy" } !/^#/ && NF >= 3 { print $2 "," $3 ",1,0.01,0,0.01" }' \
+    "$mrclam/Landmark_Groundtruth.dat" >"$corpus/map_csv/m.csv"
+  { printf '\x02'; head -n 64 "$mrclam/Robot1_Groundtruth.dat"; } >"$corpus/mrclam/g"
+  { printf '\x03'; head -n 64 "$mrclam/Robot1_Odometry.dat"; } >"$corpus/mrclam/o"
+  { printf '\x04'; head -n 64 "$mrclam/Robot1_Measurement.dat"; } >"$corpus/mrclam/m"
+  { printf '\x00'; cat "$mrclam/Barcodes.dat"; } >"$corpus/mrclam/b"
+else
+  printf 'x,y,weight,pxx,pxy,pyy\n1,2,1,0.01,0,0.01\n' >"$corpus/map_csv/m.csv"
+fi
 # Scenario options: the first byte picks generated (0), scphd-sim (1) or glmb-sim (2).
 printf '\x00speed=2\nlandmarks=50\nclutter_rate=3\ninitial_pose=[1,2,0.5]\n' \
   >"$corpus/scenario_options/g"

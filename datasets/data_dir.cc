@@ -5,28 +5,57 @@
 #include <system_error>
 
 namespace phdslam::datasets {
+namespace {
+
+// The first of `files` that is not a regular file under `dir`; empty when all are.
+std::filesystem::path FirstMissing(const std::filesystem::path& dir,
+                                   const std::vector<std::filesystem::path>& files) {
+  std::error_code ec;
+  for (const std::filesystem::path& file : files) {
+    if (!std::filesystem::is_regular_file(dir / file, ec)) return file;
+  }
+  return {};
+}
+
+}  // namespace
+
+DataDirSetting DataDirFromSettings(const std::optional<std::string>& flag) {
+  if (flag.has_value()) return {*flag, "the --data-dir option"};
+  if (const char* env = std::getenv(kDataDirEnvVar); env != nullptr && *env != '\0') {
+    return {env, std::string("the environment variable ") + kDataDirEnvVar};
+  }
+  return {PHDSLAM_DEFAULT_DATA_DIR,
+          std::string("the compiled default (PHDSLAM_DEFAULT_DATA_DIR; set ") + kDataDirEnvVar +
+              " or pass --data-dir to override)"};
+}
 
 std::filesystem::path ResolveDataDir(const std::optional<std::string>& flag) {
-  std::filesystem::path dir;
-  std::string origin;
-  if (flag.has_value()) {
-    dir = *flag;
-    origin = "the --data-dir option";
-  } else if (const char* env = std::getenv(kDataDirEnvVar); env != nullptr && *env != '\0') {
-    dir = env;
-    origin = std::string("the environment variable ") + kDataDirEnvVar;
-  } else {
-    dir = PHDSLAM_DEFAULT_DATA_DIR;
-    origin = std::string("the compiled default (PHDSLAM_DEFAULT_DATA_DIR; set ") + kDataDirEnvVar +
-             " or pass --data-dir to override)";
-  }
+  const DataDirSetting setting = DataDirFromSettings(flag);
   std::error_code ec;
-  if (!std::filesystem::is_directory(dir, ec)) {
-    const bool exists = std::filesystem::exists(dir, ec);
-    throw std::runtime_error("data folder '" + dir.string() + "' from " + origin +
-                             (exists ? " is not a directory" : " does not exist"));
+  if (!std::filesystem::is_directory(setting.dir, ec)) {
+    const bool exists = std::filesystem::exists(setting.dir, ec);
+    throw std::runtime_error("data folder '" + setting.dir.string() + "' from " + setting.origin +
+                             (exists ? " is not a directory" : " does not exist") +
+                             " ('phdslam data fetch NAME' downloads a data set into it, "
+                             "'phdslam data check' lists what it holds)");
   }
-  return dir;
+  return setting.dir;
+}
+
+std::filesystem::path BundledDataDir() { return PHDSLAM_BUNDLED_DATA_DIR; }
+
+std::filesystem::path ResolveDataDirFor(const std::optional<std::string>& flag,
+                                        const std::vector<std::filesystem::path>& files) {
+  const DataDirSetting setting = DataDirFromSettings(flag);
+  const std::filesystem::path external_missing = FirstMissing(setting.dir, files);
+  if (external_missing.empty()) return setting.dir;
+  std::filesystem::path bundled = BundledDataDir();
+  const std::filesystem::path bundled_missing = FirstMissing(bundled, files);
+  if (bundled_missing.empty()) return bundled;
+  throw std::runtime_error("data file '" + external_missing.generic_string() +
+                           "' is neither in the data folder '" + setting.dir.string() + "' from " +
+                           setting.origin + " nor in the repository's folder '" + bundled.string() +
+                           "' (missing there: '" + bundled_missing.generic_string() + "')");
 }
 
 }  // namespace phdslam::datasets

@@ -7,6 +7,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "datasets/test_temp_dir.h"
 
@@ -112,6 +113,48 @@ TEST(ResolveDataDir, EmptyEnvironmentValueCountsAsUnset) {
   }
   const ScopedDataEnv env{std::string()};
   EXPECT_EQ(outcome(), unset);
+}
+
+TEST(ResolveDataDir, MissingFolderSaysHowToGetTheDataSets) {
+  const std::string message = ErrorOf((testing::FreshTestDir() / "absent").string());
+  EXPECT_NE(message.find("phdslam data fetch"), std::string::npos) << message;
+}
+
+const std::vector<std::filesystem::path> kSyntheticFiles = {
+    std::filesystem::path("phdslam3-synthetic") / "Environment_SLAM.mat"};
+
+TEST(ResolveDataDirFor, TheRepositoryCarriesTheSyntheticScenario) {
+  EXPECT_TRUE(std::filesystem::is_regular_file(BundledDataDir() / kSyntheticFiles[0]))
+      << BundledDataDir();
+}
+
+TEST(ResolveDataDirFor, DataFolderWhenItHoldsTheFiles) {
+  const auto dir = testing::FreshTestDir();
+  std::filesystem::create_directories(dir / "phdslam3-synthetic");
+  std::ofstream(dir / kSyntheticFiles[0]) << "x";
+  EXPECT_EQ(ResolveDataDirFor(dir.string(), kSyntheticFiles), dir);
+  const ScopedDataEnv env(dir.string());
+  EXPECT_EQ(ResolveDataDirFor(std::nullopt, kSyntheticFiles), dir);
+}
+
+TEST(ResolveDataDirFor, RepositoryCopyWhenTheDataFolderLacksThemOrIsAbsent) {
+  const auto dir = testing::FreshTestDir();
+  EXPECT_EQ(ResolveDataDirFor(dir.string(), kSyntheticFiles), BundledDataDir());
+  const ScopedDataEnv env((dir / "absent").string());
+  EXPECT_EQ(ResolveDataDirFor(std::nullopt, kSyntheticFiles), BundledDataDir());
+}
+
+TEST(ResolveDataDirFor, NeitherFolderNamesTheFileAndBothFolders) {
+  const auto dir = testing::FreshTestDir();
+  try {
+    (void)ResolveDataDirFor(dir.string(), {"victoria-park/measurements.dat"});
+    FAIL() << "no exception";
+  } catch (const std::runtime_error& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("victoria-park/measurements.dat"), std::string::npos) << message;
+    EXPECT_NE(message.find(dir.string()), std::string::npos) << message;
+    EXPECT_NE(message.find(BundledDataDir().string()), std::string::npos) << message;
+  }
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 
 #include "datasets/data_dir.h"
 #include "datasets/mat_v5_structure.h"
+#include "datasets/test_data_sets.h"
 #include "datasets/test_file_bytes.h"
 #include "datasets/test_temp_dir.h"
 #include "src/core/angles.h"
@@ -54,7 +55,7 @@ std::string ReadError(const MatFile& file, const std::string& variable) {
 }
 
 TEST(MatFile, ReadsTheRealSyntheticEnvironment) {
-  const auto path = ResolveDataDir(std::nullopt) / "phdslam3-synthetic" / "Environment_SLAM.mat";
+  const auto path = testing::SyntheticDataDir() / "phdslam3-synthetic" / "Environment_SLAM.mat";
   const MatFile file(path);
   EXPECT_TRUE(file.Has("Landmark_Groundtruth"));
   EXPECT_TRUE(file.Has("Robot_Control"));
@@ -187,7 +188,7 @@ TEST(MatFile, VariableLargerThanTheSizeCapIsRefusedBeforeItIsRead) {
 }
 
 TEST(MatFile, IsMovable) {
-  const auto path = ResolveDataDir(std::nullopt) / "phdslam3-synthetic" / "Environment_SLAM.mat";
+  const auto path = testing::SyntheticDataDir() / "phdslam3-synthetic" / "Environment_SLAM.mat";
   MatFile first(path);
   MatFile second(std::move(first));
   EXPECT_EQ(second.ReadMatrix("Robot_Control").cols(), 4000);

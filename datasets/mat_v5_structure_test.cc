@@ -13,6 +13,7 @@
 #include "datasets/data_dir.h"
 #include "datasets/mat_file.h"
 #include "datasets/paper_synthetic.h"
+#include "datasets/test_data_sets.h"
 #include "datasets/test_file_bytes.h"
 #include "datasets/test_temp_dir.h"
 
@@ -27,10 +28,19 @@ std::filesystem::path SyntheticMat(const std::filesystem::path& data_dir) {
   return data_dir / "phdslam3-synthetic" / "Environment_SLAM.mat";
 }
 
-TEST(MatV5Structure, TheRealFilesPass) {
-  const auto data = ResolveDataDir(std::nullopt);
-  for (const auto& path : {SyntheticMat(data), data / "victoria-park" / "aa3_dr.mat",
-                           data / "victoria-park" / "aa3_gpsx.mat"}) {
+TEST(MatV5Structure, TheSyntheticFilePasses) {
+  const std::filesystem::path path = SyntheticMat(testing::SyntheticDataDir());
+  const std::string bytes = ReadBytes(path);
+  ASSERT_TRUE(IsMatV5(bytes)) << path;
+  EXPECT_NO_THROW(CheckMatV5Structure(bytes, path.string())) << path;
+}
+
+TEST(MatV5Structure, TheVictoriaParkFilesPass) {
+  const testing::DataSetLookup found = testing::FindDataSetFiles("victoria-park");
+  PHDSLAM_SKIP_WITHOUT_DATA_SET(found);
+  const std::filesystem::path data = *found.dir;
+  for (const auto& path :
+       {data / "victoria-park" / "aa3_dr.mat", data / "victoria-park" / "aa3_gpsx.mat"}) {
     const std::string bytes = ReadBytes(path);
     ASSERT_TRUE(IsMatV5(bytes)) << path;
     EXPECT_NO_THROW(CheckMatV5Structure(bytes, path.string())) << path;
@@ -38,7 +48,7 @@ TEST(MatV5Structure, TheRealFilesPass) {
 }
 
 TEST(MatV5Structure, FileCutInsideAVariableIsRefusedNamingTheFile) {
-  const std::string good = ReadBytes(SyntheticMat(ResolveDataDir(std::nullopt)));
+  const std::string good = ReadBytes(SyntheticMat(testing::SyntheticDataDir()));
   const auto dir = testing::FreshTestDir();
   const auto path = SyntheticMat(dir);
   WriteBytes(path, good.substr(0, good.size() * 6 / 10));
@@ -48,7 +58,7 @@ TEST(MatV5Structure, FileCutInsideAVariableIsRefusedNamingTheFile) {
 }
 
 TEST(MatV5Structure, EveryTruncationOfTheSyntheticFileFailsToLoad) {
-  const std::string good = ReadBytes(SyntheticMat(ResolveDataDir(std::nullopt)));
+  const std::string good = ReadBytes(SyntheticMat(testing::SyntheticDataDir()));
   const auto dir = testing::FreshTestDir();
   for (std::size_t cut = 1; cut < good.size(); cut += 2749) {
     WriteBytes(SyntheticMat(dir), good.substr(0, cut));
@@ -85,7 +95,7 @@ TEST(MatV5Structure, ArrayDeclaringMoreElementsThanItStoresIsRefused) {
 }
 
 TEST(MatV5Structure, CorruptCompressedDataIsRefused) {
-  std::string bytes = ReadBytes(SyntheticMat(ResolveDataDir(std::nullopt)));
+  std::string bytes = ReadBytes(SyntheticMat(testing::SyntheticDataDir()));
   for (std::size_t i = 400; i < 600; ++i) bytes[i] = static_cast<char>(bytes[i] ^ 0x5a);
   const std::string error = ErrorOf([&] { CheckMatV5Structure(bytes, "f.mat"); });
   EXPECT_NE(error.find("f.mat, variable #"), std::string::npos) << error;
@@ -95,7 +105,7 @@ TEST(MatV5Structure, CompressedSizeTheDataCannotInflateToIsRefusedUpFront) {
   // A compressed variable whose inner array tag declares 200 MB but whose deflated stream is a few
   // dozen bytes: deflate expands at most 1032:1, so the check refuses it without inflating (and
   // without allocating the declared size).
-  const std::string header = ReadBytes(SyntheticMat(ResolveDataDir(std::nullopt))).substr(0, 128);
+  const std::string header = ReadBytes(SyntheticMat(testing::SyntheticDataDir())).substr(0, 128);
   ASSERT_TRUE(IsMatV5(header));
   std::string inner(72, '\0');
   const std::uint32_t inner_tag[2] = {14, 200'000'000};  // miMATRIX, declared bytes

@@ -11,6 +11,7 @@
 
 #include "datasets/data_dir.h"
 #include "datasets/scenario_check.h"
+#include "datasets/test_data_sets.h"
 #include "datasets/test_temp_dir.h"
 
 namespace phdslam::datasets {
@@ -275,13 +276,9 @@ TEST(MrclamScenario, RejectsBadOptionsAndDataOfAnotherRobot) {
 
 // The real sub-dataset 6 when the data folder holds it (facts of its README).
 TEST(MrclamDataset6, RobotFourHasItsTruthGapsAndCounts) {
-  fs::path data_dir;
-  try {
-    data_dir = ResolveDataDir(std::nullopt);
-  } catch (const std::runtime_error&) {
-    GTEST_SKIP() << "no data folder";
-  }
-  if (!fs::is_directory(data_dir / MrclamFolder(6))) GTEST_SKIP() << "no MRCLAM_Dataset6";
+  const testing::DataSetLookup found = testing::FindDataSetFiles("mrclam");
+  PHDSLAM_SKIP_WITHOUT_DATA_SET(found);
+  const fs::path data_dir = *found.dir;
   MrclamOptions o;
   o.robot = 4;
   MrclamCounts counts;

@@ -12,6 +12,7 @@
 
 #include "datasets/data_dir.h"
 #include "datasets/scenario_check.h"
+#include "datasets/test_data_sets.h"
 #include "datasets/test_temp_dir.h"
 #include "src/core/angles.h"
 #include "src/models/range_bearing_model.h"
@@ -24,7 +25,7 @@ class PaperSyntheticTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     env_ =
-        new PaperSyntheticEnvironment(LoadPaperSyntheticEnvironment(ResolveDataDir(std::nullopt)));
+        new PaperSyntheticEnvironment(LoadPaperSyntheticEnvironment(testing::SyntheticDataDir()));
     const auto start = std::chrono::steady_clock::now();
     seed1_ = new Scenario(MakePaperSyntheticScenario(*env_, 1));
     const auto stop = std::chrono::steady_clock::now();

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "datasets/data_dir.h"
+#include "datasets/test_data_sets.h"
 #include "src/models/car_motion_model.h"
 
 namespace phdslam::datasets {
@@ -425,19 +426,11 @@ TEST(VictoriaParkErrorTest, InvalidOptionsAreRejected) {
 // ---------------------------------------------------------------------------------------------
 // The real data (skipped when the data folder cannot be found).
 
-std::optional<fs::path> RealDataRoot() {
-  try {
-    const fs::path root = ResolveDataDir(std::nullopt);
-    if (fs::is_regular_file(root / "victoria-park" / "measurements.dat")) return root;
-  } catch (const std::runtime_error&) {
-  }
-  return std::nullopt;
-}
-
 class VictoriaParkRealDataTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    const auto root = RealDataRoot();
+    found_ = testing::FindDataSetFiles("victoria-park");
+    const auto& root = found_.dir;
     if (!root) return;
     const auto start = std::chrono::steady_clock::now();
     data_ = new VictoriaParkData(LoadVictoriaParkData(*root));
@@ -454,12 +447,12 @@ class VictoriaParkRealDataTest : public ::testing::Test {
     scenario_ = nullptr;
     data_ = nullptr;
   }
-  void SetUp() override {
-    if (data_ == nullptr) GTEST_SKIP() << "Victoria Park data not found (set PHDSLAM_DATA)";
-  }
+  void SetUp() override { PHDSLAM_SKIP_WITHOUT_DATA_SET(found_); }
+  static testing::DataSetLookup found_;
   static const VictoriaParkData* data_;
   static const Scenario* scenario_;
 };
+testing::DataSetLookup VictoriaParkRealDataTest::found_;
 const VictoriaParkData* VictoriaParkRealDataTest::data_ = nullptr;
 const Scenario* VictoriaParkRealDataTest::scenario_ = nullptr;
 
@@ -492,7 +485,7 @@ TEST_F(VictoriaParkRealDataTest, ScanAndDetectionCounts) {
 TEST_F(VictoriaParkRealDataTest, MatAndTextControlsAgree) {
   // A folder that links the real files except aa3_dr.mat, so the loader reads inputs.dat.
   const TempDataDir dir("real_text");
-  const fs::path real = *RealDataRoot() / "victoria-park";
+  const fs::path real = *found_.dir / "victoria-park";
   for (const char* f : {"measurements.dat", "inputs.dat", "aa3_gpsx.mat"}) {
     fs::create_symlink(fs::absolute(real / f), dir.folder() / f);
   }

@@ -375,6 +375,34 @@ expect_exit 1 "$phdslam" ingest --from "$ext" --export "$ex" --estimator x \
   --data-dir "$data_dir" --out "$scratch/ingest-nan"
 expect_in "$scratch/err" "seed-2/trajectory.tum:5"
 
+# data: check and fetch against a local copy (no network); the synthetic scenario needs no data
+# folder.
+expect_exit 0 "$phdslam" data check --data-dir "$scratch/no-data"
+expect_in "$scratch/out" "synthetic: present (the repository's copy"
+expect_in "$scratch/out" "victoria-park: missing (phdslam data fetch victoria-park)"
+expect_in "$scratch/out" "missing   $scratch/no-data/utias-mrclam/MRCLAM_Dataset6/Barcodes.dat"
+expect_exit 2 "$phdslam" data fetch kitti --data-dir "$scratch/fetched"
+expect_in "$scratch/err" "unknown data set 'kitti'"
+expect_exit 2 "$phdslam" data
+mirror="$scratch/mirror/phdslam3-synthetic"
+mkdir -p "$mirror"
+cp "$(dirname "$0")/../../datasets/data/phdslam3-synthetic/Environment_SLAM.mat" "$mirror/"
+expect_exit 0 "$phdslam" data fetch synthetic --from "file://$scratch/mirror" \
+  --data-dir "$scratch/fetched"
+expect_in "$scratch/out" "synthetic: 1 files installed, 0 already verified"
+expect_exit 0 "$phdslam" data check --data-dir "$scratch/fetched"
+expect_in "$scratch/out" "verified  $scratch/fetched/phdslam3-synthetic/Environment_SLAM.mat"
+printf 'x' | dd of="$mirror/Environment_SLAM.mat" bs=1 seek=200 conv=notrunc 2>/dev/null
+printf 'x' | dd of="$scratch/fetched/phdslam3-synthetic/Environment_SLAM.mat" bs=1 seek=200 \
+  conv=notrunc 2>/dev/null
+expect_exit 1 "$phdslam" data check --data-dir "$scratch/fetched"
+expect_in "$scratch/out" "corrupt   $scratch/fetched/phdslam3-synthetic/Environment_SLAM.mat (SHA-256"
+expect_exit 1 "$phdslam" data fetch synthetic --from "$scratch/mirror" --data-dir "$scratch/fetched"
+expect_in "$scratch/err" "phdslam3-synthetic/Environment_SLAM.mat: the copy from"
+if ls -A "$scratch/fetched/phdslam3-synthetic" | grep -q part; then
+  fail "a temporary download was left behind: $(ls -A "$scratch/fetched/phdslam3-synthetic")"
+fi
+
 if [ "$failures" -ne 0 ]; then
   echo "$failures check(s) failed" >&2
   exit 1

@@ -9,6 +9,7 @@
 //   phdslam parent-weights  single-cluster vs RB-PHD-SLAM parent weights after one scan
 //   phdslam export    a scenario's filter inputs and truth per seed, for external filters
 //   phdslam ingest    an external filter's outputs into a results folder
+//   phdslam data      fetch the data sets into the data folder, check what it holds
 //   phdslam gate      the accuracy gates over a results folder (ci/gates.py, ci/GATES.md)
 //
 // Exit codes: 0 success, 1 a run or evaluation failed (or a file could not be read), 2 a usage
@@ -27,6 +28,7 @@
 #include <string>
 #include <vector>
 
+#include "apps/phdslam/data_command.h"
 #include "apps/phdslam/exit_codes.h"
 #include "apps/phdslam/gate_command.h"
 #include "apps/phdslam/interchange_commands.h"
@@ -288,6 +290,8 @@ int Main(int argc, char** argv) {
   AddParentWeightsCommand(app, parent_weights_arguments);
   AddExportCommand(app, export_arguments);
   AddIngestCommand(app, ingest_arguments);
+  DataArguments data_arguments;
+  AddDataCommand(app, data_arguments);
   GateArguments gate_arguments;
   AddGateCommand(app, gate_arguments);
   app.add_subcommand("list", "List the known scenarios (with their options) and estimators");
@@ -310,6 +314,7 @@ int Main(int argc, char** argv) {
     if (app.got_subcommand("parent-weights")) return ParentWeights(parent_weights_arguments);
     if (app.got_subcommand("export")) return Export(export_arguments);
     if (app.got_subcommand("ingest")) return Ingest(ingest_arguments);
+    if (app.got_subcommand("data")) return Data(app, data_arguments);
     if (app.got_subcommand("gate")) return Gate(gate_arguments);
     return List();
   } catch (const std::bad_alloc& e) {

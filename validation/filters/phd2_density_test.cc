@@ -11,6 +11,7 @@
 
 #include "datasets/data_dir.h"
 #include "datasets/paper_synthetic.h"
+#include "datasets/test_data_sets.h"
 #include "src/core/angles.h"
 #include "src/core/gaussian.h"
 #include "src/core/log_sum_exp.h"
@@ -445,7 +446,7 @@ constexpr double kMaxErrorBound = 5.0;
 class PaperScenarioRun : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(PaperScenarioRun, TracksTheTruthWithTenParticles) {
-  const auto env = datasets::LoadPaperSyntheticEnvironment(datasets::ResolveDataDir(std::nullopt));
+  const auto env = datasets::LoadPaperSyntheticEnvironment(datasets::testing::SyntheticDataDir());
   datasets::SyntheticOptions options;
   options.steps = 300;
   const datasets::Scenario scenario = datasets::MakePaperSyntheticScenario(env, 3, options);

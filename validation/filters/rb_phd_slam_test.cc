@@ -7,6 +7,7 @@
 
 #include "datasets/data_dir.h"
 #include "datasets/paper_synthetic.h"
+#include "datasets/test_data_sets.h"
 #include "src/core/log_sum_exp.h"
 #include "src/filters/phd_slam_family.h"
 #include "src/filters/rb_phd_weighting.h"
@@ -19,8 +20,7 @@ const datasets::Scenario& PaperScenario() {
     datasets::SyntheticOptions options;
     options.steps = 300;
     return datasets::MakePaperSyntheticScenario(
-        datasets::LoadPaperSyntheticEnvironment(datasets::ResolveDataDir(std::nullopt)), 7,
-        options);
+        datasets::LoadPaperSyntheticEnvironment(datasets::testing::SyntheticDataDir()), 7, options);
   }();
   return scenario;
 }

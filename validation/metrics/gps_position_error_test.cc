@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "datasets/data_dir.h"
+#include "datasets/test_data_sets.h"
 #include "datasets/victoria_park.h"
 #include "src/models/car_motion_model.h"
 
@@ -97,21 +98,14 @@ TEST(GpsOutlierTest, DropsIsolatedSpikesOnly) {
   EXPECT_THROW(RemoveGpsOutliers(gps, 1.0, -1.0), std::invalid_argument);
 }
 
-std::optional<std::filesystem::path> RealDataRoot() {
-  try {
-    const auto root = datasets::ResolveDataDir(std::nullopt);
-    if (std::filesystem::is_regular_file(root / "victoria-park" / "measurements.dat")) return root;
-  } catch (const std::runtime_error&) {
-  }
-  return std::nullopt;
-}
-
 // Dead reckoning over the Victoria Park steps, scored against GPS. The match count is fixed by the
 // time stamps alone: 1,068 of the 7,230 scans have a GPS fix within 25 ms (counted independently
 // on the integer millisecond clocks).
 TEST(GpsPositionErrorRealDataTest, DeadReckoningOnVictoriaPark) {
-  const auto root = RealDataRoot();
-  if (!root) GTEST_SKIP() << "Victoria Park data not found (set PHDSLAM_DATA)";
+  const datasets::testing::DataSetLookup found =
+      datasets::testing::FindDataSetFiles("victoria-park");
+  PHDSLAM_SKIP_WITHOUT_DATA_SET(found);
+  const auto& root = found.dir;
   const datasets::VictoriaParkData data = datasets::LoadVictoriaParkData(*root);
   datasets::VictoriaParkOptions options;
   options.clutter_rate = 0.0;

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "datasets/data_dir.h"
+#include "datasets/test_data_sets.h"
 #include "datasets/test_temp_dir.h"
 #include "src/core/random.h"
 #include "validation/runner/io/list_arguments.h"
@@ -476,7 +477,7 @@ TEST(MonteCarlo, ResumeRefusesOtherDataFiles) {
   const fs::path mat = data / "phdslam3-synthetic" / "Environment_SLAM.mat";
   fs::create_directories(mat.parent_path());
   fs::copy_file(
-      datasets::ResolveDataDir(std::nullopt) / "phdslam3-synthetic" / "Environment_SLAM.mat", mat);
+      datasets::testing::SyntheticDataDir() / "phdslam3-synthetic" / "Environment_SLAM.mat", mat);
   const auto plan = [&](const fs::path& folder = {}, int steps = 5) {
     MonteCarloPlan p = OdometryPlan("generated", 5, {1});
     ScenarioOptions options;

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "datasets/sha256.h"
+#include "datasets/test_data_sets.h"
 #include "datasets/test_file_bytes.h"
 #include "datasets/test_temp_dir.h"
 #include "validation/runner/io/results_io.h"
@@ -77,6 +78,7 @@ TEST(ScenarioExport, WritesEveryFileWithItsChecksum) {
 }
 
 TEST(ScenarioExport, RealDataHasGpsAndUnknownOriginsAndSeveralControlsPerStep) {
+  PHDSLAM_SKIP_WITHOUT_DATA_SET(datasets::testing::FindDataSetFiles("victoria-park"));
   ScenarioOptions options;
   options.steps = 30;
   const datasets::Scenario s = MakeScenarioSource("victoria-park", options).make(1);

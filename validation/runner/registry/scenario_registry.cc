@@ -100,6 +100,12 @@ nlohmann::json DataFileChecksums(const std::filesystem::path& data_dir,
   return out;
 }
 
+// The synthetic scenario's file comes from the data folder when it holds it, else from the copy
+// the repository carries (datasets/data): a clone runs it without any data folder.
+std::filesystem::path PaperSyntheticDataDir(const ScenarioOptions& options) {
+  return datasets::ResolveDataDirFor(options.data_dir, datasets::PaperSyntheticDataFiles());
+}
+
 ScenarioEntry PaperSyntheticEntry() {
   ScenarioEntry e;
   e.name = "paper-synthetic";
@@ -111,11 +117,11 @@ ScenarioEntry PaperSyntheticEntry() {
   e.make = [](std::uint64_t seed, const ScenarioOptions& options, ScenarioCache& cache) {
     const datasets::SyntheticOptions o = ToSyntheticOptions(options);
     return datasets::MakePaperSyntheticScenario(
-        cache.PaperSynthetic(datasets::ResolveDataDir(options.data_dir)), seed, o);
+        cache.PaperSynthetic(PaperSyntheticDataDir(options)), seed, o);
   };
   e.resolved_options = [](const ScenarioOptions& options) {
     const datasets::SyntheticOptions o = ToSyntheticOptions(options);
-    const std::filesystem::path data_dir = datasets::ResolveDataDir(options.data_dir);
+    const std::filesystem::path data_dir = PaperSyntheticDataDir(options);
     nlohmann::json j = PaperSyntheticOptionsTable().ToJson(o);
     j["data_dir"] = data_dir.string();
     j["data_files"] = DataFileChecksums(data_dir, datasets::PaperSyntheticDataFiles());

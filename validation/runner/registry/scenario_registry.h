@@ -24,6 +24,8 @@ namespace phdslam::validation {
 /// Scenario settings a run may change; unset values keep the scenario's defaults.
 struct ScenarioOptions {
   /// --data-dir; when unset, PHDSLAM_DATA and then the compiled default (datasets::ResolveDataDir).
+  /// paper-synthetic reads the repository's copy (datasets::ResolveDataDirFor) when this folder
+  /// does not hold its file; victoria-park and mrclam need the folder.
   std::optional<std::string> data_dir;
   int steps = 0;  ///< limit on the number of filter steps; 0 = the scenario's full length
   /// Detection probability: the constant pD (synthetic scenarios) or the pD at zero range
