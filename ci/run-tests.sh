@@ -2,8 +2,9 @@
 # The test command: installs what is missing (Chromium included, for the report-rendering test),
 # builds the release preset as a unity build (PHDSLAM_UNITY_BUILD=ON; warnings are errors), checks
 # formatting and runs clang-tidy on the project's sources (ci/run-lint.sh), runs every unit test
-# with CTest, the Slurm test, the accuracy regression gates (the regression runs and bands of
-# ci/thresholds.yaml and ci/thresholds_glmb.yaml), then the libFuzzer targets for 20 s each
+# with CTest, the Slurm test, the accuracy regression gates (ci/check-gates.sh: the suites of
+# ci/gates.yaml against ci/baseline/, ci/GATES.md) and their short mutation check, then the
+# libFuzzer targets for 20 s each
 # (ci/run-fuzz.sh, under ASan + UBSan). Exits non-zero on any failure.
 #
 #   ci/run-tests.sh              release build + lint + unit tests + Slurm test + gates + fuzzing
@@ -45,7 +46,9 @@ if [[ "${1:-}" == "--sanitize" ]]; then
   stage valgrind ci/run-valgrind.sh
 fi
 
+# The accuracy gates (ci/gates.yaml: exact, paired and anchor tiers against ci/baseline/), then
+# the short form of their mutation check: a mutant must fail them, neutral changes must pass.
 stage gates ci/check-gates.sh build/release
-PHDSLAM_GATES_THRESHOLDS=ci/thresholds_glmb.yaml stage gates-glmb ci/check-gates.sh build/release
+stage mutation-check /usr/bin/python3 ci/mutation_check.py short --build build/release
 stage fuzz ci/run-fuzz.sh 20
 echo "run-tests: all stages passed in $SECONDS s" >&2

@@ -7,7 +7,7 @@
   4. phdslam ingest   the EKF's outputs into the same RESULTS folder
   5. phdslam compare  one paired comparison table (RESULTS/comparison.csv)
   6. make_report.py   one report (RESULTS/report/index.html)
-  7. check_gates.py   accuracy gates (ci/check_gates.py) on the ingested estimator's row
+  7. phdslam gate     an accuracy gate (ci/GATES.md) on the ingested estimator's runs
 
 and checks the outcome: every group has every seed, the comparison pairs the EKF with phd3 on
 those seeds, the EKF localises better than dead reckoning and associates most measurements
@@ -44,30 +44,34 @@ def check(condition, message):
         raise SystemExit(f"worked example: {message}")
 
 
-GATES = """regression:
-  scenario: paper-synthetic
-  seeds: {seeds}
-  steps: {steps}
-  runs:
-    - estimators: [phd3]
-      particles: [10]
-gates:
-  - estimator: {name}
+GATES = """version: 1
+suites:
+  - name: worked-example
+    scenario: paper-synthetic
+    seeds: {seeds}
+    steps: {steps}
+    runs:
+      - estimators: [{name}]
+        particles: [1]
+anchors:
+  - suite: worked-example
+    estimator: {name}
     particles: 1
     metric: pos_rmse_m
+    statistic: pooled-rmse
     band: [0.0, {high}]
     reason: worked example, the ingested estimator gated like a registered one
 """
 
 
-def gates_exit_code(results, high):
-    """ci/check_gates.py's exit code for a pos_rmse_m band [0, high] on the ingested estimator."""
+def gates_exit_code(phdslam, results, high):
+    """`phdslam gate`'s exit code for a pooled pos_rmse_m band [0, high] on the ingested
+    estimator (the anchor tier: an outside filter has no stored baseline)."""
     path = os.path.join(results, f"gates-{high}.yaml")
     with open(path, "w", encoding="ascii") as f:
         f.write(GATES.format(seeds=SEEDS, steps=STEPS, name=NAME, high=high))
-    return subprocess.run([sys.executable, os.path.join(REPO, "ci", "check_gates.py"), path,
-                           os.path.join(results, "summary.csv")],
-                          stdout=subprocess.DEVNULL, check=False).returncode
+    return subprocess.run([phdslam, "gate", "--gates", path, "--results", results, "--tiers",
+                           "anchor"], stdout=subprocess.DEVNULL, check=False).returncode
 
 
 def main():
@@ -110,8 +114,10 @@ def main():
     with open(os.path.join(results, "report", "index.html"), encoding="utf-8") as f:
         html = f.read()
     check(NAME in html and "phd3" in html, "the report does not show both estimators")
-    check(gates_exit_code(results, 2.0) == 0, "a gate pos_rmse_m in [0, 2] m fails on the EKF")
-    check(gates_exit_code(results, 0.1) == 1, "a gate pos_rmse_m in [0, 0.1] m passes the EKF")
+    check(gates_exit_code(args.phdslam, results, 2.0) == 0,
+          "a gate pos_rmse_m in [0, 2] m fails on the EKF")
+    check(gates_exit_code(args.phdslam, results, 0.1) == 1,
+          "a gate pos_rmse_m in [0, 0.1] m passes the EKF")
 
     print(f"{'estimator':<10} {'N':>3} {'pos RMSE m':>11} {'heading deg':>12} {'GOSPA m':>9} "
           f"{'DA TPR':>7} {'DA TNR':>7} {'ms/step':>8}")
