@@ -158,9 +158,9 @@ def command_measure(args: argparse.Namespace) -> int:
     phdslam = phdslam_of(Path(args.build))
     out = Path(args.out)
     baselines: dict[str, RunTable] = {}
-    lines = ["| change | kind | gate | seeds | true effect, trimmed (95 % interval) | "
-             "true effect, mean (95 % interval) | blocks | failed the gate | suite failed | "
-             "predicted, block | predicted, CI seeds |",
+    lines = ["| change | kind | gate | seeds | true effect: the gate's statistic (95 % interval) | "
+             "true effect: plain mean (95 % interval) | blocks | blocks failing the gate | "
+             "blocks failing the suite | predicted rate, block | predicted rate, CI seeds |",
              "|---|---|---|---|---|---|---|---|---|---|---|"]
     for mutant, suite in ((m, gates.suite(name)) for m in mutants for name in m.suites):
         seed_text = suite_seeds(args.seeds, suite.name)
@@ -180,15 +180,19 @@ def command_measure(args: argparse.Namespace) -> int:
             suite_failed = [a or b for a, b in zip(suite_failed, failed)]
             rows.append((gate, e, failed))
         for gate, e, failed in rows:
-            at_block = gate_stats.power_at(max(e["trimmed"], -0.99), gate.spread_redraw, block,
-                                           gates.per_gate_alpha, gates.trim, gates.indifference)
-            at_gate = gates.power_at(gate, max(e["trimmed"], -0.99))
+            if mutant.kind == "neutral":  # a neutral change fails at the false-alarm rate
+                at_block = at_gate = gates.per_gate_alpha
+            else:
+                at_block = gate_stats.power_at(max(e["trimmed"], -0.99), gate.spread_redraw,
+                                               block, gates.per_gate_alpha, gates.trim,
+                                               gates.indifference)
+                at_gate = gates.power_at(gate, max(e["trimmed"], -0.99))
             lines.append(
                 f"| `{mutant.name}` | {mutant.kind} | {gate.label} | {e['n']} | "
                 f"{e['trimmed']:+.2%} [{e['trimmed_low']:+.2%}, {e['trimmed_high']:+.2%}] | "
                 f"{e['mean']:+.2%} [{e['mean_low']:+.2%}, {e['mean_high']:+.2%}] | {len(blocks)} x "
                 f"{block} | {sum(failed)}/{len(blocks)} | {sum(suite_failed)}/{len(blocks)} | "
-                f"{at_block:.2f} | {at_gate:.2f} |")
+                f"{at_block:.3f} | {at_gate:.3f} |")
         print("\n".join(lines[-len(rows):]), flush=True)
     text = "\n".join(lines) + "\n"
     if args.markdown:
