@@ -2,9 +2,10 @@
 # The test command: installs what is missing (Chromium included, for the report-rendering test),
 # builds the release preset as a unity build (PHDSLAM_UNITY_BUILD=ON; warnings are errors), checks
 # formatting and runs clang-tidy on the project's sources (ci/run-lint.sh), runs every unit test
-# with CTest, the Slurm test, the accuracy regression gates (the regression runs and bands of
-# ci/thresholds.yaml and ci/thresholds_glmb.yaml), then the libFuzzer targets for 20 s each
-# (ci/run-fuzz.sh, under ASan + UBSan). Exits non-zero on any failure.
+# with CTest (the folders' layering check, ci/check_layers.py, among them), the Slurm test, the
+# accuracy regression gates (the regression runs and bands of ci/thresholds.yaml and
+# ci/thresholds_glmb.yaml), then the libFuzzer targets for 20 s each (ci/run-fuzz.sh, under ASan +
+# UBSan). Exits non-zero on any failure.
 #
 #   ci/run-tests.sh              release build + lint + unit tests + Slurm test + gates + fuzzing
 #   ci/run-tests.sh --sanitize   also build and run the unit tests under ASan + UBSan, and the main
