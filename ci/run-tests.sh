@@ -2,9 +2,9 @@
 # The test command: installs what is missing (Chromium included, for the report-rendering test),
 # builds the release preset as a unity build (PHDSLAM_UNITY_BUILD=ON; warnings are errors), checks
 # formatting and runs clang-tidy on the project's sources (ci/run-lint.sh), runs every unit test
-# with CTest, the Slurm test, the accuracy regression gates (ci/check-gates.sh: the suites of
-# ci/gates.yaml against ci/baseline/, ci/GATES.md) and their short mutation check, then the
-# libFuzzer targets for 20 s each
+# with CTest (the folders' layering check, ci/check_layers.py, among them), the Slurm test, the
+# accuracy regression gates (ci/check-gates.sh: the suites of ci/gates.yaml against ci/baseline/,
+# ci/GATES.md) and their short mutation check, then the libFuzzer targets for 20 s each
 # (ci/run-fuzz.sh, under ASan + UBSan). Exits non-zero on any failure.
 #
 #   ci/run-tests.sh              release build + lint + unit tests + Slurm test + gates + fuzzing

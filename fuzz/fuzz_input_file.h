@@ -14,7 +14,7 @@ namespace phdslam::fuzz {
 
 /// <tmp>/phdslam-fuzz-<pid>/, created on first use.
 inline std::filesystem::path ScratchFolder() {
-  const std::filesystem::path folder =
+  std::filesystem::path folder =
       std::filesystem::temp_directory_path() / ("phdslam-fuzz-" + std::to_string(::getpid()));
   std::filesystem::create_directories(folder);
   return folder;

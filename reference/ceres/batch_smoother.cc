@@ -14,7 +14,7 @@
 #include "reference/ceres/factor_graph.h"
 #include "reference/ceres/incremental_solve.h"
 #include "reference/ceres/outlier_screening.h"
-#include "reference/ceres/start_trajectory.h"
+#include "reference/ceres/start_increments.h"
 #include "src/core/gaussian.h"
 #include "src/models/range_bearing_model.h"
 

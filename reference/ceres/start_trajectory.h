@@ -12,22 +12,11 @@
 #include "datasets/batch_estimator.h"
 #include "datasets/scenario.h"
 #include "reference/ceres/batch_smoother.h"
-#include "reference/ceres/odometry_increment.h"
 #include "reference/ceres/particle_lineage.h"
 #include "src/filters/estimator.h"
 #include "src/filters/particle_filter.h"
 
 namespace phdslam::reference {
-
-/// The increments that follow `start` (one pose per step of `scenario`): step k's delta is
-/// start[k] in the frame of start[k-1] (start[-1] = scenario.initial_pose), the heading
-/// difference wrapped to (-pi, pi] (estimators report wrapped headings). A step without
-/// propagation in `odometry` stays without; every covariance is `odometry`'s, so the pass gates
-/// and weighs its pose corrections as it would from dead reckoning. Throws std::invalid_argument
-/// when the sizes differ or a start pose is not finite.
-std::vector<OdometryIncrement> StartTrajectoryIncrements(
-    const datasets::Scenario& scenario, const std::vector<Pose>& start,
-    const std::vector<OdometryIncrement>& odometry);
 
 /// Runs an online estimator over the scenario for its trajectory alone and then the smoother
 /// with `options` (any association mode but kFilter), started from that trajectory

@@ -8,6 +8,7 @@
 #include <numbers>
 
 #include "reference/ceres/filter_association.h"
+#include "reference/ceres/start_increments.h"
 #include "reference/ceres/test_scenario.h"
 #include "src/core/angles.h"
 

@@ -12,7 +12,7 @@
 #include <deque>
 
 #include "datasets/scenario.h"
-#include "reference/mrpt/fastslam.h"
+#include "reference/mrpt/fastslam_options.h"
 #include "reference/mrpt/fastslam_particle.h"
 #include "src/core/random.h"
 #include "src/filters/estimator.h"

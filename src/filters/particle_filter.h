@@ -134,7 +134,7 @@ concept UpdatesMaps = ReportsInnovations<Model> ||
 ///   Snapshot Estimate(const Map&) const;                  // the map estimate of the best particle
 ///   MapEstimate ToMapEstimate(const Snapshot&) const;
 ///   int ComponentCount(const Map&) const;                 // for the step diagnostics
-/// The typed contract suite validation/filters/map_model_contract_test.cc checks the behaviour
+/// The typed contract suite oracle/map_model_contract_test.cc checks the behaviour
 /// behind these signatures for every map model.
 template <class Model>
 concept MapModel = std::move_constructible<Model> && std::copyable<typename Model::Map> &&

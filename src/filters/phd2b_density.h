@@ -27,7 +27,7 @@
 // G_p = P_p Hm_p^T D_p^-1, residual nu_p - Hx_p (x - x0)). The stacked NIS is
 // nu^T S^-1 nu = sum nu_p^T D_p^-1 nu_p - b^T Sigma b (Woodbury). A step costs O(M) instead of
 // the O(M^3) of the stacked dense update, which it equals in real arithmetic (the dense update is
-// the reference computation of validation/filters/phd2_density_test.cc). The PHD-SLAM 3.0 paper
+// the reference computation of datasets/phd2_density_test.cc). The PHD-SLAM 3.0 paper
 // times 2.0b with the dense update; this implementation is not that cost model.
 //
 // Choices where the paper leaves room:

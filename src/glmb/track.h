@@ -6,6 +6,7 @@
 #include <compare>
 #include <cstdint>
 #include <memory>
+#include <tuple>
 #include <vector>
 
 #include "src/core/types.h"
@@ -17,7 +18,12 @@ namespace phdslam::glmb {
 struct Label {
   int birth_step = 0;
   int index = 0;
-  auto operator<=>(const Label&) const = default;
+  bool operator==(const Label&) const = default;
+  /// Lexicographic, birth step first, as a defaulted <=> orders (written out because clang-tidy
+  /// 14 reports the comparison with 0 that the defaulted one synthesises as modernize-use-nullptr).
+  std::strong_ordering operator<=>(const Label& other) const {
+    return std::tie(birth_step, index) <=> std::tie(other.birth_step, other.index);
+  }
 };
 
 /// One Gaussian of an entry's density (entries of the delta-GLMB filters have exactly one; LMB

@@ -2,11 +2,9 @@
 
 #include <yaml-cpp/yaml.h>
 
-#include <cmath>
 #include <set>
 #include <stdexcept>
 
-#include "src/core/parameter_table.h"
 #include "validation/runner/experiment/experiment_keys.h"
 #include "validation/runner/experiment/yaml_file_values.h"
 #include "validation/runner/io/results_io.h"
@@ -66,21 +64,6 @@ Experiment ParseExperimentYaml(std::string_view text, const std::string& source,
   if (x.name.empty()) errors.Fail("'name' is empty");
   x.source = {{"path", source}, {"text", std::string(text)}, {"values", YamlToJson(root, errors)}};
   return x;
-}
-
-void SetScenarioOption(Experiment& experiment, const std::string& key,
-                       const nlohmann::json& value) {
-  if (key.empty()) throw std::invalid_argument("a scenario option key is empty");
-  const bool pd = key == kSweepParameterPd;
-  if (pd || key == kSweepParameterClutterRate) {
-    if (!value.is_number() || !std::isfinite(value.get<double>())) {
-      throw std::invalid_argument("scenario option '" + key + "': expected a number, got " +
-                                  params::Shown(value));
-    }
-    (pd ? experiment.pd : experiment.clutter_rate) = value.get<double>();
-    return;
-  }
-  experiment.scenario_settings[key] = value;
 }
 
 Experiment ReadExperimentFile(const std::filesystem::path& path) {

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "validation/runner/experiment/experiment_file.h"
+#include "validation/runner/experiment/experiment.h"
 #include "validation/runner/experiment/yaml_file_values.h"
 
 namespace phdslam::validation {

@@ -4,8 +4,8 @@
 #include <optional>
 #include <utility>
 
+#include "validation/runner/experiment/experiment_assignments.h"
 #include "validation/runner/experiment/experiment_file_lists.h"
-#include "validation/runner/experiment/option_precedence.h"
 #include "validation/runner/experiment/yaml_file_values.h"
 #include "validation/runner/io/list_arguments.h"
 

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "validation/runner/experiment/experiment_file.h"
+#include "validation/runner/experiment/experiment.h"
 
 namespace phdslam::validation {
 

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "datasets/test_temp_dir.h"
+#include "validation/runner/experiment/experiment_assignments.h"
 #include "validation/runner/io/results_io.h"
 
 namespace phdslam::validation {

@@ -1,9 +1,12 @@
 // phdslam_authors_replay: runs phdslam's phd3 or phd1 on one seed of a registered scenario with
 // the random draws another implementation recorded (src/core/draw_replay.h) in place of its
 // seeded stream, and writes the inside of every step as step-trace CSV files
-// (step_trace_writer.h), for compare_traces.py to set beside the authors' trace; with --out, also
-// its estimate (trajectory.tum and the final map.csv) in the format `phdslam ingest` reads, so
-// that the replayed runs can be scored and compared as any other estimator's.
+// (reference/authors/step_trace_writer.h), for reference/authors/compare_traces.py to set beside
+// the authors' trace; with --out, also its estimate (trajectory.tum and the final map.csv) in the
+// format `phdslam ingest` reads, so that the replayed runs can be scored and compared as any other
+// estimator's (reference/authors/README.md, "Replaying the draws in phdslam"). A program, so it
+// lives with the programs: it stands on the runner's registries (validation/), which
+// reference/ lies below.
 //
 //   phdslam_authors_replay --draws DRAWS.csv [--trace DIR] [--out DIR] [--scenario paper-synthetic]
 //                          --seed S [--steps K] [--variant phd3] [--particles N] [--map-every M]
@@ -27,7 +30,7 @@
 #include "validation/runner/registry/estimator_registry.h"
 #include "validation/runner/registry/scenario_registry.h"
 
-namespace phdslam::authors {
+namespace phdslam::apps {
 namespace {
 
 constexpr const char* kUsage =
@@ -150,7 +153,7 @@ int Run(const Options& o) {
   auto replay = std::make_shared<DrawReplay>(DrawReplay::ReadCsv(o.draws));
   filter->ReplayDraws(replay);
   const int steps = static_cast<int>(scenario.steps.size());
-  std::optional<StepTraceWriter> writer;
+  std::optional<authors::StepTraceWriter> writer;
   if (!o.trace.empty()) {
     writer.emplace(o.trace, o.map_every, steps - 1);
     filter->SetObserver(&*writer);
@@ -173,18 +176,18 @@ int Run(const Options& o) {
 }
 
 }  // namespace
-}  // namespace phdslam::authors
+}  // namespace phdslam::apps
 
 int main(int argc, char** argv) {
-  phdslam::authors::Options options;
+  phdslam::apps::Options options;
   try {
-    options = phdslam::authors::ParseOptions(argc, argv);
+    options = phdslam::apps::ParseOptions(argc, argv);
   } catch (const std::exception& e) {
-    std::cerr << "phdslam_authors_replay: " << e.what() << "\n" << phdslam::authors::kUsage;
+    std::cerr << "phdslam_authors_replay: " << e.what() << "\n" << phdslam::apps::kUsage;
     return 2;
   }
   try {
-    return phdslam::authors::Run(options);
+    return phdslam::apps::Run(options);
   } catch (const std::exception& e) {
     std::cerr << "phdslam_authors_replay: " << e.what() << '\n';
     return 1;
