@@ -170,7 +170,7 @@ def command_measure(args: argparse.Namespace) -> int:
                                               out / suite.name / "baseline")
         new = run_suite(phdslam, suite, seed_text, None, mutant.args,
                         out / suite.name / mutant.name)
-        block = args.block or len(suite.seed_list())
+        block = int(suite_seeds(args.block, suite.name)) if args.block else len(suite.seed_list())
         blocks = [seeds[i:i + block] for i in range(0, len(seeds) - block + 1, block)]
         suite_failed = [False] * len(blocks)
         rows = []
@@ -264,8 +264,9 @@ def main(argv: list[str]) -> int:
     measure.add_argument("--build", required=True)
     measure.add_argument("--seeds", default="1-1000",
                          help="one seed list, or SUITE=SEEDS pairs separated by ';'")
-    measure.add_argument("--block", type=int, default=0,
-                         help="seeds per block (default: the suite's gate seed count)")
+    measure.add_argument("--block", default="",
+                         help="seeds per block, or SUITE=N pairs separated by ';' (default: the "
+                              "suite's gate seed count)")
     measure.add_argument("--out", required=True)
     measure.add_argument("--only")
     measure.add_argument("--markdown")
