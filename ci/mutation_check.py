@@ -160,8 +160,9 @@ def command_measure(args: argparse.Namespace) -> int:
     baselines: dict[str, RunTable] = {}
     lines = ["| change | kind | gate | seeds | true effect: the gate's statistic (95 % interval) | "
              "true effect: plain mean (95 % interval) | blocks | blocks failing the gate | "
-             "blocks failing the suite | predicted rate, block | predicted rate, CI seeds |",
-             "|---|---|---|---|---|---|---|---|---|---|---|"]
+             "blocks failing the suite | predicted rate, block | predicted rate, CI seeds | "
+             "on the CI seeds |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for mutant, suite in ((m, gates.suite(name)) for m in mutants for name in m.suites):
         seed_text = suite_seeds(args.seeds, suite.name)
         seeds = expand_seeds(seed_text)
@@ -178,8 +179,12 @@ def command_measure(args: argparse.Namespace) -> int:
             e = effect(gates, gate, new, baselines[suite.name])
             failed = block_verdicts(gates, gate, new, baselines[suite.name], blocks)
             suite_failed = [a or b for a, b in zip(suite_failed, failed)]
-            rows.append((gate, e, failed))
-        for gate, e, failed in rows:
+            gate_seeds = suite.seed_list()
+            on_ci = ("n/a" if not set(gate_seeds) <= set(seeds) else
+                     "FAIL" if block_verdicts(gates, gate, new, baselines[suite.name],
+                                              [gate_seeds])[0] else "pass")
+            rows.append((gate, e, failed, on_ci))
+        for gate, e, failed, on_ci in rows:
             if mutant.kind == "neutral":  # a neutral change fails at the false-alarm rate
                 at_block = at_gate = gates.per_gate_alpha
             else:
@@ -192,7 +197,7 @@ def command_measure(args: argparse.Namespace) -> int:
                 f"{e['trimmed']:+.2%} [{e['trimmed_low']:+.2%}, {e['trimmed_high']:+.2%}] | "
                 f"{e['mean']:+.2%} [{e['mean_low']:+.2%}, {e['mean_high']:+.2%}] | {len(blocks)} x "
                 f"{block} | {sum(failed)}/{len(blocks)} | {sum(suite_failed)}/{len(blocks)} | "
-                f"{at_block:.3f} | {at_gate:.3f} |")
+                f"{at_block:.3f} | {at_gate:.3f} | {on_ci} |")
         print("\n".join(lines[-len(rows):]), flush=True)
     text = "\n".join(lines) + "\n"
     if args.markdown:
@@ -238,7 +243,8 @@ def command_short(args: argparse.Namespace) -> int:
                       f"({'FAIL' if test.rejected else 'pass'} at {test.critical:.2f})")
             got = "fail" if any(verdicts) else "pass"
             ok = got == mutant.short
-            print(f"mutation-check: {mutant.name} ({mutant.kind}) {got}s the paired tier: "
+            verb = "fails" if got == "fail" else "passes"
+            print(f"mutation-check: {mutant.name} ({mutant.kind}) {verb} the paired tier: "
                   f"{'as it must' if ok else 'WRONG, it must ' + mutant.short}")
             status |= 0 if ok else 1
     print(f"mutation-check: short form {'passed' if status == 0 else 'FAILED'} "

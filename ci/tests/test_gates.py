@@ -225,6 +225,28 @@ class TiersTest(unittest.TestCase):
         self.assertIn("ACCEPTED DESPITE A FAILED PAIRED TIER: the model is corrected", out)
 
 
+class FewerSeedsTest(unittest.TestCase):
+    def test_the_baseline_moves_to_fewer_seeds_with_a_verdict_but_not_to_more(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            ws = Workspace(Path(tmp))
+            ws.store_baseline()
+            ws.gates.write_text(ws.gates.read_text().replace("seeds: 1-400", "seeds: 1-300")
+                                .replace("margin: 0.05", "margin: 0.06"))
+            results = ws.results("fewer", runs_text(300))
+            code, out, err = run_gates("update-baseline", "--gates", str(ws.gates), "--results",
+                                       str(results))
+            self.assertEqual(code, 0, err)
+            self.assertIn("paired tier", out)
+            header = json.loads((ws.root / "baseline" / "baseline.json").read_text())
+            self.assertEqual(header["suites"]["toy"]["definition"]["seeds"], "1-300")
+            self.assertEqual(len(header["verdict"]["paired"]), 2)
+            ws.gates.write_text(ws.gates.read_text().replace("seeds: 1-300", "seeds: 1-400"))
+            code, _, err = run_gates("update-baseline", "--gates", str(ws.gates), "--results",
+                                     str(ws.results("more", runs_text(400))))
+            self.assertEqual(code, 2)
+            self.assertIn("definition.seeds", err)
+
+
 class BadInputTest(unittest.TestCase):
     def setUp(self):
         self.tmp = tempfile.TemporaryDirectory()
