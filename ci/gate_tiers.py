@@ -115,8 +115,7 @@ def paired_tier(gates: GatesFile, gate: PairedGate, new: RunTable, old: RunTable
                              passed, "deterministic: fails above the margin")
     alpha = gates.per_gate_alpha
     test = gate_stats.yuen_test(d, gates.trim, alpha, gates.indifference)
-    power = gate_stats.power_at(gate.margin, gate.spread_redraw, seeds, alpha, gates.trim,
-                                gates.indifference)
+    power = gates.power_at(gate, gate.margin)
     note = "identical" if all(v == 0.0 for v in d) else (
         f"t = {test.statistic:.2f} > {test.critical:.2f}" if test.rejected
         else f"t = {test.statistic:.2f} <= {test.critical:.2f}")

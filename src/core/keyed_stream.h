@@ -6,7 +6,6 @@
 // seed stay paired (ci/GATES.md, "Common random numbers").
 #pragma once
 
-#include <cmath>
 #include <cstdint>
 
 #include "src/core/draw_replay.h"
@@ -21,7 +20,7 @@ enum class DrawStreams {
 };
 
 /// The numbers of one key: the i-th uniform is MixSeed(key + i * golden ratio), i = 1, 2, ...
-/// (SplitMix64's sequence), normals by the polar method as RandomStream draws them.
+/// (SplitMix64's sequence), normals by the polar method as RandomStream draws them (PolarNormals).
 class KeyedStream {
  public:
   explicit KeyedStream(std::uint64_t key) : state_(key) {}
@@ -32,30 +31,12 @@ class KeyedStream {
     return static_cast<double>(MixSeed(state_) >> 11) * 0x1.0p-53;
   }
 
-  /// Standard normal (Marsaglia polar method, one cached value).
-  double Normal() {
-    if (has_spare_) {
-      has_spare_ = false;
-      return spare_;
-    }
-    double u = 0.0;
-    double v = 0.0;
-    double s = 0.0;
-    do {
-      u = 2.0 * Uniform() - 1.0;
-      v = 2.0 * Uniform() - 1.0;
-      s = u * u + v * v;
-    } while (s >= 1.0 || s == 0.0);
-    const double f = std::sqrt(-2.0 * std::log(s) / s);
-    spare_ = v * f;
-    has_spare_ = true;
-    return u * f;
-  }
+  /// Standard normal (Marsaglia polar method, one cached value, as RandomStream).
+  double Normal() { return normals_.Next(*this); }
 
  private:
   std::uint64_t state_;
-  double spare_ = 0.0;
-  bool has_spare_ = false;
+  PolarNormals normals_;
 };
 
 /// The stream of the draws tagged (step, particle, purpose) of the run with `stream_seed`.

@@ -38,6 +38,35 @@ constexpr std::uint64_t DeriveSeed(std::uint64_t a, std::uint64_t b, std::uint64
   return DeriveSeed(DeriveSeed(a, b), c);
 }
 
+/// Standard normals by Marsaglia's polar method from any source of uniforms on [0, 1) (a
+/// RandomStream, a KeyedStream): each accepted pair gives two normals, the second cached.
+class PolarNormals {
+ public:
+  template <typename UniformSource>
+  double Next(UniformSource& source) {
+    if (has_spare_) {
+      has_spare_ = false;
+      return spare_;
+    }
+    double u = 0.0;
+    double v = 0.0;
+    double s = 0.0;
+    do {
+      u = 2.0 * source.Uniform() - 1.0;
+      v = 2.0 * source.Uniform() - 1.0;
+      s = u * u + v * v;
+    } while (s >= 1.0 || s == 0.0);
+    const double f = std::sqrt(-2.0 * std::log(s) / s);
+    spare_ = v * f;
+    has_spare_ = true;
+    return u * f;
+  }
+
+ private:
+  double spare_ = 0.0;
+  bool has_spare_ = false;
+};
+
 class RandomStream {
  public:
   explicit RandomStream(std::uint64_t seed) : engine_(MixSeed(seed)) {}
@@ -48,24 +77,7 @@ class RandomStream {
   double Uniform(double a, double b) { return a + (b - a) * Uniform(); }
 
   /// Standard normal (Marsaglia polar method, one cached value).
-  double Normal() {
-    if (has_spare_) {
-      has_spare_ = false;
-      return spare_;
-    }
-    double u = 0.0;
-    double v = 0.0;
-    double s = 0.0;
-    do {
-      u = 2.0 * Uniform() - 1.0;
-      v = 2.0 * Uniform() - 1.0;
-      s = u * u + v * v;
-    } while (s >= 1.0 || s == 0.0);
-    const double f = std::sqrt(-2.0 * std::log(s) / s);
-    spare_ = v * f;
-    has_spare_ = true;
-    return u * f;
-  }
+  double Normal() { return normals_.Next(*this); }
 
   /// Poisson(lambda) by Knuth's multiplication method (fine for the small rates used here);
   /// for lambda > 30 the normal approximation rounded at zero is used instead.
@@ -89,8 +101,7 @@ class RandomStream {
 
  private:
   std::mt19937_64 engine_;
-  double spare_ = 0.0;
-  bool has_spare_ = false;
+  PolarNormals normals_;
 };
 
 }  // namespace phdslam
