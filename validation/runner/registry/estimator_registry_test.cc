@@ -321,6 +321,27 @@ TEST(ReferenceEstimators, VictoriaParkStartsTheOwnAssociationFromTheBestParticle
   EXPECT_EQ(ScenarioParameterDefaults("victoria-park", "smoother-known"), nlohmann::json::object());
 }
 
+// On MRCLAM the known and own associations build their graph incrementally by default
+// (scenario_defaults.cc); an explicit value wins; elsewhere, and for smoother-filter, the default
+// stays the solve from dead reckoning.
+TEST(ReferenceEstimators, MrclamSolvesTheSmoothersIncrementallyByDefault) {
+  if (!Registered("smoother-known")) GTEST_SKIP() << "built without Ceres";
+  const auto initialisation = [](const std::string& name, const std::string& scenario,
+                                 const nlohmann::json& overrides) {
+    EstimatorRequest request;
+    request.name = name;
+    request.scenario_name = scenario;
+    request.overrides = overrides;
+    return FindEstimator(name).resolved_parameters(request).at("initialisation").get<std::string>();
+  };
+  const nlohmann::json none = nlohmann::json::object();
+  EXPECT_EQ(initialisation("smoother-known", "mrclam", none), "incremental");
+  EXPECT_EQ(initialisation("smoother-unknown", "mrclam", none), "incremental");
+  EXPECT_EQ(initialisation("smoother-known", "mrclam", {{"initialisation", "batch"}}), "batch");
+  EXPECT_EQ(initialisation("smoother-filter", "mrclam", none), "batch");
+  EXPECT_EQ(initialisation("smoother-known", "paper-synthetic", none), "batch");
+}
+
 TEST(ReferenceEstimators, FastSlamProposalIsFixedByTheName) {
   if (!Registered("fastslam1")) GTEST_SKIP() << "built without MRPT";
   EXPECT_EQ(ResolveError("fastslam1", {{"proposal", "motion-model"}}), "");

@@ -133,7 +133,8 @@ std::vector<EstimatorEntry> CeresEstimators() {
                         "(reads the hidden origin labels): the graph-optimisation lower bound. "
                         "Graph solved from dead reckoning (initialisation=batch, default) or "
                         "built in time order and solved as it grows "
-                        "(initialisation=incremental), or from the trajectory of a PHD-SLAM 3.0 "
+                        "(initialisation=incremental, the default on mrclam), or from the "
+                        "trajectory of a PHD-SLAM 3.0 "
                         "run on the same seed (start_from=phd3)"),
           SmootherEntry("smoother-filter", reference::AssociationMode::kFilter,
                         "Ceres batch smoother on the data association of a PHD-SLAM 3.0 run "
@@ -142,7 +143,8 @@ std::vector<EstimatorEntry> CeresEstimators() {
                         "Ceres batch smoother with its own association: each scan associated "
                         "in a sequential EKF pass from dead reckoning (initialisation=batch, "
                         "default) or with the optimised map on marginal covariances as the "
-                        "graph grows (initialisation=incremental), or with the pass started "
+                        "graph grows (initialisation=incremental, the default on mrclam), or with "
+                        "the pass started "
                         "from the trajectory of a PHD-SLAM 3.0 run on the same seed "
                         "(start_from=phd3, start_particles=5; its association is not used; "
                         "start_path=best-particle-path for its best final particle's path, "
