@@ -140,6 +140,17 @@ nlohmann::json BuildConfig(const MonteCarloPlan& plan,
   return config;
 }
 
+// True when a run folder under <out>/runs holds a metrics.json (a finished run).
+bool HoldsFinishedRun(const std::filesystem::path& out) {
+  std::error_code ec;
+  for (auto it = std::filesystem::recursive_directory_iterator(out / kRunsFolder, ec);
+       !ec && it != std::filesystem::recursive_directory_iterator(); it.increment(ec)) {
+    if (it.depth() == 2 && it->path().filename() == kMetricsFile) return true;
+    if (it.depth() >= 2) it.disable_recursion_pending();
+  }
+  return false;
+}
+
 [[noreturn]] void ThrowIncompatible(const std::filesystem::path& out, const std::string& what) {
   throw std::invalid_argument(out.string() + " holds results made with other settings: " + what +
                               "; use another --out or remove it");
@@ -272,8 +283,11 @@ PreparedRuns Prepare(const MonteCarloPlan& plan, const MonteCarloSettings& setti
   if (const auto path = settings.out / kConfigFile; std::filesystem::exists(path)) {
     const nlohmann::json existing = ReadJsonObject(path);
     const std::string conflict = ConfigConflict(existing, prepared.config, path.string());
-    if (!conflict.empty()) ThrowIncompatible(settings.out, conflict);
-    prepared.config = UnionConfig(existing, prepared.config);
+    // A folder whose runs all failed before computing anything (a missing data file, a bad
+    // option) holds no result its config.json describes: the corrected rerun replaces it.
+    const bool computed = HoldsFinishedRun(settings.out);
+    if (!conflict.empty() && computed) ThrowIncompatible(settings.out, conflict);
+    prepared.config = conflict.empty() ? UnionConfig(existing, prepared.config) : prepared.config;
   }
   return prepared;
 }
