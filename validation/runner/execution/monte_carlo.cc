@@ -80,6 +80,16 @@ void ValidatePlan(const MonteCarloPlan& plan) {
   }
 }
 
+// The run length the options fix (steps > 0), so that parameters bounded by it are checked with
+// the plan; 0 when it is known only once the scenario is built.
+std::size_t PlannedSteps(const nlohmann::json& options) {
+  const auto steps = options.find("steps");
+  if (steps == options.end() || !steps->is_number_integer() || steps->get<std::int64_t>() <= 0) {
+    return 0;
+  }
+  return static_cast<std::size_t>(steps->get<std::int64_t>());
+}
+
 std::map<ParameterKey, nlohmann::json> ResolveParameters(const MonteCarloPlan& plan) {
   std::map<ParameterKey, nlohmann::json> params;
   for (const EstimatorSelection& s : plan.estimators) {
@@ -90,6 +100,7 @@ std::map<ParameterKey, nlohmann::json> ResolveParameters(const MonteCarloPlan& p
       request.overrides = s.overrides;
       request.scenario_name = plan.scenario.name;
       request.detection_probability = NominalDetectionProbability(plan.scenario.options);
+      request.steps = PlannedSteps(plan.scenario.options);
       params[{s.entry.name, n}] = s.entry.resolved_parameters
                                       ? s.entry.resolved_parameters(request)
                                       : ApplyOverrides(nlohmann::json::object(), s.overrides,
