@@ -34,6 +34,7 @@
 #include "apps/phdslam/interchange_commands.h"
 #include "apps/phdslam/option_without_value.h"
 #include "apps/phdslam/run_command.h"
+#include "apps/phdslam/unknown_subcommand.h"
 #include "datasets/map_io.h"
 #include "datasets/trajectory_io.h"
 #include "validation/runner/evaluation/offline_evaluation.h"
@@ -295,6 +296,11 @@ int Main(int argc, char** argv) {
   GateArguments gate_arguments;
   AddGateCommand(app, gate_arguments);
   app.add_subcommand("list", "List the known scenarios (with their options) and estimators");
+  if (const std::string name = UnknownSubcommand(app, argc, argv); !name.empty()) {
+    std::cerr << "phdslam: error: unknown subcommand '" << name
+              << "' (the subcommands are listed by phdslam --help)\n";
+    return kExitUsage;
+  }
   if (const std::string option = OptionWithoutValue(app, argc, argv); !option.empty()) {
     std::cerr << "phdslam: error: " << option << " needs a value (see phdslam --help)\n";
     return kExitUsage;
