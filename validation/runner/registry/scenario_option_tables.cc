@@ -158,7 +158,7 @@ const params::ParameterTable<datasets::GeneratorOptions>& GeneratedOptionsTable(
               Between(0, datasets::kMaxSimulatedLandmarks)),
           NumberField<O>(
               "corridor_half_width", [](auto& o) -> auto& { return o.corridor_half_width; },
-              PositiveUpTo(kMaxDistance)),
+              Between(datasets::kMinCorridorHalfWidth, kMaxDistance)),
       },
       DetectionRows<O>(),
       SensorRows<O>(),
