@@ -470,8 +470,10 @@ def parse_seed_text(text: str) -> set[int]:
     """'1-100' or '1,3,7' or a mix."""
     seeds: set[int] = set()
     for part in text.split(","):
-        low, _, high = part.partition("-")
+        low, dash, high = part.partition("-")
         try:
+            if dash and not high.strip():
+                raise ValueError(part)  # "1-": a range without its end
             seeds.update(range(int(low), int(high or low) + 1))
         except ValueError:
             raise ValueError(f"--seeds '{text}': expected a-b or a comma list of seeds")
