@@ -287,6 +287,9 @@ TEST(ReferenceEstimators, IncrementalSettingsNeedTheIncrementalInitialisation) {
   }
   EXPECT_EQ(ResolveError("smoother-unknown", {{"incremental_chunk_steps", 25}}), "");
   EXPECT_NE(ResolveError("smoother-known", {{"incremental_relocalisation_std", 2.0}}), "");
+  EXPECT_NE(ResolveError("smoother-known", {{"start_particles", 10}}).find("start_from=phd3"),
+            std::string::npos);
+  EXPECT_EQ(ResolveError("smoother-known", {{"start_particles", 10}, {"start_from", "phd3"}}), "");
 }
 
 // The fixed-lag smoother's run-length bounds are checked when the plan knows the run's length.

@@ -18,11 +18,20 @@ namespace phdslam::validation {
 namespace {
 
 // The incremental solve's settings (incremental_*: chunk length, re-localisation, static-point
-// check, ...) change nothing with initialisation=batch: one given a value other than its default
-// is refused, naming the mode that would use it, rather than recorded in config.json as if used.
+// check, ...) change nothing with initialisation=batch, nor start_particles without
+// start_from=phd3: one given a value other than its default is refused, naming the mode that
+// would use it, rather than recorded in config.json as if used.
 void RequireUsedInMode(const EstimatorRequest& r, const reference::SmootherOptions& o) {
-  if (o.initialisation == reference::SmootherInitialisation::kIncremental) return;
   const nlohmann::json defaults = reference::ToJson(reference::SmootherOptions{});
+  // start_particles sizes the PHD-SLAM 3.0 run of start_from=phd3, which no other start makes.
+  if (o.start_from != reference::StartTrajectory::kPhd3 &&
+      r.overrides.contains("start_particles") &&
+      r.overrides.at("start_particles") != defaults.at("start_particles")) {
+    throw std::invalid_argument("estimator '" + r.name +
+                                "': parameter 'start_particles' has no effect with "
+                                "start_from=dead-reckoning; it is used only with start_from=phd3");
+  }
+  if (o.initialisation == reference::SmootherInitialisation::kIncremental) return;
   for (const auto& [key, value] : r.overrides.items()) {
     if (key.rfind("incremental_", 0) != 0 || (defaults.contains(key) && defaults[key] == value)) {
       continue;
