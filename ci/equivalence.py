@@ -26,7 +26,9 @@ When every difference is the same value (sd = 0, e.g. identical runs) the interv
 Errors (exit 2, naming the file, line, group or seeds): a run of a tested group in one folder only
 (restrict the seeds with --seeds), a value missing in one run of a pair, a value that is not a
 finite number, fewer than --min-seeds (never fewer than 2) pairs, folders of different scenarios,
-a missing or malformed file. A column empty in every run of both folders (e.g. GOSPA without a
+a missing or malformed file (a results folder without config.json among them: the scenario check
+needs it; a byte-order mark is accepted), a --csv file whose folder does not exist or that cannot
+be written. A column empty in every run of both folders (e.g. GOSPA without a
 true map) is reported as not tested. Exit 0 when every tested group is EQUIVALENT, 1 when some
 is NOT SHOWN. The Student t distribution is computed here (no SciPy needed).
 """
@@ -35,6 +37,7 @@ from __future__ import annotations
 
 import argparse
 import csv
+import io
 import json
 import math
 import sys
@@ -208,18 +211,28 @@ class Runs:
 
 
 def scenario_of(folder: Path) -> tuple[str, dict]:
-    """config.json's scenario name and options (without the data folder's path); "" if absent."""
+    """config.json's scenario name and options (without the data folder's path). A folder without
+    config.json is an error: without it the scenario check would be skipped silently."""
     config = folder / "config.json"
     if not config.is_file():
-        return "", {}
+        raise InputError(f"missing: {config} (needed to check both folders ran the same "
+                         "scenario)")
     try:
-        scenario = json.loads(config.read_text(encoding="utf-8"))["scenario"]
+        scenario = json.loads(read_text(config))["scenario"]
         options = dict(scenario.get("options", {}))
         name = str(scenario["name"])
     except (ValueError, KeyError, TypeError, AttributeError) as error:
         raise InputError(f"{config}: no scenario name ({error})")
     options.pop("data_dir", None)
     return name, options
+
+
+def read_text(path: Path) -> str:
+    """A text file's content (a byte-order mark dropped); InputError naming it when unreadable."""
+    try:
+        return path.read_text(encoding="utf-8-sig")
+    except (OSError, UnicodeDecodeError) as error:
+        raise InputError(f"{path}: cannot be read ({error})")
 
 
 def read_runs(folder: Path, columns: list[str]) -> Runs:
@@ -231,7 +244,7 @@ def read_runs(folder: Path, columns: list[str]) -> Runs:
     rows: dict[RunKey, dict[str, str]] = {}
     lines: dict[RunKey, int] = {}
     scenarios = set()
-    with path.open(encoding="utf-8", newline="") as stream:
+    with io.StringIO(read_text(path), newline="") as stream:
         reader = csv.DictReader(stream)
         for key in ("estimator", "particles", "seed", *columns):
             if reader.fieldnames is None or key not in reader.fieldnames:
@@ -287,7 +300,10 @@ def folders_of(root: Path) -> list[Path]:
     if not sweep.is_file():
         return [Path(".")]
     try:
-        return [Path(f) for f in json.loads(sweep.read_text(encoding="utf-8"))["folders"]]
+        folders = json.loads(read_text(sweep))["folders"]
+        if not isinstance(folders, list) or not all(isinstance(f, str) for f in folders):
+            raise TypeError("'folders' is not a list of names")
+        return [Path(f) for f in folders]
     except (ValueError, KeyError, TypeError) as error:
         raise InputError(f"{sweep}: no list 'folders' ({error})")
 
@@ -454,8 +470,10 @@ def parse_seed_text(text: str) -> set[int]:
     """'1-100' or '1,3,7' or a mix."""
     seeds: set[int] = set()
     for part in text.split(","):
-        low, _, high = part.partition("-")
+        low, dash, high = part.partition("-")
         try:
+            if dash and not high.strip():
+                raise ValueError(part)  # "1-": a range without its end
             seeds.update(range(int(low), int(high or low) + 1))
         except ValueError:
             raise ValueError(f"--seeds '{text}': expected a-b or a comma list of seeds")
@@ -490,6 +508,8 @@ def parse_arguments(argv: list[str]) -> argparse.Namespace:
         parser.error("--margin must be > 0")
     if not 0.0 < args.alpha < 0.5:
         parser.error("--alpha must be in (0, 0.5)")
+    if args.csv is not None and not (args.csv.parent if str(args.csv.parent) else Path(".")).is_dir():
+        parser.error(f"--csv {args.csv}: the folder {args.csv.parent} does not exist")
     columns = [m for m in args.metric.split(",") if m] + args.column
     args.columns = list(dict.fromkeys(columns))
     if not args.columns:
@@ -526,7 +546,7 @@ def main(argv: list[str]) -> int:
         if not tested:
             raise InputError("nothing to test: no paired runs with values "
                              f"({args.before}, {args.after})")
-    except InputError as error:
+    except (InputError, csv.Error) as error:
         print(f"equivalence: {error}", file=sys.stderr)
         return 2
     shown = sum(line.tost.equivalent for line in tested)
@@ -534,12 +554,22 @@ def main(argv: list[str]) -> int:
           f"BEFORE's mean, {100 * (1 - 2 * args.alpha):g} % CI): {shown} of {len(tested)} "
           f"EQUIVALENT")
     if args.csv:
-        with args.csv.open("w", encoding="utf-8", newline="") as stream:
-            writer = csv.writer(stream)
-            writer.writerow(("folder",) + HEADER)
-            for line in all_lines:
-                writer.writerow([line.folder] + cells(line))
+        try:
+            write_csv(args.csv, all_lines)
+        except OSError as error:
+            print(f"equivalence: --csv {args.csv}: cannot be written ({error.strerror})",
+                  file=sys.stderr)
+            return 2
     return 0 if shown == len(tested) else 1
+
+
+def write_csv(path: Path, lines: list[Line]) -> None:
+    """The table's lines as a CSV file."""
+    with path.open("w", encoding="utf-8", newline="") as stream:
+        writer = csv.writer(stream)
+        writer.writerow(("folder",) + HEADER)
+        for line in lines:
+            writer.writerow([line.folder] + cells(line))
 
 
 if __name__ == "__main__":

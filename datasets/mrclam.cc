@@ -350,8 +350,9 @@ void MrclamOptions::Validate() const {
   };
   if (dataset < 1) fail("dataset", ">= 1", dataset);
   if (robot < 1 || robot > kMrclamRobots) fail("robot", "in 1-5", robot);
-  if (!(detection_probability > 0.0 && detection_probability < 1.0)) {
-    fail("detection_probability", "in (0, 1)", detection_probability);
+  // (0, 1] as for every scenario (phdslam list, --pd).
+  if (!(detection_probability > 0.0 && detection_probability <= 1.0)) {
+    fail("detection_probability", "in (0, 1]", detection_probability);
   }
   if (!(clutter_rate >= 0.0 && std::isfinite(clutter_rate))) {
     fail("clutter_rate", "a finite value >= 0", clutter_rate);

@@ -269,6 +269,11 @@ TEST(MrclamScenario, RejectsBadOptionsAndDataOfAnotherRobot) {
   o = RobotTwoOfDatasetThree();
   o.detection_probability = 1.5;
   EXPECT_THROW((void)MakeMrclamScenario(data, 1, o), std::invalid_argument);
+  o.detection_probability = 0.0;
+  EXPECT_THROW((void)MakeMrclamScenario(data, 1, o), std::invalid_argument);
+  // pD = 1 is in the range `phdslam list` and --pd give every scenario, (0, 1].
+  o.detection_probability = 1.0;
+  EXPECT_EQ(MakeMrclamScenario(data, 1, o).sensor.pd_nominal, 1.0);
   o = RobotTwoOfDatasetThree();
   o.measurement_noise_cov(0, 1) = 5.0;
   EXPECT_THROW((void)MakeMrclamScenario(data, 1, o), std::invalid_argument);

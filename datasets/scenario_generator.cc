@@ -146,9 +146,10 @@ void GeneratorOptions::Validate() const {
   }
   if (landmarks < 0)
     FailGeneratorOption("landmarks", "must be >= 0, got " + std::to_string(landmarks));
-  if (!(corridor_half_width > 0.0) || !std::isfinite(corridor_half_width)) {
+  if (!(corridor_half_width >= kMinCorridorHalfWidth) || !std::isfinite(corridor_half_width)) {
     FailGeneratorOption("corridor_half_width",
-                        "must be finite and > 0 (m), got " + str(corridor_half_width));
+                        "must be finite and >= " + str(kMinCorridorHalfWidth) + " (m), got " +
+                            str(corridor_half_width));
   }
   if (!initial_pose.allFinite()) FailGeneratorOption("initial_pose", "must be finite");
   SimulationSettings::Of(*this).Validate("GeneratorOptions");

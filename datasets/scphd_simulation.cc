@@ -45,7 +45,7 @@ void ScPhdSimOptions::Validate() const {
   RequirePositiveScPhdSimOption("circle_radius", circle_radius);
   RequirePositiveScPhdSimOption("wheelbase", wheelbase);
   if (speed * dt >= 2.0 * circle_radius)
-    FailScPhdSimOption("speed", "* dt must be below the circle's diameter");
+    FailScPhdSimOption("speed", "* dt must be below the circle's diameter (2 x circle_radius)");
   if (landmarks < 0)
     FailScPhdSimOption("landmarks", "must be >= 0, got " + std::to_string(landmarks));
   if (!(map_inner_radius >= 0.0) || !(map_outer_radius > map_inner_radius) ||

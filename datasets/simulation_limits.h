@@ -9,8 +9,11 @@
 
 namespace phdslam::datasets {
 
-inline constexpr int kMaxSimulatedSteps = 1'000'000;      ///< steps of one simulated scenario
-inline constexpr int kMaxSimulatedLandmarks = 1'000'000;  ///< landmarks of one simulated map
+inline constexpr int kMaxSimulatedSteps = 1'000'000;  ///< steps of one simulated scenario
+/// Landmarks of one simulated map. The map metrics match the estimate against the true map (a
+/// cost matrix of true x estimated landmarks): 10^5 landmarks already run out of memory on a
+/// 20-step run of dead reckoning, 10^4 take well under a GB.
+inline constexpr int kMaxSimulatedLandmarks = 10'000;
 /// Largest steps x clutter_rate: the expected clutter points of one scenario.
 inline constexpr double kMaxSimulatedClutter = 5e7;
 /// Largest number of measurements one simulated scenario holds (landmarks in view and clutter
@@ -19,10 +22,13 @@ inline constexpr double kMaxSimulatedMeasurements = 5e7;
 /// Largest steps x landmarks: the landmark visibility tests of one scenario (time, not memory).
 inline constexpr double kMaxVisibilityTests = 1e11;
 
-inline constexpr double kMaxTimeStep = 60.0;   ///< s, dt of a simulated step
-inline constexpr double kMaxSpeed = 100.0;     ///< m/s
-inline constexpr double kMaxTurnRate = 10.0;   ///< rad/s
-inline constexpr double kMaxDistance = 1e5;    ///< m: ranges, radii, widths, offsets, buffers
+inline constexpr double kMaxTimeStep = 60.0;  ///< s, dt of a simulated step
+inline constexpr double kMaxSpeed = 100.0;    ///< m/s
+inline constexpr double kMaxTurnRate = 10.0;  ///< rad/s
+inline constexpr double kMaxDistance = 1e5;   ///< m: ranges, radii, widths, offsets, buffers
+/// m: the narrowest corridor of generated landmarks; the corridor is rasterised in cells of a
+/// 32nd of its half width, and a width far below any vehicle's made the raster overflow.
+inline constexpr double kMinCorridorHalfWidth = 0.1;
 inline constexpr double kMaxCoordinate = 1e7;  ///< m: |x|, |y| of an initial pose
 inline constexpr double kMaxVariance = 1e6;    ///< (m or rad)^2: a noise covariance entry
 

@@ -126,23 +126,26 @@ expect_in "$scratch/err" "twice.tum:2: time stamp 0 repeats that of line 1"
 expect_exit 2 "$phdslam" run --scenario generated --estimator odometry --seeds --out "$scratch/nv"
 expect_in "$scratch/err" "--seeds needs a value"
 
-# SIGTERM stops like Ctrl-C: runs in progress finish, the summary is written, exit 130.
-"$phdslam" run --scenario paper-synthetic --data-dir "$data_dir" --estimator phd3 --particles 10 \
-  --seeds 1-100000 --steps 200 --jobs 1 --quiet --out "$scratch/term" >/dev/null 2>"$scratch/err" &
-term_pid=$!
-# The signal handler is in place before the results folder is locked: wait for the lock (slow
-# under the sanitizers and valgrind) instead of a fixed time.
-for _ in $(seq 1200); do
-  [ -e "$scratch/term/phdslam.lock" ] && break
-  sleep 0.1
+# SIGTERM and SIGHUP stop like Ctrl-C: runs in progress finish, the summary is written, exit 130.
+for signal in TERM HUP; do
+  "$phdslam" run --scenario paper-synthetic --data-dir "$data_dir" --estimator phd3 --particles 10 \
+    --seeds 1-100000 --steps 200 --jobs 1 --quiet --out "$scratch/term$signal" >/dev/null \
+    2>"$scratch/err" &
+  term_pid=$!
+  # The signal handler is in place before the results folder is locked: wait for the lock (slow
+  # under the sanitizers and valgrind) instead of a fixed time.
+  for _ in $(seq 1200); do
+    [ -e "$scratch/term$signal/phdslam.lock" ] && break
+    sleep 0.1
+  done
+  [ -e "$scratch/term$signal/phdslam.lock" ] || fail "SIG$signal: the run did not start within 120 s"
+  kill -$signal "$term_pid"
+  wait "$term_pid"
+  term_exit=$?
+  [ "$term_exit" -eq 130 ] || fail "SIG$signal: exit $term_exit (want 130): $(cat "$scratch/err")"
+  [ -f "$scratch/term$signal/summary.csv" ] || fail "SIG$signal: no summary.csv"
+  [ ! -e "$scratch/term$signal/phdslam.lock" ] || fail "SIG$signal: the lock file stayed"
 done
-[ -e "$scratch/term/phdslam.lock" ] || fail "SIGTERM: the run did not start within 120 s"
-kill -TERM "$term_pid"
-wait "$term_pid"
-term_exit=$?
-[ "$term_exit" -eq 130 ] || fail "SIGTERM: exit $term_exit (want 130): $(cat "$scratch/err")"
-[ -f "$scratch/term/summary.csv" ] || fail "SIGTERM: no summary.csv"
-[ ! -e "$scratch/term/phdslam.lock" ] || fail "SIGTERM: the lock file stayed"
 
 # A worker thread that cannot be created (here: too little address space for 150 thread stacks)
 # leaves the run going on fewer threads, with a message; if memory then runs out, no further run

@@ -1,5 +1,7 @@
 #include "apps/phdslam/experiment_options.h"
 
+#include "apps/phdslam/sign_validators.h"
+
 namespace phdslam::apps {
 namespace {
 
@@ -21,11 +23,11 @@ CLI::Option* ExperimentOptionSet::Bind(CLI::App* command, Bound& b, Keys keys) {
       b.text = key.default_text;
       return command->add_option(key.option, b.text, help);
     case v::OptionKind::kCount:
-      return command->add_option(key.option, b.count, help)->check(CLI::NonNegativeNumber);
+      return command->add_option(key.option, b.count, help)->check(SignValidator(false));
     case v::OptionKind::kNumber:
       return command->add_option(key.option, b.number, help);
     case v::OptionKind::kPositiveNumber:
-      return command->add_option(key.option, b.number, help)->check(CLI::PositiveNumber);
+      return command->add_option(key.option, b.number, help)->check(SignValidator(true));
     case v::OptionKind::kFlag:
       return command->add_flag(key.option, b.flag, help);
     case v::OptionKind::kRepeated:

@@ -6,6 +6,7 @@
 #include <map>
 #include <stdexcept>
 
+#include "apps/phdslam/sign_validators.h"
 #include "validation/runner/experiment/experiment_runner.h"
 #include "validation/runner/experiment/option_precedence.h"
 #include "validation/runner/interchange/ingest.h"
@@ -108,7 +109,7 @@ void AddIngestCommand(CLI::App& app, IngestArguments& a) {
       ->capture_default_str();
   command->add_option("--particles", a.particles, "Particle count the runs are filed under")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(SignValidator(true));
   command->add_flag("--replace", a.replace,
                     "Replace the runs the estimator already has in --out (without it an estimator "
                     "name that already has runs there is refused); the replaced run folders are "

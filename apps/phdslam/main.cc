@@ -34,6 +34,7 @@
 #include "apps/phdslam/interchange_commands.h"
 #include "apps/phdslam/option_without_value.h"
 #include "apps/phdslam/run_command.h"
+#include "apps/phdslam/unknown_subcommand.h"
 #include "datasets/map_io.h"
 #include "datasets/trajectory_io.h"
 #include "validation/runner/evaluation/offline_evaluation.h"
@@ -46,6 +47,7 @@
 #include "validation/runner/io/results_layout.h"
 #include "validation/runner/registry/estimator_registry.h"
 #include "validation/runner/registry/scenario_registry.h"
+#include "validation/runner/results/results_lock.h"
 #include "validation/runner/studies/parent_weights_output.h"
 
 namespace phdslam::apps {
@@ -183,9 +185,23 @@ int Merge(const MergeArguments& a) {
   }
   return 0;
 }
+// A folder without runs.csv: a run still writing it (its lock file is there) or no results.
+void RequireRunsTable(const std::filesystem::path& folder) {
+  if (std::filesystem::exists(folder / v::kRunsTableFile)) return;
+  if (std::filesystem::exists(folder / v::kLockFile)) {
+    throw std::runtime_error(folder.string() + " has no " + v::kRunsTableFile + " yet: a run is " +
+                             "writing this folder (" + v::kLockFile + "), and " +
+                             v::kRunsTableFile + " is written when it ends; compare after it");
+  }
+  throw std::runtime_error(folder.string() + " has no " + v::kRunsTableFile +
+                           " (not a results folder, or its run ended before writing it: rerun "
+                           "it with the same --out)");
+}
+
 int Compare(const CompareArguments& a) {
   const std::vector<std::string> metrics = v::ParseNameList(a.metrics, "metric");
   for (const std::filesystem::path& folder : v::ResultsFolders(a.out)) {
+    RequireRunsTable(folder);
     const std::vector<v::PairedComparison> rows = v::WriteComparison(folder, metrics);
     std::size_t significant = 0;
     for (const v::PairedComparison& c : rows) {
@@ -295,6 +311,11 @@ int Main(int argc, char** argv) {
   GateArguments gate_arguments;
   AddGateCommand(app, gate_arguments);
   app.add_subcommand("list", "List the known scenarios (with their options) and estimators");
+  if (const std::string name = UnknownSubcommand(app, argc, argv); !name.empty()) {
+    std::cerr << "phdslam: error: unknown subcommand '" << name
+              << "' (the subcommands are listed by phdslam --help)\n";
+    return kExitUsage;
+  }
   if (const std::string option = OptionWithoutValue(app, argc, argv); !option.empty()) {
     std::cerr << "phdslam: error: " << option << " needs a value (see phdslam --help)\n";
     return kExitUsage;

@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """EKF-SLAM with nearest-neighbour data association, run on the files of `phdslam export` and
 written in the layout `phdslam ingest` reads: the worked example of validating an external filter
-(validation/EXPORT_FORMAT.md). Needs numpy only.
+(validation/EXPORT_FORMAT.md). Needs numpy only; under a python3 without it, it runs again under
+/usr/bin/python3 (Debian's python3-numpy) when that has it.
 
     ekf_slam.py EXPORT OUT [--seeds 1,2,3]
 
@@ -25,7 +26,18 @@ import os
 import sys
 import time
 
-import numpy as np
+SYSTEM_PYTHON = "/usr/bin/python3"
+try:
+    import numpy as np
+except ImportError:
+    # Another python3 (pyenv's, say) first on PATH without numpy: run once more under Debian's,
+    # as the report scripts do; else say what to install.
+    if (os.path.exists(SYSTEM_PYTHON) and not os.environ.get("PHDSLAM_EKF_RESTARTED")
+            and os.path.realpath(SYSTEM_PYTHON) != os.path.realpath(sys.executable)):
+        os.environ["PHDSLAM_EKF_RESTARTED"] = "1"
+        os.execv(SYSTEM_PYTHON, [SYSTEM_PYTHON, os.path.abspath(__file__), *sys.argv[1:]])
+    sys.exit(f"ekf_slam.py: {sys.executable} cannot import numpy; install python3-numpy "
+             f"(Debian) and run the script with {SYSTEM_PYTHON}")
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import phdslam_reader as pr  # noqa: E402

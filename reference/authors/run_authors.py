@@ -10,6 +10,10 @@ variable PHDSLAM_AUTHORS_RELEASE (the folder holding "Shared Files" and "Synthet
                    [--trace TRACES [--map-every 100 | --draws-only]]
                    [--ingest RESULTS --phdslam PATH]
 
+Every argument is checked before Octave starts: export.json must be an object whose "seeds" is a
+non-empty list of integers >= 1, --seeds a list of those seeds (1-5 or 1,3,7), --map-every >= 0
+(and only with --trace), --out a folder or a new name in an existing folder.
+
 Exit codes: 0 done, 1 a failure (message on stderr), 2 usage, 77 Octave, mkoctfile or the release
 missing (the message says which; CTest treats 77 as "skipped").
 """
@@ -43,16 +47,83 @@ class Skip(Exception):
     """A prerequisite (Octave, mkoctfile, the release) is missing."""
 
 
+MAX_SEEDS = 100000
+
+
+def seed_number(text, whole):
+    """One seed of --seeds, an integer >= 1."""
+    if not text.strip().isdigit() or int(text) < 1:
+        raise ValueError(f"--seeds {whole!r}: {text!r} is not a seed (an integer >= 1); give "
+                         "seeds as 1-5 or 1,3,7")
+    return int(text)
+
+
 def parse_seeds(text):
     seeds = []
     for part in text.split(","):
         if "-" in part:
             a, b = part.split("-", 1)
-            seeds.extend(range(int(a), int(b) + 1))
+            first, last = seed_number(a, text), seed_number(b, text)
+            if last < first:
+                raise ValueError(f"--seeds {text!r}: the range {part!r} is empty (a > b)")
+            if last - first >= MAX_SEEDS:
+                raise ValueError(f"--seeds {text!r}: more than {MAX_SEEDS} seeds")
+            seeds.extend(range(first, last + 1))
         else:
-            seeds.append(int(part))
-    if not seeds or min(seeds) < 1:
-        raise ValueError(f"--seeds {text!r}: give seeds >= 1 as 1-5 or 1,3,7")
+            seeds.append(seed_number(part, text))
+        if len(seeds) > MAX_SEEDS:
+            raise ValueError(f"--seeds {text!r}: more than {MAX_SEEDS} seeds")
+    return seeds
+
+
+def exported_seeds(export):
+    """The seeds of a `phdslam export` folder's export.json, a list of integers >= 1."""
+    path = os.path.join(export, "export.json")
+    if not os.path.isfile(path):
+        raise ValueError(f"{path}: not found (--export must be a `phdslam export` folder)")
+    try:
+        with open(path, encoding="utf-8-sig") as f:
+            exported = json.load(f)
+    except (OSError, UnicodeDecodeError, ValueError) as e:
+        raise ValueError(f"{path}: not a readable JSON file ({e})") from None
+    seeds = exported.get("seeds") if isinstance(exported, dict) else None
+    if (not isinstance(seeds, list) or not seeds or
+            not all(isinstance(s, int) and not isinstance(s, bool) and s >= 1 for s in seeds)):
+        raise ValueError(f"{path}: expected an object whose 'seeds' is a non-empty list of "
+                         "integers >= 1 (the file `phdslam export` writes)")
+    return seeds
+
+
+def check_out(out):
+    """--out must be a folder (or a name whose parent folder exists)."""
+    if os.path.exists(out) and not os.path.isdir(out):
+        raise ValueError(f"--out {out}: exists and is not a folder")
+    parent = os.path.dirname(os.path.abspath(out))
+    if not os.path.isdir(parent):
+        raise ValueError(f"--out {out}: its parent folder {parent} does not exist")
+    if not os.access(parent if not os.path.isdir(out) else out, os.W_OK):
+        raise ValueError(f"--out {out}: not writable")
+
+
+def check_arguments(args):
+    """Every argument checked before Octave starts; returns the seeds to run."""
+    available = exported_seeds(args.export)
+    seeds = parse_seeds(args.seeds) if args.seeds else available
+    missing = sorted(set(seeds) - set(available))
+    if missing:
+        raise ValueError(f"--seeds: seed(s) {', '.join(map(str, missing[:10]))} not in "
+                         f"{os.path.join(args.export, 'export.json')}")
+    if args.particles < 1:
+        raise ValueError("--particles must be >= 1")
+    if args.map_every < 0:
+        raise ValueError(f"--map-every {args.map_every}: must be >= 0 (0: no maps)")
+    if args.map_every and not args.trace:
+        raise ValueError("--map-every needs --trace DIR")
+    if args.draws_only and not args.trace:
+        raise ValueError("--draws-only needs --trace DIR")
+    if args.draws_only and args.map_every:
+        raise ValueError("--draws-only records no maps: drop --map-every")
+    check_out(args.out)
     return seeds
 
 
@@ -167,16 +238,8 @@ def main():
     ap.add_argument("--phdslam", default="phdslam", help="the phdslam program (for --ingest)")
     args = ap.parse_args()
     try:
-        with open(os.path.join(args.export, "export.json"), encoding="utf-8") as f:
-            exported = json.load(f)
-        seeds = parse_seeds(args.seeds) if args.seeds else [int(s) for s in exported["seeds"]]
-        if args.particles < 1:
-            raise ValueError("--particles must be >= 1")
-        if args.draws_only and not args.trace:
-            raise ValueError("--draws-only needs --trace DIR")
-        if args.draws_only and args.map_every:
-            raise ValueError("--draws-only records no maps: drop --map-every")
-    except (OSError, ValueError, KeyError) as e:
+        seeds = check_arguments(args)
+    except ValueError as e:
         print(f"run_authors.py: {e}", file=sys.stderr)
         return 2
     try:

@@ -50,6 +50,11 @@ void WindowParams::Validate(std::size_t run_steps) const {
                 std::to_string(run_steps) + " steps)");
   }
   require(solve_every >= 1, "solve_every: expected >= 1, got " + std::to_string(solve_every));
+  if (run_steps > 0) {
+    require(static_cast<std::size_t>(solve_every) <= run_steps,
+            "solve_every: " + std::to_string(solve_every) + " is longer than the run (" +
+                std::to_string(run_steps) + " steps): nothing would be solved");
+  }
   require(max_iterations >= 1, "max_iterations: expected >= 1");
   require(function_tolerance > 0.0, "function_tolerance: expected > 0");
   require(odometry_floor.position_std > 0.0 && odometry_floor.heading_std > 0.0,

@@ -9,6 +9,8 @@
 #include <system_error>
 #include <vector>
 
+#include "reference/mrpt/shared_object_check.h"
+
 // Set by reference/mrpt/CMakeLists.txt for this file.
 #ifndef PHDSLAM_MRPT_PLUGIN_FILE_NAME
 #error "PHDSLAM_MRPT_PLUGIN_FILE_NAME is not defined"
@@ -61,6 +63,7 @@ std::string LoaderMessage() {
 
 const MrptBaselineFactories& LoadMrptBaselinesPlugin(const std::filesystem::path& path) {
   const std::string failure = "cannot load the MRPT baselines' plugin " + path.string() + ": ";
+  RequireCompleteSharedObject(path);
   // RTLD_LOCAL: the plugin's symbols stay its own. Never closed: the estimators it made run its
   // code until the process ends.
   void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);

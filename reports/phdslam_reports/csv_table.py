@@ -111,7 +111,9 @@ def parse_number(cell: str) -> float:
 def _content_lines(path: Path) -> list[tuple[int, str]]:
     """The (1-based line number, text) of every line that is neither blank nor a comment."""
     try:
-        raw = path.read_text(encoding="utf-8")
+        # utf-8-sig: a byte-order mark (written by some editors) is dropped, not read as part of
+        # the first column's name.
+        raw = path.read_text(encoding="utf-8-sig")
     except FileNotFoundError as error:
         raise ResultsFormatError(f"{path}: file not found") from error
     except (OSError, UnicodeDecodeError) as error:

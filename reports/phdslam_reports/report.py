@@ -298,6 +298,7 @@ class ReportBuilder:
             return Section(sid, title, skipped_note="no run folder with steps.csv")
         notes = []
         for panel in panels:
+            notes += undrawn_notes(panel)
             if panel.gps is not None:
                 drawn = gps_in_span(panel.gps, panel.steps.num("t"))[0].size
                 notes.append(f"{panel.title}: {drawn} of the {panel.gps.rows} GPS fixes in "
@@ -940,3 +941,15 @@ def write_text_atomically(path: Path, text: str) -> None:
     finally:
         if temporary.exists():
             temporary.unlink()
+
+
+def undrawn_notes(panel: TrajectoryPanel) -> list[str]:
+    """What of a Fig. 1 panel's run could not be drawn, and why (never an empty panel unnoted)."""
+    notes = []
+    if panel.steps.rows == 0:
+        notes.append(f"{panel.title}: {panel.steps.path} holds only its header (no step): no "
+                     "trajectory is drawn.")
+    if panel.estimated_map is None:
+        notes.append(f"{panel.title}: no {panel.steps.path.parent / 'map.csv'}: no estimated "
+                     "map is drawn.")
+    return notes

@@ -234,8 +234,23 @@ class ResultsFolder:
                 f"'phdslam run' or 'phdslam merge' with the same --out rewrites it)")
         for i, value in enumerate(table.num("particles")):
             _as_int(value, path, "particles", i + 1)
+        self._check_no_duplicate_rows(table)
         self._check_summary_covers_runs(table)
         return table
+
+    @staticmethod
+    def _check_no_duplicate_rows(summary: CsvTable) -> None:
+        """One row per group: a duplicated row would be drawn twice."""
+        first_line: dict[tuple[str, int], int] = {}
+        for i, (estimator, particles) in enumerate(zip(summary.str("estimator"),
+                                                       summary.num("particles"))):
+            key = (estimator, int(particles))
+            if key in first_line:
+                raise ResultsFormatError(
+                    f"{summary.path}, line {summary.line(i)}: the row of {estimator} "
+                    f"N={int(particles)} appears twice (first on line {first_line[key]}); "
+                    f"'phdslam run' or 'phdslam merge' with the same --out rewrites the file")
+            first_line[key] = summary.line(i)
 
     def _check_summary_covers_runs(self, summary: CsvTable) -> None:
         """Every group of runs.csv must have its summary.csv row (else the file was cut short)."""

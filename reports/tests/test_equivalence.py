@@ -43,6 +43,12 @@ def rerun(rows, rng: random.Random, spread: float, factor: float = 1.0):
              g * factor * (1 + spread * rng.gauss(0, 1))) for e, n, s, r, g in rows]
 
 
+def write_config(folder: Path) -> None:
+    """A config.json naming the scenario (every results folder has one)."""
+    (folder / "config.json").write_text(json.dumps({"scenario": {"name": "synthetic",
+                                                                 "options": {}}}))
+
+
 class Folders:
     """BEFORE and AFTER results folders in a temporary directory."""
 
@@ -53,6 +59,7 @@ class Folders:
         for folder, text in ((self.before, before), (self.after, after)):
             folder.mkdir()
             (folder / "runs.csv").write_text(text)
+            write_config(folder)
 
     def run(self, *extra: str) -> tuple[int, str, str]:
         out, err = io.StringIO(), io.StringIO()
@@ -307,6 +314,7 @@ class Pairing(unittest.TestCase):
                     (root / side / folder).mkdir(parents=True)
                     (root / side / folder / "runs.csv").write_text(
                         runs_csv(noisy_runs(10, random.Random(folder))))
+                    write_config(root / side / folder)
                 (root / side / "sweep.json").write_text(
                     json.dumps({"folders": ["pd-0.5", "pd-0.9"]}))
             out = io.StringIO()
@@ -354,6 +362,42 @@ class BadInput(unittest.TestCase):
         code, _, err = run_pair(twice, twice)
         self.assertEqual(code, 2)
         self.assertIn("appears twice", err)
+
+    def test_missing_config_is_an_error_not_a_skipped_check(self):
+        rows = runs_csv(noisy_runs(5, random.Random(16)))
+        folders = Folders(rows, rows)
+        try:
+            (folders.after / "config.json").unlink()
+            code, out, err = folders.run()
+            self.assertEqual(code, 2)
+            self.assertNotIn("EQUIVALENT", out)
+            self.assertIn(f"missing: {folders.after / 'config.json'}", err)
+        finally:
+            folders.close()
+
+    def test_unwritable_csv_is_one_line_naming_it(self):
+        rows = runs_csv(noisy_runs(5, random.Random(17)))
+        code, _, err = run_pair(rows, rows, "--csv", "/proc/nonexistent/x.csv")
+        self.assertEqual(code, 2)
+        self.assertIn("--csv /proc/nonexistent/x.csv", err.splitlines()[-1])
+        self.assertNotIn("Traceback", err)
+
+    def test_byte_order_mark_is_accepted(self):
+        rows = runs_csv(noisy_runs(5, random.Random(18)))
+        code, out, _ = run_pair("\ufeff" + rows, rows)
+        self.assertEqual(code, 0, out)
+        self.assertIn("2 of 2 EQUIVALENT", out)
+
+    def test_sweep_json_of_the_wrong_shape_exit_2(self):
+        rows = runs_csv(noisy_runs(5, random.Random(19)))
+        folders = Folders(rows, rows)
+        try:
+            (folders.before / "sweep.json").write_text(json.dumps({"folders": [1, 2]}))
+            code, _, err = folders.run()
+            self.assertEqual(code, 2)
+            self.assertIn("sweep.json", err)
+        finally:
+            folders.close()
 
 
 if __name__ == "__main__":

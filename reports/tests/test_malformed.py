@@ -39,6 +39,28 @@ class MalformedInputTest(unittest.TestCase):
             self.assertIn(fragment, message)
         return message
 
+    def test_summary_duplicated_row_is_refused_naming_both_lines(self):
+        path = self.results / "summary.csv"
+        lines = path.read_text().splitlines()
+        path.write_text("\n".join(lines + [lines[1]]) + "\n")
+        self.assert_report_error(str(path), f"line {len(lines) + 1}", "phd3 N=10",
+                                 "appears twice", "first on line 2")
+
+    def test_byte_order_mark_is_accepted(self):
+        path = self.results / "summary.csv"
+        path.write_bytes(b"\xef\xbb\xbf" + path.read_bytes())
+        build_report([self.results], self.out)
+        html = (self.out / "index.html").read_text()
+        self.assertNotIn("required column 'estimator' is missing", html)
+        self.assertIn("phd3", html)
+
+    def test_a_run_without_map_csv_is_noted(self):
+        for seed in (1, 2):
+            (self.results / "runs" / "phd3-N10" / f"seed-{seed}" / "map.csv").unlink()
+        build_report([self.results], self.out)
+        html = (self.out / "index.html").read_text()
+        self.assertIn("map.csv: no estimated map is drawn", html)
+
     def test_summary_missing_column(self):
         path = self.results / "summary.csv"
         replace_line(path, 0, "gospa_std_m", "gospa_sd")

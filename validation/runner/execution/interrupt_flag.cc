@@ -16,8 +16,8 @@ static_assert(std::atomic<bool>::is_always_lock_free, "the SIGINT flag must be l
 extern "C" void OnSigint(int) {
   interrupted.store(true);
   constexpr char kMessage[] =
-      "\nphdslam: interrupted; finishing the runs in progress (Ctrl-C or SIGTERM again to "
-      "abort)\n";
+      "\nphdslam: interrupted; finishing the runs in progress (Ctrl-C, SIGTERM or SIGHUP again "
+      "to abort)\n";
   // write(2) is async-signal-safe; a failed write is of no consequence here.
   [[maybe_unused]] const ssize_t written = write(STDERR_FILENO, kMessage, sizeof(kMessage) - 1);
 }
@@ -35,11 +35,15 @@ InterruptFlag::InterruptFlag() {
   sigaction(SIGINT, &action, &previous_action_);
   // SIGTERM (sent by batch schedulers and container runtimes) stops the same orderly way.
   sigaction(SIGTERM, &action, &previous_term_action_);
+  // SIGHUP (the terminal or ssh session closed) too: its default would end the run without its
+  // summary.csv.
+  sigaction(SIGHUP, &action, &previous_hangup_action_);
 }
 
 InterruptFlag::~InterruptFlag() {
   sigaction(SIGINT, &previous_action_, nullptr);
   sigaction(SIGTERM, &previous_term_action_, nullptr);
+  sigaction(SIGHUP, &previous_hangup_action_, nullptr);
 }
 
 const std::atomic<bool>& InterruptFlag::flag() const { return interrupted; }

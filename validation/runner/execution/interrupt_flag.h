@@ -1,4 +1,5 @@
-// Ctrl-C and SIGTERM handling for long Monte Carlo invocations: the first SIGINT or SIGTERM sets a
+// Ctrl-C, SIGTERM and SIGHUP handling for long Monte Carlo invocations: the first SIGINT, SIGTERM
+// or SIGHUP (a closed terminal) sets a
 // flag that the runner checks between runs (runs in progress finish and are kept, the summary is
 // written); a second one terminates the process as usual.
 #pragma once
@@ -24,6 +25,7 @@ class InterruptFlag {
  private:
   struct sigaction previous_action_ {};
   struct sigaction previous_term_action_ {};
+  struct sigaction previous_hangup_action_ {};
 };
 
 }  // namespace phdslam::validation

@@ -80,6 +80,16 @@ void ValidatePlan(const MonteCarloPlan& plan) {
   }
 }
 
+// The run length the options fix (steps > 0), so that parameters bounded by it are checked with
+// the plan; 0 when it is known only once the scenario is built.
+std::size_t PlannedSteps(const nlohmann::json& options) {
+  const auto steps = options.find("steps");
+  if (steps == options.end() || !steps->is_number_integer() || steps->get<std::int64_t>() <= 0) {
+    return 0;
+  }
+  return static_cast<std::size_t>(steps->get<std::int64_t>());
+}
+
 std::map<ParameterKey, nlohmann::json> ResolveParameters(const MonteCarloPlan& plan) {
   std::map<ParameterKey, nlohmann::json> params;
   for (const EstimatorSelection& s : plan.estimators) {
@@ -90,6 +100,7 @@ std::map<ParameterKey, nlohmann::json> ResolveParameters(const MonteCarloPlan& p
       request.overrides = s.overrides;
       request.scenario_name = plan.scenario.name;
       request.detection_probability = NominalDetectionProbability(plan.scenario.options);
+      request.steps = PlannedSteps(plan.scenario.options);
       params[{s.entry.name, n}] = s.entry.resolved_parameters
                                       ? s.entry.resolved_parameters(request)
                                       : ApplyOverrides(nlohmann::json::object(), s.overrides,
@@ -138,6 +149,17 @@ nlohmann::json BuildConfig(const MonteCarloPlan& plan,
       {"jobs", jobs}};
   if (!plan.experiment_file.is_null()) config["experiment_file"] = plan.experiment_file;
   return config;
+}
+
+// True when a run folder under <out>/runs holds a metrics.json (a finished run).
+bool HoldsFinishedRun(const std::filesystem::path& out) {
+  std::error_code ec;
+  for (auto it = std::filesystem::recursive_directory_iterator(out / kRunsFolder, ec);
+       !ec && it != std::filesystem::recursive_directory_iterator(); it.increment(ec)) {
+    if (it.depth() == 2 && it->path().filename() == kMetricsFile) return true;
+    if (it.depth() >= 2) it.disable_recursion_pending();
+  }
+  return false;
 }
 
 [[noreturn]] void ThrowIncompatible(const std::filesystem::path& out, const std::string& what) {
@@ -272,8 +294,11 @@ PreparedRuns Prepare(const MonteCarloPlan& plan, const MonteCarloSettings& setti
   if (const auto path = settings.out / kConfigFile; std::filesystem::exists(path)) {
     const nlohmann::json existing = ReadJsonObject(path);
     const std::string conflict = ConfigConflict(existing, prepared.config, path.string());
-    if (!conflict.empty()) ThrowIncompatible(settings.out, conflict);
-    prepared.config = UnionConfig(existing, prepared.config);
+    // A folder whose runs all failed before computing anything (a missing data file, a bad
+    // option) holds no result its config.json describes: the corrected rerun replaces it.
+    const bool computed = HoldsFinishedRun(settings.out);
+    if (!conflict.empty() && computed) ThrowIncompatible(settings.out, conflict);
+    prepared.config = conflict.empty() ? UnionConfig(existing, prepared.config) : prepared.config;
   }
   return prepared;
 }

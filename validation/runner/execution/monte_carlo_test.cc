@@ -519,6 +519,37 @@ TEST(MonteCarlo, ResumeRefusesOtherDataFiles) {
   }
 }
 
+// A folder whose only run failed before computing anything (its data file damaged) holds no
+// result: the corrected rerun is accepted and its config.json replaces the failed one's.
+TEST(MonteCarlo, AFolderWithOnlyFailedRunsAcceptsTheCorrectedRerun) {
+  const fs::path root = datasets::testing::FreshTestDir();
+  const auto plan = [&](const fs::path& data) {
+    MonteCarloPlan p = OdometryPlan("generated", 5, {1});
+    ScenarioOptions options;
+    options.steps = 5;
+    options.data_dir = data.string();
+    p.scenario = MakeScenarioSource("paper-synthetic", options);
+    return p;
+  };
+  const fs::path out = root / "out";
+  const fs::path damaged = root / "damaged";
+  fs::create_directories(damaged / "phdslam3-synthetic");
+  WriteFileAtomically(damaged / "phdslam3-synthetic" / "Environment_SLAM.mat", "MATLAB 5.0");
+  try {
+    RunMonteCarlo(plan(damaged), Quiet(out, 1));
+  } catch (const std::exception&) {
+  }
+  ASSERT_TRUE(fs::exists(out / kConfigFile));
+  ASSERT_FALSE(fs::exists(RunFolder(out, "odometry", 1, 1) / kMetricsFile));
+  EXPECT_EQ(RunMonteCarlo(plan(datasets::testing::SyntheticDataDir()), Quiet(out, 1)).finished, 1u);
+  EXPECT_FALSE(fs::exists(RunFolder(out, "odometry", 1, 1) / kErrorFile));
+  EXPECT_TRUE(fs::exists(RunFolder(out, "odometry", 1, 1) / kMetricsFile));
+  // With a finished run in it, the folder refuses other settings again.
+  MonteCarloPlan other = plan(datasets::testing::SyntheticDataDir());
+  other.experiment = "another";
+  EXPECT_THROW(RunMonteCarlo(other, Quiet(out, 1)), std::invalid_argument);
+}
+
 TEST(MonteCarlo, ASecondWriterOfAFolderIsRefused) {
   const fs::path out = datasets::testing::FreshTestDir();
   {

@@ -67,7 +67,8 @@ Experiment ParseExperimentYaml(std::string_view text, const std::string& source,
 }
 
 Experiment ReadExperimentFile(const std::filesystem::path& path) {
-  return ParseExperimentYaml(ReadTextFile(path), path.string(), path.stem().string());
+  return ParseExperimentYaml(ReadTextFile(path, kMaxExperimentFileBytes), path.string(),
+                             path.stem().string());
 }
 
 }  // namespace phdslam::validation

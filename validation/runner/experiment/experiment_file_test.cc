@@ -8,6 +8,7 @@
 
 #include "datasets/test_temp_dir.h"
 #include "validation/runner/io/results_io.h"
+#include "validation/runner/io/yaml_shape.h"
 
 namespace phdslam::validation {
 namespace {
@@ -18,6 +19,16 @@ std::string ErrorOf(F parse) {
   try {
     parse();
   } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// The message of any exception reading the experiment file `path` throws ("" when none).
+std::string ReadError(const std::filesystem::path& path) {
+  try {
+    ReadExperimentFile(path);
+  } catch (const std::exception& e) {
     return e.what();
   }
   return "";
@@ -64,6 +75,18 @@ jobs: 2
   EXPECT_EQ(x.source.at("path"), "exp.yaml");
   EXPECT_EQ(x.source.at("values").at("particles"), nlohmann::json({1, 10, 100}));
   EXPECT_NE(x.source.at("text").get<std::string>().find("table2-check"), std::string::npos);
+}
+
+TEST(ExperimentFile, ReadsOneBoundedRegularFile) {
+  const std::string good = "scenario: s\nestimators: [a]\nseeds: 1\n";
+  EXPECT_NE(ErrorOf([&] {
+              ParseExperimentYaml(good + "---\n" + good, "exp.yaml", "exp");
+            }).find("exp.yaml:4: a second YAML document"),
+            std::string::npos);
+  EXPECT_NE(ReadError("/dev/zero").find("/dev/zero: not a regular file"), std::string::npos);
+  const std::filesystem::path big = datasets::testing::FreshTestDir() / "big.yaml";
+  WriteFileAtomically(big, std::string(kMaxExperimentFileBytes + 1, '#'));
+  EXPECT_NE(ReadError(big).find("bytes, more than the 1048576"), std::string::npos);
 }
 
 TEST(ExperimentFile, DefaultsAndSeedForms) {

@@ -106,6 +106,7 @@ int FirstParticleCount(const Experiment& x, const ExperimentEstimator& e) {
 void CheckEstimatorSweep(const Experiment& point, const ExperimentSweep& dimension,
                          const ScenarioEntry& scenario, const std::vector<EstimatorEntry>& table) {
   std::string errors;
+  std::string value_error;  // an estimator that knows the parameter refused the value
   for (const ExperimentEstimator& e : point.estimators) {
     const EstimatorEntry& entry = FindEstimator(table, e.name);
     if (!entry.resolved_parameters) continue;
@@ -118,8 +119,16 @@ void CheckEstimatorSweep(const Experiment& point, const ExperimentSweep& dimensi
       entry.resolved_parameters(request);
       return;
     } catch (const std::invalid_argument& error) {
-      errors += std::string(errors.empty() ? "" : "; ") + error.what();
+      const std::string what = error.what();
+      errors += std::string(errors.empty() ? "" : "; ") + what;
+      if (value_error.empty() && what.find("unknown parameter '") == std::string::npos) {
+        value_error = what;
+      }
     }
+  }
+  if (!value_error.empty()) {
+    throw std::invalid_argument("sweep point " + dimension.parameter + " = " +
+                                dimension.values.front().dump() + ": " + value_error);
   }
   std::string options;
   for (const ScenarioOptionHelp& o : scenario.option_keys) options += ", " + o.key;

@@ -15,6 +15,7 @@
 #include "validation/runner/experiment/sweep.h"
 #include "validation/runner/io/results_io.h"
 #include "validation/runner/io/results_layout.h"
+#include "validation/runner/results/results_check.h"
 #include "validation/runner/results/results_config.h"
 #include "validation/runner/results/results_lock.h"
 #include "validation/runner/results/summary.h"
@@ -231,9 +232,14 @@ bool SameSweep(const std::vector<ExperimentSweep>& a, const std::vector<Experime
   return true;
 }
 
-}  // namespace
+// Every run file of the inputs (and of the output's own runs) read as the summary will read them,
+// so that a damaged input is refused, naming its file, before anything is copied.
+void CheckEveryFile(const fs::path& out, const std::vector<fs::path>& inputs) {
+  for (const fs::path& input : inputs) CheckResultsFolder(input);
+  if (fs::exists(out)) CheckResultsFolder(out);
+}
 
-MergeReport MergeResults(const fs::path& out, const std::vector<fs::path>& inputs) {
+MergeReport MergeInto(const fs::path& out, const std::vector<fs::path>& inputs) {
   const auto start = std::chrono::steady_clock::now();
   const std::string started_utc = UtcNow();
   if (inputs.empty()) throw std::invalid_argument("merge: no input folder given");
@@ -280,6 +286,7 @@ MergeReport MergeResults(const fs::path& out, const std::vector<fs::path>& input
   std::vector<FolderMerge> plans;
   plans.reserve(folders.size());
   for (const auto& [folder, sources] : folders) plans.push_back(PlanFolderMerge(folder, sources));
+  for (const auto& [folder, sources] : folders) CheckEveryFile(folder, sources);
   for (std::size_t i = 0; i < folders.size(); ++i) {
     ExecuteFolderMerge(folders[i].first, folders[i].second, plans[i], report);
   }
@@ -304,6 +311,21 @@ MergeReport MergeResults(const fs::path& out, const std::vector<fs::path>& input
     WriteFileAtomically(folder / kTimingFile, JsonFileText(timing));
   }
   return report;
+}
+
+}  // namespace
+
+MergeReport MergeResults(const fs::path& out, const std::vector<fs::path>& inputs) {
+  std::error_code ec;
+  const bool new_folder = !fs::exists(out, ec);
+  try {
+    return MergeInto(out, inputs);
+  } catch (...) {
+    // A folder this merge created holds nothing but what the failed merge began: remove it, so
+    // that no half-merged folder is left behind.
+    if (new_folder) fs::remove_all(out, ec);
+    throw;
+  }
 }
 
 }  // namespace phdslam::validation

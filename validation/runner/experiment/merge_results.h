@@ -21,11 +21,13 @@ struct MergeReport {
 /// missing, is `out`, or was made with settings that conflict with the others' (experiment,
 /// scenario, scenario options, metric settings or resolved parameters, as for resuming), or when
 /// a run present in two places has different metrics.json (timing keys aside), and
-/// std::runtime_error when a file cannot be read. Finished runs are hard-linked when possible and
-/// copied otherwise (metrics.json last); a failed run's error.json is copied only when no input
-/// finished that run; truth files are copied when absent. Ends by writing config.json (the union
-/// of the configs), summary.csv, runs.csv and timing.json ({"merged_from", counts, host, time});
-/// for sweeps, every sweep folder and then sweep.csv and sweep.json.
+/// std::runtime_error naming the input's file when a file cannot be read or is damaged (every
+/// metrics.json, error.json and steps.csv of every input is read first, results_check.h: a
+/// truncated file, a steps.csv cut short, an unknown format_version). Finished runs are hard-linked
+/// when possible and copied otherwise (metrics.json last); a failed run's error.json is copied only
+/// when no input finished that run; truth files are copied when absent. Ends by writing config.json
+/// (the union of the configs), summary.csv, runs.csv and timing.json ({"merged_from", counts, host,
+/// time}); for sweeps, every sweep folder and then sweep.csv and sweep.json.
 MergeReport MergeResults(const std::filesystem::path& out,
                          const std::vector<std::filesystem::path>& inputs);
 

@@ -6,8 +6,10 @@
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "datasets/test_temp_dir.h"
+#include "validation/runner/evaluation/run_metrics.h"
 #include "validation/runner/experiment/experiment_runner.h"
 #include "validation/runner/io/results_io.h"
 #include "validation/runner/io/results_layout.h"
@@ -222,6 +224,49 @@ TEST(MergeResults, RefusesConflictingFoldersBeforeCopying) {
   WriteFileAtomically(metrics, changed.dump());
   EXPECT_THROW(MergeResults(base / "merged", {base / "a", base / "d"}), std::invalid_argument);
   EXPECT_FALSE(fs::exists(base / "merged" / kRunsFolder));
+}
+
+// Expects MergeResults to throw std::runtime_error naming `file` (an input's file) and to leave
+// no folder behind at `out`, which did not exist.
+void ExpectRefusedNaming(const fs::path& out, const std::vector<fs::path>& inputs,
+                         const fs::path& file, const std::string& why) {
+  try {
+    MergeResults(out, inputs);
+    ADD_FAILURE() << "no error for " << why;
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find(file.string()), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(why), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(fs::exists(out)) << why;
+}
+
+TEST(MergeResults, RefusesADamagedInputFileBeforeCopyingNamingIt) {
+  const fs::path base = datasets::testing::FreshTestDir();
+  Experiment x = SmallExperiment();
+  x.estimators = {{"odometry", nlohmann::json::object(), {}}};
+  x.seeds = {1, 2};
+  RunExperiment(x, Quiet(base / "a"));
+  const fs::path run = RunFolder(base / "a", "odometry", 1, 2);
+  const std::string metrics = ReadTextFile(run / kMetricsFile);
+  const std::string steps = ReadTextFile(run / kStepsFile);
+
+  WriteFileAtomically(run / kMetricsFile, metrics.substr(0, metrics.size() / 2));
+  ExpectRefusedNaming(base / "m1", {base / "a"}, run / kMetricsFile, "not a JSON object");
+  nlohmann::json newer = nlohmann::json::parse(metrics);
+  newer[kFormatVersionKey] = kMetricsFormatVersion + 1;
+  WriteFileAtomically(run / kMetricsFile, newer.dump());
+  ExpectRefusedNaming(base / "m2", {base / "a"}, run / kMetricsFile, "is unknown");
+  WriteFileAtomically(run / kMetricsFile, metrics);
+
+  const std::size_t cut = steps.find('\n', steps.size() / 2);
+  WriteFileAtomically(run / kStepsFile, steps.substr(0, cut + 1));  // whole lines, too few
+  ExpectRefusedNaming(base / "m3", {base / "a"}, run / kStepsFile, "cut short");
+  WriteFileAtomically(run / kStepsFile, steps.substr(0, cut - 3));  // a line cut short
+  ExpectRefusedNaming(base / "m4", {base / "a"}, run / kStepsFile, "cells, the header has");
+
+  WriteFileAtomically(run / kStepsFile, steps);
+  EXPECT_EQ(MergeResults(base / "m5", {base / "a"}).runs_copied, 2u);
+  ExpectSameResults(base / "a", base / "m5");
 }
 
 TEST(MergeResults, AFinishedRunReplacesAFailedOne) {

@@ -97,13 +97,45 @@ std::size_t RemoveLeftoverTemporaries(const std::filesystem::path& folder) {
   return removed;
 }
 
-std::string ReadTextFile(const std::filesystem::path& path) {
+namespace {
+
+// Throws unless `path` names a regular file of at most `max_bytes` bytes.
+std::uintmax_t RequireBoundedRegularFile(const std::filesystem::path& path,
+                                         std::uintmax_t max_bytes) {
+  std::error_code ec;
+  const std::filesystem::file_status status = std::filesystem::status(path, ec);
+  if (ec || !std::filesystem::exists(status)) {
+    throw std::runtime_error("cannot open " + path.string() + " for reading");
+  }
+  if (!std::filesystem::is_regular_file(status)) {
+    throw std::runtime_error(path.string() +
+                             ": not a regular file (a device, pipe or folder); give a file");
+  }
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  if (ec) throw std::runtime_error("cannot read the size of " + path.string());
+  if (size > max_bytes) {
+    throw std::runtime_error(path.string() + ": " + std::to_string(size) +
+                             " bytes, more than the " + std::to_string(max_bytes) +
+                             " this reader accepts");
+  }
+  return size;
+}
+
+}  // namespace
+
+std::string ReadTextFile(const std::filesystem::path& path, std::uintmax_t max_bytes) {
+  const std::uintmax_t size = RequireBoundedRegularFile(path, max_bytes);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error("cannot open " + path.string() + " for reading");
-  std::ostringstream content;
-  content << in.rdbuf();
+  std::string content(static_cast<std::size_t>(size), '\0');
+  in.read(content.data(), static_cast<std::streamsize>(content.size()));
   if (in.bad()) throw std::runtime_error("error reading " + path.string());
-  return content.str();
+  content.resize(static_cast<std::size_t>(in.gcount()));
+  if (in && in.peek() != std::char_traits<char>::eof()) {
+    throw std::runtime_error(path.string() + ": grew past " + std::to_string(max_bytes) +
+                             " bytes while being read");
+  }
+  return content;
 }
 
 std::optional<std::size_t> CsvTable::FindColumn(std::string_view name) const {

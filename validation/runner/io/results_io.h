@@ -44,8 +44,14 @@ void WriteFileAtomically(const std::filesystem::path& path,
 /// folder's lock (results_lock.h). Returns how many were removed.
 std::size_t RemoveLeftoverTemporaries(const std::filesystem::path& folder);
 
-/// The whole content of a text file; throws std::runtime_error naming the file.
-std::string ReadTextFile(const std::filesystem::path& path);
+/// The largest file ReadTextFile reads unless told otherwise (1 GiB).
+inline constexpr std::uintmax_t kMaxTextFileBytes = std::uintmax_t{1} << 30;
+
+/// The whole content of a text file; throws std::runtime_error naming the file when it cannot be
+/// opened, is not a regular file (a device such as /dev/zero, a pipe, a folder) or is larger than
+/// `max_bytes`, so that no reader runs without a bound.
+std::string ReadTextFile(const std::filesystem::path& path,
+                         std::uintmax_t max_bytes = kMaxTextFileBytes);
 
 /// A CSV file as written by CsvRow: a header line and rows of plain cells.
 struct CsvTable {

@@ -17,7 +17,11 @@ class ShapeChecker : public YAML::EventHandler {
  public:
   explicit ShapeChecker(const std::string& source) : source_(source) {}
 
-  void OnDocumentStart(const YAML::Mark&) override {}
+  void OnDocumentStart(const YAML::Mark& mark) override {
+    if (++documents_ > 1) {
+      Fail(mark, "a second YAML document ('---'): an experiment file holds exactly one");
+    }
+  }
   void OnDocumentEnd() override {}
   void OnNull(const YAML::Mark& mark, YAML::anchor_t) override { Node(mark, "~"); }
   void OnAlias(const YAML::Mark& mark, YAML::anchor_t) override {
@@ -78,6 +82,7 @@ class ShapeChecker : public YAML::EventHandler {
   const std::string& source_;
   std::vector<Frame> frames_;
   std::size_t nodes_ = 0;
+  std::size_t documents_ = 0;
 };
 
 }  // namespace

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <string_view>
 
@@ -11,9 +12,11 @@ namespace phdslam::validation {
 
 inline constexpr std::size_t kMaxYamlDepth = 64;
 inline constexpr std::size_t kMaxYamlNodes = 100000;
+/// The largest experiment file read (1 MiB; the largest in validation/experiments is a few KiB).
+inline constexpr std::uintmax_t kMaxExperimentFileBytes = std::uintmax_t{1} << 20;
 
 /// Throws std::invalid_argument "<source>:<line>: ..." on an alias, a repeated mapping key, more
-/// than kMaxYamlDepth nested collections or more than kMaxYamlNodes nodes, and
+/// than kMaxYamlDepth nested collections, more than kMaxYamlNodes nodes or a second document, and
 /// "<source>: line L, column C: YAML syntax error: ..." on a syntax error.
 void CheckYamlShape(std::string_view text, const std::string& source);
 

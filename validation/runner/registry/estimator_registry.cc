@@ -123,7 +123,8 @@ EstimatorEntry OracleEntry() {
   e.name = "oracle";
   e.description =
       "oracle RBPF: FastSLAM 2.0 with the known data association (reads the hidden origin "
-      "labels) and the partitioned IPL proposal; synthetic scenarios only";
+      "labels) and the partitioned IPL proposal; scenarios with origin labels (the simulated "
+      "ones and MRCLAM, whose barcodes name the landmarks; not victoria-park)";
   e.reads_truth = true;
   e.resolved_parameters = [](const EstimatorRequest& request) {
     return oracle::ToJson(ResolveOracleParams(request));

@@ -271,6 +271,50 @@ TEST(ReferenceEstimators, KeysFixedByTheNameAcceptOnlyTheirOwnValue) {
             "\"huber\" or \"none\", got \"tukey\"");
 }
 
+// The incremental solve's settings are refused without initialisation=incremental (they would
+// change nothing), accepted with it and at their default value.
+TEST(ReferenceEstimators, IncrementalSettingsNeedTheIncrementalInitialisation) {
+  if (!Registered("smoother-known")) GTEST_SKIP() << "built without Ceres";
+  for (const char* key : {"incremental_chunk_steps", "incremental_relocalisation_scans",
+                          "incremental_static_point_failures"}) {
+    const std::string error = ResolveError("smoother-unknown", {{key, 7}});
+    EXPECT_NE(error.find(std::string("parameter '") + key +
+                         "' has no effect with "
+                         "initialisation=batch; it is used only with initialisation=incremental"),
+              std::string::npos)
+        << error;
+    EXPECT_EQ(ResolveError("smoother-unknown", {{key, 7}, {"initialisation", "incremental"}}), "");
+  }
+  EXPECT_EQ(ResolveError("smoother-unknown", {{"incremental_chunk_steps", 25}}), "");
+  EXPECT_NE(ResolveError("smoother-known", {{"incremental_relocalisation_std", 2.0}}), "");
+  EXPECT_NE(ResolveError("smoother-known", {{"start_particles", 10}}).find("start_from=phd3"),
+            std::string::npos);
+  EXPECT_EQ(ResolveError("smoother-known", {{"start_particles", 10}, {"start_from", "phd3"}}), "");
+}
+
+// The fixed-lag smoother's run-length bounds are checked when the plan knows the run's length.
+TEST(ReferenceEstimators, WindowBoundsAreCheckedWithThePlannedSteps) {
+  if (!Registered("window")) GTEST_SKIP() << "built without Ceres";
+  EstimatorRequest request;
+  request.name = "window";
+  request.scenario_name = "generated";
+  request.steps = 200;
+  request.overrides = {{"solve_every", 1000}};
+  try {
+    FindEstimator("window").resolved_parameters(request);
+    ADD_FAILURE() << "no error";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("solve_every: 1000 is longer than the run (200 steps)"),
+              std::string::npos)
+        << e.what();
+  }
+  request.overrides = {{"solve_every", 200}};
+  EXPECT_EQ(FindEstimator("window").resolved_parameters(request).at("solve_every"), 200);
+  request.overrides = nlohmann::json::object();
+  request.steps = 5;  // the default window (20) is shortened only when the run is built
+  EXPECT_EQ(FindEstimator("window").resolved_parameters(request).at("window_length"), 20);
+}
+
 // The start from a PHD-SLAM 3.0 trajectory: for the known and own associations, not for the
 // filter's, which starts from its own filter's trajectory.
 TEST(ReferenceEstimators, StartFromPhd3) {

@@ -18,7 +18,8 @@ EstimatorEntry OracleFastSlam1Entry() {
   e.name = "oracle-fs1";
   e.description =
       "FastSLAM 1.0 with the known data association (reads the hidden origin labels): the "
-      "oracle's landmark EKFs with the transition density as proposal; synthetic scenarios only";
+      "oracle's landmark EKFs with the transition density as proposal; scenarios with origin "
+      "labels (the simulated ones and MRCLAM; not victoria-park)";
   e.reads_truth = true;
   e.resolved_parameters = [](const EstimatorRequest& r) {
     RequireKnownOrigins(r);

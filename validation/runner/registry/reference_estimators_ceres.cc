@@ -17,6 +17,32 @@
 namespace phdslam::validation {
 namespace {
 
+// The incremental solve's settings (incremental_*: chunk length, re-localisation, static-point
+// check, ...) change nothing with initialisation=batch, nor start_particles without
+// start_from=phd3: one given a value other than its default is refused, naming the mode that
+// would use it, rather than recorded in config.json as if used.
+void RequireUsedInMode(const EstimatorRequest& r, const reference::SmootherOptions& o) {
+  const nlohmann::json defaults = reference::ToJson(reference::SmootherOptions{});
+  // start_particles sizes the PHD-SLAM 3.0 run of start_from=phd3, which no other start makes.
+  if (o.start_from != reference::StartTrajectory::kPhd3 &&
+      r.overrides.contains("start_particles") &&
+      r.overrides.at("start_particles") != defaults.at("start_particles")) {
+    throw std::invalid_argument("estimator '" + r.name +
+                                "': parameter 'start_particles' has no effect with "
+                                "start_from=dead-reckoning; it is used only with start_from=phd3");
+  }
+  if (o.initialisation == reference::SmootherInitialisation::kIncremental) return;
+  for (const auto& [key, value] : r.overrides.items()) {
+    if (key.rfind("incremental_", 0) != 0 || (defaults.contains(key) && defaults[key] == value)) {
+      continue;
+    }
+    throw std::invalid_argument("estimator '" + r.name + "': parameter '" + key +
+                                "' has no effect with initialisation=batch; it is used only with "
+                                "initialisation=incremental (set that too, or drop '" +
+                                key + "')");
+  }
+}
+
 // The association mode is fixed by the name: the table accepts an `association` override only
 // when it equals `mode` (so that resolved parameters can be fed back as overrides).
 reference::SmootherOptions ResolveSmoother(const EstimatorRequest& r,
@@ -39,6 +65,7 @@ reference::SmootherOptions ResolveSmoother(const EstimatorRequest& r,
     throw std::invalid_argument("estimator '" + r.name + "': " + e.what());
   }
   if (mode == reference::AssociationMode::kKnown) RequireKnownOrigins(r);
+  RequireUsedInMode(r, o);
   return o;
 }
 
@@ -102,7 +129,11 @@ EstimatorEntry WindowEntry(const std::string& name, bool known, const std::strin
   e.name = name;
   e.description = description;
   e.reads_truth = known;
+  // The run's length, when the plan knows it (--steps), checks the overrides now, before any
+  // run starts; the recorded parameters are those without it (the default window is shortened
+  // only when the run is built).
   e.resolved_parameters = [known](const EstimatorRequest& r) {
+    if (r.steps > 0) (void)ResolveWindow(r, known, r.steps);
     return reference::ToJson(ResolveWindow(r, known, 0));
   };
   if (known) {

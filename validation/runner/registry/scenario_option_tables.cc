@@ -23,6 +23,10 @@ constexpr double kPi = std::numbers::pi;
 constexpr int kMrclamDatasets = 9;
 // m, the largest wheelbase of a simulated vehicle.
 constexpr double kMaxWheelbase = 100.0;
+// The smallest speed (m/s) and wheelbase (m) of the simulators that steer a car-like vehicle:
+// the steering angle divides by them, and far below any vehicle's values the controls become NaN.
+constexpr double kMinVehicleSpeed = 0.01;
+constexpr double kMinWheelbase = 0.01;
 
 // (0, max]
 params::Bounds PositiveUpTo(double max) { return {0.0, max, true, false}; }
@@ -158,7 +162,7 @@ const params::ParameterTable<datasets::GeneratorOptions>& GeneratedOptionsTable(
               Between(0, datasets::kMaxSimulatedLandmarks)),
           NumberField<O>(
               "corridor_half_width", [](auto& o) -> auto& { return o.corridor_half_width; },
-              PositiveUpTo(kMaxDistance)),
+              Between(datasets::kMinCorridorHalfWidth, kMaxDistance)),
       },
       DetectionRows<O>(),
       SensorRows<O>(),
@@ -175,13 +179,14 @@ const params::ParameterTable<datasets::ScPhdSimOptions>& ScPhdSimOptionsTable() 
           NumberField<O>(
               "dt", [](auto& o) -> auto& { return o.dt; }, PositiveUpTo(datasets::kMaxTimeStep)),
           NumberField<O>(
-              "speed", [](auto& o) -> auto& { return o.speed; }, PositiveUpTo(datasets::kMaxSpeed)),
+              "speed", [](auto& o) -> auto& { return o.speed; },
+              Between(kMinVehicleSpeed, datasets::kMaxSpeed)),
           NumberField<O>(
               "circle_radius", [](auto& o) -> auto& { return o.circle_radius; },
               PositiveUpTo(kMaxDistance)),
           NumberField<O>(
               "wheelbase", [](auto& o) -> auto& { return o.wheelbase; },
-              PositiveUpTo(kMaxWheelbase)),
+              Between(kMinWheelbase, kMaxWheelbase)),
           IntField<O>(
               "landmarks", [](auto& o) -> auto& { return o.landmarks; },
               Between(0, datasets::kMaxSimulatedLandmarks)),
@@ -224,10 +229,11 @@ const params::ParameterTable<datasets::GlmbSimOptions>& GlmbSimOptionsTable() {
           NumberField<O>(
               "dt", [](auto& o) -> auto& { return o.dt; }, PositiveUpTo(datasets::kMaxTimeStep)),
           NumberField<O>(
-              "speed", [](auto& o) -> auto& { return o.speed; }, PositiveUpTo(datasets::kMaxSpeed)),
+              "speed", [](auto& o) -> auto& { return o.speed; },
+              Between(kMinVehicleSpeed, datasets::kMaxSpeed)),
           NumberField<O>(
               "wheelbase", [](auto& o) -> auto& { return o.wheelbase; },
-              PositiveUpTo(kMaxWheelbase)),
+              Between(kMinWheelbase, kMaxWheelbase)),
           IntField<O>(
               "landmarks", [](auto& o) -> auto& { return o.landmarks; },
               Between(0, datasets::kMaxSimulatedLandmarks)),

@@ -78,8 +78,20 @@ TEST(ScenarioOptionTables, ValuesBeyondTheirPhysicalRangeAreRefusedCompactly) {
   EXPECT_NE(ErrorOf({{"speed", 1e20}}).find("'speed': must be >= 0 and <= 100, got 1e+20"),
             std::string::npos)
       << ErrorOf({{"speed", 1e20}});
-  EXPECT_NE(ErrorOf({{"landmarks", 1e9}}).find("'landmarks': must be >= 0 and <= 1000000"),
+  // The map metrics match every true landmark against the estimate: 10^4 at most.
+  EXPECT_NE(ErrorOf({{"landmarks", 1e9}}).find("'landmarks': must be >= 0 and <= 10000"),
             std::string::npos);
+  EXPECT_NE(ErrorOf({{"landmarks", 10001}}).find("'landmarks'"), std::string::npos);
+  EXPECT_EQ(ErrorOf({{"landmarks", 10000}}), "");
+  // A corridor far narrower than any vehicle overflowed the generator's raster (SIGSEGV).
+  for (const double width : {5e-324, 1e-300, 0.0999}) {
+    EXPECT_NE(ErrorOf({{"corridor_half_width", width}})
+                  .find("'corridor_half_width': must be >= 0.1 and <= 100000"),
+              std::string::npos)
+        << width;
+  }
+  EXPECT_EQ(ErrorOf({{"corridor_half_width", 0.1}}), "");
+  EXPECT_EQ(ErrorOf({{"corridor_half_width", 1e5}}), "");
   EXPECT_NE(ErrorOf({{"dt", 1e300}}).find("got 1e+300"), std::string::npos);
   EXPECT_NE(ErrorOf({{"initial_pose", {1e300, 0, 0}}}).find("'initial_pose'"), std::string::npos);
   EXPECT_NE(ErrorOf({{"measurement_noise_cov", {1e300, 1}}}).find("'measurement_noise_cov'"),

@@ -1,0 +1,15 @@
+// A check of a shared object's file before dlopen maps it: a file cut short (a copy interrupted,
+// a disk full) is mapped past its end and the process dies of SIGBUS on first touch, without a
+// word; a foreign file is refused by dlopen only after it mapped what it could.
+#pragma once
+
+#include <filesystem>
+
+namespace phdslam::reference {
+
+/// Throws std::runtime_error naming `path` unless it is a regular file holding a complete ELF
+/// shared object of this machine's class, byte order and architecture: its header, program
+/// headers, every loaded segment and its section headers lie inside the file.
+void RequireCompleteSharedObject(const std::filesystem::path& path);
+
+}  // namespace phdslam::reference
