@@ -20,6 +20,7 @@ EstimatorEntry OracleFastSlam1Entry() {
       "FastSLAM 1.0 with the known data association (reads the hidden origin labels): the "
       "oracle's landmark EKFs with the transition density as proposal; synthetic scenarios only";
   e.reads_truth = true;
+  e.parameters = oracle::OracleParamsTable().Descriptions();
   e.resolved_parameters = [](const EstimatorRequest& r) {
     RequireKnownOrigins(r);
     return oracle::ToJson(ResolveParameters(r, oracle::OracleParamsTable()));

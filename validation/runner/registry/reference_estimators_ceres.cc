@@ -49,6 +49,7 @@ EstimatorEntry SmootherEntry(const std::string& name, reference::AssociationMode
   e.description = description;
   e.batch = true;
   e.reads_truth = mode == reference::AssociationMode::kKnown;
+  e.parameters = reference::SmootherOptionsTable().Descriptions();
   e.resolved_parameters = [mode](const EstimatorRequest& r) {
     return reference::ToJson(ResolveSmoother(r, mode));
   };
@@ -102,6 +103,7 @@ EstimatorEntry WindowEntry(const std::string& name, bool known, const std::strin
   e.name = name;
   e.description = description;
   e.reads_truth = known;
+  e.parameters = reference::WindowParamsTable().Descriptions();
   e.resolved_parameters = [known](const EstimatorRequest& r) {
     return reference::ToJson(ResolveWindow(r, known, 0));
   };
