@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <string>
 
+#include "validation/runner/registry/scenario_registry.h"
+
 namespace phdslam::validation {
 namespace {
 
