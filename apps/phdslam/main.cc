@@ -16,7 +16,6 @@
 // error (bad option, experiment file or list; unknown name; conflicting results folders),
 // 130 interrupted (Ctrl-C).
 #include <CLI/CLI.hpp>
-#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>

@@ -22,8 +22,10 @@ struct ScenarioOptions {
   /// does not hold its file; victoria-park and mrclam need the folder.
   std::optional<std::string> data_dir;
   int steps = 0;  ///< limit on the number of filter steps; 0 = the scenario's full length
-  /// Detection probability: the constant pD (synthetic scenarios) or the pD at zero range
-  /// (Victoria Park, where it also sets the nominal pD of the estimate threshold).
+  /// The shorthand options pd and clutter_rate (scenario_shorthands.h), each applied to the rows
+  /// of the scenario's option table it names (ScenarioEntry::shorthand_rows). Detection
+  /// probability: the constant pD (synthetic scenarios) or the pD at zero range (Victoria Park,
+  /// where it also sets the nominal pD of the estimate threshold).
   std::optional<double> detection_probability;
   std::optional<double> clutter_rate;  ///< Poisson mean of clutter points per scan
   /// Further options by key (`scenario_options`, `--scenario-set`), applied after the two above
