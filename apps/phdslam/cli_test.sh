@@ -52,6 +52,12 @@ expect_in "$scratch/out" "--time-tolerance"
 expect_exit 0 "$phdslam" list
 expect_in "$scratch/out" "paper-synthetic"
 expect_in "$scratch/out" "odometry"
+expect_in "$scratch/out" "gibbs_samples = 1000 (an integer >= 1): "
+# One estimator's parameters from the table that parses --set; an unknown name lists the known.
+expect_exit 0 "$phdslam" list --estimator phd3
+expect_in "$scratch/out" "max_hypotheses = 50 (an integer >= 0): "
+expect_exit 2 "$phdslam" list --estimator phd4
+expect_in "$scratch/err" "unknown estimator 'phd4' (known: odometry, phd1"
 
 # Usage errors: exit 2 and one line on stderr.
 common=(--scenario paper-synthetic --data-dir "$data_dir" --out "$out" --quiet)

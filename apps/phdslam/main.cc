@@ -16,7 +16,6 @@
 // error (bad option, experiment file or list; unknown name; conflicting results folders),
 // 130 interrupted (Ctrl-C).
 #include <CLI/CLI.hpp>
-#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -32,6 +31,7 @@
 #include "apps/phdslam/exit_codes.h"
 #include "apps/phdslam/gate_command.h"
 #include "apps/phdslam/interchange_commands.h"
+#include "apps/phdslam/list_command.h"
 #include "apps/phdslam/option_without_value.h"
 #include "apps/phdslam/run_command.h"
 #include "apps/phdslam/unknown_subcommand.h"
@@ -267,27 +267,6 @@ int ParentWeights(const ParentWeightsArguments& a) {
   return 0;
 }
 
-int List() {
-  std::size_t width = 0;
-  for (const auto& s : v::ScenarioTable()) width = std::max(width, s.name.size());
-  for (const auto& e : v::EstimatorTable()) width = std::max(width, e.name.size());
-  const auto line = [&](const std::string& name, const std::string& description) {
-    std::cout << "  " << name << std::string(width + 2 - name.size(), ' ') << description << "\n";
-  };
-  std::cout << "scenarios:\n";
-  for (const auto& s : v::ScenarioTable()) {
-    line(s.name, s.description);
-    for (const v::ScenarioOptionHelp& o : s.option_keys) {
-      std::cout << "  " << std::string(width + 2, ' ') << "  " << o.key << ": " << o.help << "\n";
-    }
-  }
-  std::cout << "estimators:\n";
-  for (const auto& e : v::EstimatorTable()) {
-    line(e.name, e.description + (e.batch ? " [batch]" : ""));
-  }
-  return 0;
-}
-
 int Main(int argc, char** argv) {
   CLI::App app{"phdslam: PHD-SLAM 3.0 reproduction and validation suite", "phdslam"};
   app.require_subcommand(1);
@@ -310,7 +289,8 @@ int Main(int argc, char** argv) {
   AddDataCommand(app, data_arguments);
   GateArguments gate_arguments;
   AddGateCommand(app, gate_arguments);
-  app.add_subcommand("list", "List the known scenarios (with their options) and estimators");
+  ListArguments list_arguments;
+  AddListCommand(app, list_arguments);
   if (const std::string name = UnknownSubcommand(app, argc, argv); !name.empty()) {
     std::cerr << "phdslam: error: unknown subcommand '" << name
               << "' (the subcommands are listed by phdslam --help)\n";
@@ -337,7 +317,7 @@ int Main(int argc, char** argv) {
     if (app.got_subcommand("ingest")) return Ingest(ingest_arguments);
     if (app.got_subcommand("data")) return Data(app, data_arguments);
     if (app.got_subcommand("gate")) return Gate(gate_arguments);
-    return List();
+    return List(list_arguments);
   } catch (const std::bad_alloc& e) {
     std::cerr << "phdslam: error: out of memory (" << e.what() << ") in 'phdslam "
               << app.get_subcommands().front()->get_name()

@@ -23,6 +23,7 @@ v::EstimatorEntry NearestLandmarkEntry() {
   v::EstimatorEntry e;
   e.name = "nearest-landmark";
   e.description = "example: dead reckoning and a nearest-landmark averaged map (out of tree)";
+  e.parameters = example::NearestLandmarkParamsTable().Descriptions();
   e.resolved_parameters = [](const v::EstimatorRequest& r) {
     v::RequireSingleParticle(r);
     return example::NearestLandmarkParamsTable().ToJson(

@@ -12,9 +12,11 @@ const phdslam::params::ParameterTable<NearestLandmarkParams>& NearestLandmarkPar
   using phdslam::params::AtLeast;
   static const phdslam::params::ParameterTable<NearestLandmarkParams> table({
       phdslam::params::NumberField<NearestLandmarkParams>(
-          "merge_distance", [](auto& p) -> auto& { return p.merge_distance; }, Above(0.0)),
+          "merge_distance", [](auto& p) -> auto& { return p.merge_distance; }, Above(0.0))
+          .Means("a measurement closer than this (m) to a mapped landmark is that landmark"),
       phdslam::params::IntField<NearestLandmarkParams>(
-          "confirm_hits", [](auto& p) -> auto& { return p.confirm_hits; }, AtLeast(1)),
+          "confirm_hits", [](auto& p) -> auto& { return p.confirm_hits; }, AtLeast(1))
+          .Means("detections before a landmark enters the map"),
   });
   return table;
 }

@@ -26,130 +26,197 @@ const params::ParameterTable<SmootherOptions>& SmootherOptionsTable() {
                         "association", [](auto& o) -> auto& { return o.association; },
                         {{AssociationMode::kKnown, "known"},
                          {AssociationMode::kFilter, "filter"},
-                         {AssociationMode::kUnknown, "unknown"}}),
+                         {AssociationMode::kUnknown, "unknown"}})
+                        .Means("known labels (smoother-known), a PHD-SLAM 3.0 run's association "
+                               "(smoother-filter) or its own (smoother-unknown)"),
                     "fixed by the estimator's name (smoother-known, smoother-filter, "
                     "smoother-unknown)"),
       params::EnumField<O, SmootherInitialisation>(
           "initialisation", [](auto& o) -> auto& { return o.initialisation; },
           {{SmootherInitialisation::kIncremental, "incremental"},
-           {SmootherInitialisation::kBatch, "batch"}}),
+           {SmootherInitialisation::kBatch, "batch"}})
+          .Means("solve the whole graph from the start trajectory (batch) or build it in time "
+                 "order and solve as it grows (incremental)"),
       params::IntField<O>(
           "incremental_chunk_steps", [](auto& o) -> auto& { return o.incremental_chunk_steps; },
-          AtLeast(1)),
+          AtLeast(1))
+          .Means("incremental: steps added between two solves"),
       params::IntField<O>(
           "incremental_active_steps", [](auto& o) -> auto& { return o.incremental_active_steps; },
-          AtLeast(0)),
+          AtLeast(0))
+          .Means("incremental: newest poses optimised in each chunk solve, older ones held (0: "
+                 "every pose)"),
       params::BoolField<O>(
-          "incremental_held_prior", [](auto& o) -> auto& { return o.incremental_held_prior; }),
+          "incremental_held_prior", [](auto& o) -> auto& { return o.incremental_held_prior; })
+          .Means("incremental: fold the measurements of held poses once into a fixed prior on "
+                 "their landmarks"),
       params::BoolField<O>(
           "incremental_squared_marginals",
-          [](auto& o) -> auto& { return o.incremental_squared_marginals; }),
+          [](auto& o) -> auto& { return o.incremental_squared_marginals; })
+          .Means("incremental, own association: gate covariances from the squared-loss graph "
+                 "instead of the robust one"),
       params::BoolField<O>(
           "incremental_delete_collapsed",
-          [](auto& o) -> auto& { return o.incremental_delete_collapsed; }),
+          [](auto& o) -> auto& { return o.incremental_delete_collapsed; })
+          .Means("incremental, own association: delete landmarks collapsed onto a pose after every "
+                 "chunk solve"),
       params::BoolField<O>(
           "incremental_marginals_without_collapsed",
-          [](auto& o) -> auto& { return o.incremental_marginals_without_collapsed; }),
+          [](auto& o) -> auto& { return o.incremental_marginals_without_collapsed; })
+          .Means("incremental, own association: when the marginal covariances fail, compute them "
+                 "again without collapsed landmarks"),
       params::BoolField<O>(
           "incremental_skip_ambiguous",
-          [](auto& o) -> auto& { return o.incremental_skip_ambiguous; }),
+          [](auto& o) -> auto& { return o.incremental_skip_ambiguous; })
+          .Means("incremental, own association: a measurement inside two or more gates is left "
+                 "unassociated and starts none"),
       params::BoolField<O>(
           "incremental_birth_outside_gates",
-          [](auto& o) -> auto& { return o.incremental_birth_outside_gates; }),
+          [](auto& o) -> auto& { return o.incremental_birth_outside_gates; })
+          .Means(
+              "incremental, own association: only measurements outside every gate start landmarks"),
       params::BoolField<O>(
           "incremental_pose_landmark_cross",
-          [](auto& o) -> auto& { return o.incremental_pose_landmark_cross; }),
+          [](auto& o) -> auto& { return o.incremental_pose_landmark_cross; })
+          .Means("incremental, own association: the gate uses each landmark's cross-covariance "
+                 "with the pose"),
       params::NumberField<O>(
           "incremental_new_landmark_intensity",
-          [](auto& o) -> auto& { return o.incremental_new_landmark_intensity; }, AtLeast(0.0)),
+          [](auto& o) -> auto& { return o.incremental_new_landmark_intensity; }, AtLeast(0.0))
+          .Means("incremental, own association: a gated pair is admissible only when pD N(nu; 0, "
+                 "S) reaches this intensity (0: off)"),
       params::NumberField<O>(
           "incremental_static_point_chi2",
-          [](auto& o) -> auto& { return o.incremental_static_point_chi2; }, AtLeast(0.0)),
+          [](auto& o) -> auto& { return o.incremental_static_point_chi2; }, AtLeast(0.0))
+          .Means("incremental, own association: a landmark whose detection moved farther than this "
+                 "chi-square from its first one is deleted (0: off)"),
       params::NumberField<O>(
           "incremental_static_point_heading_std",
-          [](auto& o) -> auto& { return o.incremental_static_point_heading_std; }, Above(0.0)),
+          [](auto& o) -> auto& { return o.incremental_static_point_heading_std; }, Above(0.0))
+          .Means("the static-point check compares with the first detection only while the odometry "
+                 "heading std stays below this (rad)"),
       params::IntField<O>(
           "incremental_static_point_failures",
-          [](auto& o) -> auto& { return o.incremental_static_point_failures; }, AtLeast(1)),
+          [](auto& o) -> auto& { return o.incremental_static_point_failures; }, AtLeast(1))
+          .Means(
+              "consecutive moving detections before the static-point check deletes the landmark"),
       params::NumberField<O>(
           "incremental_relocalisation_std",
-          [](auto& o) -> auto& { return o.incremental_relocalisation_std; }, AtLeast(0.0)),
+          [](auto& o) -> auto& { return o.incremental_relocalisation_std; }, AtLeast(0.0))
+          .Means("incremental, own association: above this marginal position std (m) scans are "
+                 "matched with the map together (0: off)"),
       params::IntField<O>(
           "incremental_relocalisation_scans",
-          [](auto& o) -> auto& { return o.incremental_relocalisation_scans; }, AtLeast(2)),
+          [](auto& o) -> auto& { return o.incremental_relocalisation_scans; }, AtLeast(2))
+          .Means("scans with detections matched together in a re-localisation"),
       params::NumberField<O>(
           "incremental_relocalisation_inlier_distance",
-          [](auto& o) -> auto& { return o.incremental_relocalisation_inlier_distance; },
-          Above(0.0)),
+          [](auto& o) -> auto& { return o.incremental_relocalisation_inlier_distance; }, Above(0.0))
+          .Means("a detection within this distance (m) of a landmark after the candidate "
+                 "correction is an inlier"),
       params::IntField<O>(
           "incremental_relocalisation_margin",
-          [](auto& o) -> auto& { return o.incremental_relocalisation_margin; }, AtLeast(1)),
+          [](auto& o) -> auto& { return o.incremental_relocalisation_margin; }, AtLeast(1))
+          .Means("inliers by which the best re-localisation correction must beat every rival"),
       params::NumberField<O>(
           "incremental_relocalisation_prior_weight",
-          [](auto& o) -> auto& { return o.incremental_relocalisation_prior_weight; }, AtLeast(0.0)),
+          [](auto& o) -> auto& { return o.incremental_relocalisation_prior_weight; }, AtLeast(0.0))
+          .Means("a correction scores its inliers less this times half its squared Mahalanobis "
+                 "distance from dead reckoning"),
       params::BoolField<O>(
           "incremental_relocalisation_leave_ambiguous",
-          [](auto& o) -> auto& { return o.incremental_relocalisation_leave_ambiguous; }),
+          [](auto& o) -> auto& { return o.incremental_relocalisation_leave_ambiguous; })
+          .Means("an ambiguous re-localisation match ends it without a correction (false: keep "
+                 "matching)"),
       params::NumberField<O>(
-          "known_outlier_chi2", [](auto& o) -> auto& { return o.known_outlier_chi2; },
-          AtLeast(0.0)),
+          "known_outlier_chi2", [](auto& o) -> auto& { return o.known_outlier_chi2; }, AtLeast(0.0))
+          .Means("known association: labelled measurements above this squared whitened residual "
+                 "are left out as mislabelled (0: keep all)"),
       params::IntField<O>(
-          "max_iterations", [](auto& o) -> auto& { return o.max_iterations; }, AtLeast(1)),
+          "max_iterations", [](auto& o) -> auto& { return o.max_iterations; }, AtLeast(1))
+          .Means("most Levenberg-Marquardt iterations per solve"),
       params::NumberField<O>(
-          "function_tolerance", [](auto& o) -> auto& { return o.function_tolerance; }, Above(0.0)),
+          "function_tolerance", [](auto& o) -> auto& { return o.function_tolerance; }, Above(0.0))
+          .Means("relative cost decrease that ends the final solve"),
       params::NumberField<O>(
           "intermediate_function_tolerance",
-          [](auto& o) -> auto& { return o.intermediate_function_tolerance; }, Above(0.0)),
+          [](auto& o) -> auto& { return o.intermediate_function_tolerance; }, Above(0.0))
+          .Means("relative cost decrease that ends the solves before the final one"),
       params::BoolField<O>(
-          "compute_covariances", [](auto& o) -> auto& { return o.compute_covariances; }),
+          "compute_covariances", [](auto& o) -> auto& { return o.compute_covariances; })
+          .Means("compute the marginal pose and landmark covariances after the final solve"),
       params::EnumField<O, SparseLinearSolver>(
           "linear_solver", [](auto& o) -> auto& { return o.linear_solver; },
           {{SparseLinearSolver::kSparseNormalCholesky, "sparse_normal_cholesky"},
-           {SparseLinearSolver::kSparseSchur, "sparse_schur"}}),
+           {SparseLinearSolver::kSparseSchur, "sparse_schur"}})
+          .Means("Ceres sparse linear solver of the normal equations"),
       params::IntField<O>(
-          "num_threads", [](auto& o) -> auto& { return o.num_threads; }, AtLeast(1)),
+          "num_threads", [](auto& o) -> auto& { return o.num_threads; }, AtLeast(1))
+          .Means("threads Ceres uses per solve"),
       params::EnumField<O, OdometryResidual>("odometry_residual",
                                              [](auto& o) -> auto& { return o.odometry_residual; },
                                              {{OdometryResidual::kControlSpace, "control_space"},
-                                              {OdometryResidual::kPoseSpace, "pose_space"}}),
+                                              {OdometryResidual::kPoseSpace, "pose_space"}})
+          .Means("odometry residual in the space of the controls (control_space) or of the pose "
+                 "increments (pose_space)"),
       params::StructArrayField<O, F>(
           "odometry_floor", [](auto& o) -> auto& { return o.odometry_floor; }, FloorMembers(),
-          Above(0.0)),
+          Above(0.0))
+          .Means(
+              "floor on the odometry noise [position_std m, heading_std rad] of the final solve"),
       params::StructArrayField<O, F>(
           "warm_start_floor", [](auto& o) -> auto& { return o.warm_start_floor; }, FloorMembers(),
-          Above(0.0)),
+          Above(0.0))
+          .Means("looser odometry noise floor of every solve but the last, to bring the trajectory "
+                 "close quickly"),
       params::IntField<O>(
           "initial_pass_solve_steps", [](auto& o) -> auto& { return o.initial_pass_solve_steps; },
-          AtLeast(0)),
+          AtLeast(0))
+          .Means("batch, own association: the initial association pass solves the steps so far "
+                 "every this many steps (0: never)"),
       params::IntField<O>(
           "reassociation_rounds", [](auto& o) -> auto& { return o.reassociation_rounds; },
-          AtLeast(0)),
+          AtLeast(0))
+          .Means("own association: most solve and re-associate rounds"),
       params::NumberField<O>(
-          "gate_chi2", [](auto& o) -> auto& { return o.gate_chi2; }, Above(0.0)),
+          "gate_chi2", [](auto& o) -> auto& { return o.gate_chi2; }, Above(0.0))
+          .Means("chi-square (2 dof) gate for associating a measurement and for merging landmarks"),
       params::IntField<O>(
-          "min_observations", [](auto& o) -> auto& { return o.min_observations; }, AtLeast(1)),
+          "min_observations", [](auto& o) -> auto& { return o.min_observations; }, AtLeast(1))
+          .Means("landmarks seen fewer times are dropped"),
       params::NumberField<O>(
-          "merge_position_std", [](auto& o) -> auto& { return o.merge_position_std; },
-          AtLeast(0.0)),
+          "merge_position_std", [](auto& o) -> auto& { return o.merge_position_std; }, AtLeast(0.0))
+          .Means(
+              "standard deviation (m) added to both landmarks' covariances when testing a merge"),
       params::NumberField<O>(
           "min_detection_ratio", [](auto& o) -> auto& { return o.min_detection_ratio; },
-          params::Probability()),
+          params::Probability())
+          .Means("landmarks detected in fewer than this fraction of the scans expected to see them "
+                 "are dropped"),
       // "cauchy", "huber" or "none": checked by SmootherOptions::Validate().
       params::StringField<O>(
-          "robust_loss", [](auto& o) -> auto& { return o.robust_loss; }),
+          "robust_loss", [](auto& o) -> auto& { return o.robust_loss; })
+          .Means("robust loss on the measurements: cauchy, huber or none"),
       params::NumberField<O>(
-          "robust_scale", [](auto& o) -> auto& { return o.robust_scale; }, Above(0.0)),
+          "robust_scale", [](auto& o) -> auto& { return o.robust_scale; }, Above(0.0))
+          .Means("scale of the robust loss, in standard deviations"),
       params::NumberField<O>(
           "filter_label_distance", [](auto& o) -> auto& { return o.filter_label_distance; },
-          Above(0.0)),
+          Above(0.0))
+          .Means("smoother-filter: associated landmark means of consecutive scans closer than this "
+                 "(m) are one landmark"),
       params::EnumField<O, StartTrajectory>(
           "start_from", [](auto& o) -> auto& { return o.start_from; },
-          {{StartTrajectory::kDeadReckoning, "dead-reckoning"}, {StartTrajectory::kPhd3, "phd3"}}),
+          {{StartTrajectory::kDeadReckoning, "dead-reckoning"}, {StartTrajectory::kPhd3, "phd3"}})
+          .Means("start trajectory: dead reckoning or a PHD-SLAM 3.0 run on the same seed (phd3)"),
       params::IntField<O>(
-          "start_particles", [](auto& o) -> auto& { return o.start_particles; }, AtLeast(1)),
+          "start_particles", [](auto& o) -> auto& { return o.start_particles; }, AtLeast(1))
+          .Means("particles of the PHD-SLAM 3.0 run of start_from phd3"),
       params::EnumField<O, StartPath>("start_path", [](auto& o) -> auto& { return o.start_path; },
                                       {{StartPath::kEstimate, "estimate"},
-                                       {StartPath::kBestParticlePath, "best-particle-path"}}),
+                                       {StartPath::kBestParticlePath, "best-particle-path"}})
+          .Means("with start_from phd3: that run's per-step estimates or its best final particle's "
+                 "path"),
   });
   return table;
 }

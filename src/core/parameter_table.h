@@ -125,6 +125,13 @@ inline bool ReadBool(const nlohmann::json& v, const std::string& key) {
   return v.get<bool>();
 }
 
+/// What a row says about its parameter to a reader (`phdslam list`).
+struct FieldDescription {
+  std::string key;
+  std::string accepted;  ///< the accepted values (Field::help)
+  std::string meaning;   ///< one line: what the parameter does
+};
+
 /// One row: a named parameter with its reader and writer.
 template <class T>
 struct Field {
@@ -132,6 +139,13 @@ struct Field {
   std::string help;  ///< the accepted values, for error messages and --help
   std::function<nlohmann::json(const T&)> write;
   std::function<void(const nlohmann::json&, T&)> read;  ///< throws naming the key
+  std::string meaning{};                                ///< one line of what it does (Means)
+
+  /// The row with its one line of meaning, for a table written as one expression per row.
+  [[nodiscard]] Field Means(std::string text) && {
+    meaning = std::move(text);
+    return std::move(*this);
+  }
 };
 
 /// The rows of one parameter struct.
@@ -177,6 +191,14 @@ class ParameterTable {
   }
 
   [[nodiscard]] const std::vector<Field<T>>& fields() const { return fields_; }
+
+  /// Every row's key, accepted values and meaning, in table order.
+  [[nodiscard]] std::vector<FieldDescription> Descriptions() const {
+    std::vector<FieldDescription> rows;
+    rows.reserve(fields_.size());
+    for (const Field<T>& f : fields_) rows.push_back({f.key, f.help, f.meaning});
+    return rows;
+  }
 
  private:
   std::vector<Field<T>> fields_;
@@ -365,7 +387,8 @@ std::vector<Field<T>> Embed(const ParameterTable<Inner>& table, Access access) {
   std::vector<Field<T>> rows;
   for (const Field<Inner>& f : table.fields()) {
     rows.push_back({f.key, f.help, [access, w = f.write](const T& p) { return w(access(p)); },
-                    [access, r = f.read](const nlohmann::json& v, T& p) { r(v, access(p)); }});
+                    [access, r = f.read](const nlohmann::json& v, T& p) { r(v, access(p)); },
+                    f.meaning});
   }
   return rows;
 }

@@ -12,8 +12,11 @@ namespace phdslam::filters {
 template <typename P>
 params::Field<P> DrawStreamsField() {
   return params::EnumField<P, DrawStreams>(
-      "draw_streams", [](auto& p) -> auto& { return p.draw_streams; },
-      {{DrawStreams::kSequential, "sequential"}, {DrawStreams::kKeyed, "keyed"}});
+             "draw_streams", [](auto& p) -> auto& { return p.draw_streams; },
+             {{DrawStreams::kSequential, "sequential"}, {DrawStreams::kKeyed, "keyed"}})
+      .Means(
+          "random draws from one sequential stream per run, or keyed per (step, particle, "
+          "purpose): common random numbers between versions of the filter");
 }
 
 }  // namespace phdslam::filters

@@ -61,10 +61,17 @@ struct Experiment {
   nlohmann::json source = nullptr;
 };
 
-/// Sets scenario option `key` (a `scenario_options` key or a `--scenario-set` key): `pd` and
-/// `clutter_rate` set Experiment::pd and ::clutter_rate (numbers), other keys enter
-/// scenario_settings. Throws std::invalid_argument naming the key for a non-number pd or
-/// clutter_rate.
+/// The member of Experiment that holds shorthand scenario option `key` (the registry's table,
+/// scenario_shorthands.h: pd, clutter_rate); nullptr for any other key.
+std::optional<double> Experiment::*ShorthandMember(const std::string& key);
+
+/// Sets scenario option `key` (a `scenario_options` key or a `--scenario-set` key): a shorthand
+/// (`pd`, `clutter_rate`) sets its ShorthandMember (a number), other keys enter
+/// scenario_settings. Throws std::invalid_argument naming the key for a shorthand's non-number.
 void SetScenarioOption(Experiment& experiment, const std::string& key, const nlohmann::json& value);
+
+/// True when `experiment` sets scenario option `key` itself: a shorthand's member, or a key of
+/// scenario_settings.
+bool SetsScenarioOption(const Experiment& experiment, const std::string& key);
 
 }  // namespace phdslam::validation

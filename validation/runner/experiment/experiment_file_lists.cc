@@ -159,9 +159,7 @@ void ReadScenarioOptions(const YamlKeyValue& value, Experiment& x) {
 std::vector<ExperimentSweep> ReadSweep(const YamlKeyValue& value, const Experiment& x) {
   std::vector<ExperimentSweep> sweep = SweepDimensions(value.node, value.errors);
   for (const ExperimentSweep& d : sweep) {
-    const bool pd_clash = d.parameter == kSweepParameterPd && x.pd;
-    const bool clutter_clash = d.parameter == kSweepParameterClutterRate && x.clutter_rate;
-    if (pd_clash || clutter_clash || x.scenario_settings.contains(d.parameter)) {
+    if (SetsScenarioOption(x, d.parameter)) {
       value.errors.Fail(value.node,
                         "'" + d.parameter + "' is swept; remove it from 'scenario_options'");
     }

@@ -6,6 +6,7 @@
 #include "validation/runner/io/results_io.h"
 #include "validation/runner/io/results_layout.h"
 #include "validation/runner/registry/scenario_registry.h"
+#include "validation/runner/registry/scenario_shorthands.h"
 
 namespace phdslam::validation {
 namespace {
@@ -22,21 +23,23 @@ ScenarioOptions ToScenarioOptions(const Experiment& experiment) {
   ScenarioOptions options;
   options.data_dir = experiment.data_dir;
   options.steps = experiment.steps;
-  options.detection_probability = experiment.pd;
-  options.clutter_rate = experiment.clutter_rate;
+  for (const ScenarioShorthand& s : ScenarioShorthands()) {
+    if (const auto member = ShorthandMember(s.key)) options.*s.value = experiment.*member;
+  }
   options.settings = experiment.scenario_settings;
   return options;
 }
 
-// `pd` sets the detection probability options of the scenario; giving one of them as well would
-// leave one of the two values unused.
-void RequireSinglePd(const Experiment& experiment) {
-  if (!experiment.pd) return;
-  for (const char* key :
-       {"detection_probability", "detection_probability_max", "detection_probability_nominal"}) {
-    if (experiment.scenario_settings.contains(key)) {
-      throw std::invalid_argument("scenario options 'pd' and '" + std::string(key) +
-                                  "' both set the detection probability; give one");
+// A shorthand (pd, clutter_rate) sets rows of the scenario's options; giving one of them as well
+// would leave one of the two values unused.
+void RequireShorthandsAlone(const Experiment& experiment) {
+  for (const ScenarioShorthand& s : ScenarioShorthands()) {
+    if (!SetsScenarioOption(experiment, s.key)) continue;
+    for (const std::string& row : ShorthandRows(FindScenario(experiment.scenario), s.key)) {
+      if (experiment.scenario_settings.contains(row)) {
+        throw std::invalid_argument("scenario options '" + s.key + "' and '" + row + "' both set " +
+                                    s.what + "; give one");
+      }
     }
   }
 }
@@ -80,7 +83,7 @@ double CheckRunCount(const MonteCarloPlan& plan) {
 }
 
 MonteCarloPlan BuildPlan(const Experiment& experiment, const std::vector<EstimatorEntry>& table) {
-  RequireSinglePd(experiment);
+  RequireShorthandsAlone(experiment);
   MonteCarloPlan plan;
   plan.experiment = experiment.name;
   plan.particles = experiment.particles;
@@ -146,8 +149,8 @@ std::vector<std::string> OptionKeys(const ScenarioEntry& scenario) {
 
 bool IsEstimatorSweep(const ExperimentSweep& d, const std::vector<std::string>& options) {
   const std::string& p = d.parameter;
-  return p != kSweepParameterParticles && p != kSweepParameterSteps && p != kSweepParameterPd &&
-         p != kSweepParameterClutterRate &&
+  return p != kSweepParameterParticles && p != kSweepParameterSteps &&
+         FindScenarioShorthand(p) == nullptr &&
          std::find(options.begin(), options.end(), p) == options.end();
 }
 

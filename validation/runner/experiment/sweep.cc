@@ -8,13 +8,14 @@
 #include "validation/runner/io/results_io.h"
 #include "validation/runner/io/results_layout.h"
 #include "validation/runner/registry/parameter_overrides.h"
+#include "validation/runner/registry/scenario_shorthands.h"
 #include "validation/runner/results/results_config.h"
 
 namespace phdslam::validation {
 namespace {
 
 bool IsScenarioOption(const std::string& parameter, const std::vector<std::string>& options) {
-  return parameter == kSweepParameterPd || parameter == kSweepParameterClutterRate ||
+  return FindScenarioShorthand(parameter) != nullptr ||
          std::find(options.begin(), options.end(), parameter) != options.end();
 }
 
@@ -163,9 +164,7 @@ void CheckSweepNotSet(const Experiment& x, const std::vector<std::string>& scena
   for (const ExperimentSweep& d : x.sweep) {
     const std::string& p = d.parameter;
     if (d.values.empty()) throw std::invalid_argument("sweep parameter '" + p + "' has no values");
-    bool set = (p == kSweepParameterPd && x.pd) ||
-               (p == kSweepParameterClutterRate && x.clutter_rate) ||
-               x.scenario_settings.contains(p) || (p == kSweepParameterSteps && x.steps != 0);
+    bool set = SetsScenarioOption(x, p) || (p == kSweepParameterSteps && x.steps != 0);
     if (IsEstimatorParameter(p, scenario_options)) {
       const ParameterAssignment a = ParseParameterAssignment(p + "=0");
       for (const ExperimentEstimator& e : x.estimators) {

@@ -78,6 +78,7 @@ EstimatorEntry PhdSlamEntry(const filters::PhdSlamVariant& variant) {
   EstimatorEntry e;
   e.name = variant.name;
   e.description = variant.description;
+  e.parameters = filters::PhdSlamParamsTable().Descriptions();
   e.resolved_parameters = [](const EstimatorRequest& request) {
     return filters::ToJson(ResolveParameters(request, filters::PhdSlamParamsTable()));
   };
@@ -102,6 +103,7 @@ EstimatorEntry RbPhdEntry() {
       "RB-PHD-SLAM of Mullane, Vo, Adams & Vo (2011): PHD-SLAM 1.0's transition density with the "
       "single-feature map particle weight (the comparator of single-cluster PHD SLAM's paper); "
       "--set weighting=empty-map for the empty-map strategy";
+  e.parameters = filters::PhdSlamParamsTable().Descriptions();
   e.resolved_parameters = [](const EstimatorRequest& r) {
     return filters::ToJson(ResolveParameters(r, filters::PhdSlamParamsTable(), RbPhdDefaults()));
   };
@@ -126,6 +128,7 @@ EstimatorEntry OracleEntry() {
       "labels) and the partitioned IPL proposal; scenarios with origin labels (the simulated "
       "ones and MRCLAM, whose barcodes name the landmarks; not victoria-park)";
   e.reads_truth = true;
+  e.parameters = oracle::OracleParamsTable().Descriptions();
   e.resolved_parameters = [](const EstimatorRequest& request) {
     return oracle::ToJson(ResolveOracleParams(request));
   };
@@ -144,6 +147,7 @@ EstimatorEntry ScPhdSlamEntry() {
       "single-cluster PHD SLAM (Lee, Clark & Salvi 2012): N pose parents shotgun-sampled into M "
       "children with GM-PHD maps, single-cluster likelihood weights, pruned to the N best; "
       "expected a posteriori pose";
+  e.parameters = filters::ScPhdSlamParamsTable().Descriptions();
   e.resolved_parameters = [](const EstimatorRequest& r) {
     return filters::ToJson(ResolveParameters(r, filters::ScPhdSlamParamsTable()));
   };
@@ -158,6 +162,7 @@ EstimatorEntry GlmbSlamEntry(const std::string& name, const std::string& descrip
   EstimatorEntry e;
   e.name = name;
   e.description = description;
+  e.parameters = glmb::GlmbSlamParamsTable().Descriptions();
   e.resolved_parameters = [](const EstimatorRequest& r) {
     return glmb::ToJson(ResolveParameters(r, glmb::GlmbSlamParamsTable()));
   };

@@ -66,6 +66,9 @@ struct EstimatorEntry {
   /// parameter, a wrongly typed value or an unsupported particle count. Called when a run is
   /// planned, so bad requests fail before any run starts.
   std::function<nlohmann::json(const EstimatorRequest&)> resolved_parameters;
+  /// The rows of the table that resolved_parameters reads `--set` with (key, accepted values,
+  /// meaning), for `phdslam list` (estimator_parameter_list.h); empty: no parameters.
+  std::vector<params::FieldDescription> parameters;
 
   /// True when the factory the entry's kind needs is set.
   [[nodiscard]] bool HasFactory() const {

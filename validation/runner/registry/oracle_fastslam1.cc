@@ -21,6 +21,7 @@ EstimatorEntry OracleFastSlam1Entry() {
       "oracle's landmark EKFs with the transition density as proposal; scenarios with origin "
       "labels (the simulated ones and MRCLAM; not victoria-park)";
   e.reads_truth = true;
+  e.parameters = oracle::OracleParamsTable().Descriptions();
   e.resolved_parameters = [](const EstimatorRequest& r) {
     RequireKnownOrigins(r);
     return oracle::ToJson(ResolveParameters(r, oracle::OracleParamsTable()));

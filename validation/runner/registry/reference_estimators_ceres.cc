@@ -76,6 +76,7 @@ EstimatorEntry SmootherEntry(const std::string& name, reference::AssociationMode
   e.description = description;
   e.batch = true;
   e.reads_truth = mode == reference::AssociationMode::kKnown;
+  e.parameters = reference::SmootherOptionsTable().Descriptions();
   e.resolved_parameters = [mode](const EstimatorRequest& r) {
     return reference::ToJson(ResolveSmoother(r, mode));
   };
@@ -129,6 +130,7 @@ EstimatorEntry WindowEntry(const std::string& name, bool known, const std::strin
   e.name = name;
   e.description = description;
   e.reads_truth = known;
+  e.parameters = reference::WindowParamsTable().Descriptions();
   // The run's length, when the plan knows it (--steps), checks the overrides now, before any
   // run starts; the recorded parameters are those without it (the default window is shortened
   // only when the run is built).

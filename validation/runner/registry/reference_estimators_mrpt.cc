@@ -40,6 +40,7 @@ EstimatorEntry MrptEkfEntry() {
   e.description =
       "MRPT CRangeBearingKFSLAM2D EKF-SLAM, unknown association (JCBB, Mahalanobis, chi2 0.999) "
       "with track deletion and covariance symmetrisation added; raw map; one particle";
+  e.parameters = reference::MrptEkfSlamOptionsTable().Descriptions();
   e.resolved_parameters = [](const EstimatorRequest& r) {
     return reference::ToJson(ResolveMrptEkf(r));
   };
@@ -90,6 +91,7 @@ EstimatorEntry FastSlamEntry(const std::string& name, reference::FastSlamProposa
   EstimatorEntry e;
   e.name = name;
   e.description = description;
+  e.parameters = reference::FastSlamOptionsTable().Descriptions();
   e.resolved_parameters = [proposal](const EstimatorRequest& r) {
     nlohmann::json j = reference::ToJson(ResolveFastSlam(r, proposal));
     j["particles"] = r.particles;

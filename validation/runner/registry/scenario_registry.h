@@ -1,87 +1,17 @@
-// The table of scenarios the runner and the command line know. Adding a scenario is one entry in
-// ScenarioTable() (scenario_registry.cc).
+// The table of scenarios the runner and the command line know. Adding a scenario is one
+// ScenarioSpec (scenario_spec.h) in ScenarioTable() (scenario_registry.cc).
 #pragma once
 
 #include <cstdint>
-#include <filesystem>
 #include <functional>
-#include <map>
-#include <memory>
-#include <mutex>
 #include <nlohmann/json.hpp>
-#include <optional>
 #include <string>
-#include <tuple>
 #include <vector>
 
-#include "datasets/mrclam.h"
-#include "datasets/paper_synthetic.h"
 #include "datasets/scenario.h"
-#include "datasets/victoria_park.h"
+#include "validation/runner/registry/scenario_entry.h"
 
 namespace phdslam::validation {
-
-/// Scenario settings a run may change; unset values keep the scenario's defaults.
-struct ScenarioOptions {
-  /// --data-dir; when unset, PHDSLAM_DATA and then the compiled default (datasets::ResolveDataDir).
-  /// paper-synthetic reads the repository's copy (datasets::ResolveDataDirFor) when this folder
-  /// does not hold its file; victoria-park and mrclam need the folder.
-  std::optional<std::string> data_dir;
-  int steps = 0;  ///< limit on the number of filter steps; 0 = the scenario's full length
-  /// Detection probability: the constant pD (synthetic scenarios) or the pD at zero range
-  /// (Victoria Park, where it also sets the nominal pD of the estimate threshold).
-  std::optional<double> detection_probability;
-  std::optional<double> clutter_rate;  ///< Poisson mean of clutter points per scan
-  /// Further options by key (`scenario_options`, `--scenario-set`), applied after the two above
-  /// through the scenario's option table (scenario_option_tables.h).
-  nlohmann::json settings = nlohmann::json::object();
-};
-
-/// One key a scenario accepts in ScenarioOptions::settings, with the values it accepts.
-struct ScenarioOptionHelp {
-  std::string key;
-  std::string help;
-};
-
-/// Data files loaded once and shared by every run of an invocation (keyed by data folder).
-/// Thread-safe: concurrent callers wait for one load.
-class ScenarioCache {
- public:
-  const datasets::PaperSyntheticEnvironment& PaperSynthetic(const std::filesystem::path& data_dir);
-  const datasets::VictoriaParkData& VictoriaPark(const std::filesystem::path& data_dir);
-  const datasets::MrclamRobotData& Mrclam(const std::filesystem::path& data_dir, int dataset,
-                                          int robot);
-
- private:
-  std::mutex mutex_;
-  std::map<std::filesystem::path, std::unique_ptr<const datasets::PaperSyntheticEnvironment>>
-      paper_synthetic_;
-  std::map<std::filesystem::path, std::unique_ptr<const datasets::VictoriaParkData>> victoria_park_;
-  std::map<std::tuple<std::filesystem::path, int, int>,
-           std::unique_ptr<const datasets::MrclamRobotData>>
-      mrclam_;
-};
-
-struct ScenarioEntry {
-  std::string name;
-  std::string description;
-  bool uses_data_dir = true;
-  /// The keys of ScenarioOptions::settings, in table order.
-  std::vector<ScenarioOptionHelp> option_keys;
-  /// Checks one option's value against its row (type, finiteness, range); throws
-  /// std::invalid_argument naming the key. Unset: no per-key check.
-  std::function<void(const std::string& key, const nlohmann::json& value)> check_option;
-  /// Monte Carlo run `seed` of the scenario; deterministic in (seed, options, data).
-  std::function<datasets::Scenario(std::uint64_t seed, const ScenarioOptions&, ScenarioCache&)>
-      make;
-  /// Every scenario setting after defaults and options (for config.json); throws
-  /// std::invalid_argument naming the key for an unknown key or an out-of-range option and
-  /// std::runtime_error for a missing data folder, so a bad request fails before any run starts.
-  std::function<nlohmann::json(const ScenarioOptions&)> resolved_options;
-  /// The cut-off c (m) of the final-map GOSPA for this scenario's scale of map, when it differs
-  /// from MetricSettings' default (the runner applies it; config.json records it).
-  std::optional<double> gospa_c;
-};
 
 /// Every scenario, in the order `phdslam list` shows them.
 const std::vector<ScenarioEntry>& ScenarioTable();
