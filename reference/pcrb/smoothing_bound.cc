@@ -22,7 +22,7 @@ std::vector<ForwardPose> ForwardPass(const LinearisedSlam& model) {
   std::vector<ForwardPose> out;
   out.reserve(model.steps.size());
   Mat3 p = model.initial_pose_cov;
-  RowBlock gamma = RowBlock::Zero(3, 2 * model.landmarks);
+  RowBlock gamma = RowBlock::Zero(3, 2 * static_cast<Eigen::Index>(model.landmarks));
   for (const LinearStep& step : model.steps) {
     for (const MotionBlock& b : step.motion) {
       p = b.fx * p * b.fx.transpose() + b.fu * model.control_noise_cov * b.fu.transpose();
@@ -92,7 +92,7 @@ std::vector<Mat3> ComputeSmoothingBound(const LinearisedSlam& model,
   const std::vector<ForwardPose> forward = ForwardPass(model);
   std::vector<Mat3> out(model.steps.size());
   BackwardPose back;
-  back.psi = RowBlock::Zero(3, 2 * model.landmarks);
+  back.psi = RowBlock::Zero(3, 2 * static_cast<Eigen::Index>(model.landmarks));
   for (std::size_t k = model.steps.size(); k-- > 0;) {
     out[k] = Combine(forward[k], back, filtering.map_cov);
     const LinearStep& step = model.steps[k];
