@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
+#include <cmath>
 
 #include "reference/ceres/test_scenario.h"
 #include "reference/pcrb/linearise.h"
@@ -75,6 +76,23 @@ TEST(FilteringBound, StaysSymmetricPositiveSemiDefinite) {
     EXPECT_EQ(p, p.transpose());
     EXPECT_GE(Eigen::SelfAdjointEigenSolver<Mat3>(p).eigenvalues().minCoeff(), -1e-12);
   }
+}
+
+// The Monte Carlo mean squared position error of the Kalman filter over 3000 runs lies within its
+// confidence interval of the bound: E|e|^2 = tr P_xy, var |e|^2 = 2 tr(P_xy^2) for a Gaussian e.
+TEST(FilteringBound, KalmanMonteCarloMseMatchesTheBound) {
+  RandomStream detections(5);
+  const LinearisedSlam model = testing::LinearGaussianModel(25, 3, 0.6, detections);
+  const std::vector<Landmark> landmarks = {Landmark(3.0, 1.0), Landmark(-2.0, 4.0),
+                                           Landmark(0.5, -3.0)};
+  const Mat2 p = ComputeFilteringBound(model).pose_covs.back().topLeftCorner<2, 2>();
+  RandomStream rng(11);
+  const int runs = 3000;
+  double sum = 0.0;
+  for (int i = 0; i < runs; ++i) sum += testing::KalmanSquaredPositionError(model, landmarks, rng);
+  const double mse = sum / runs;
+  const double se = std::sqrt(2.0 * (p * p).trace() / runs);
+  EXPECT_NEAR(mse, p.trace(), 3.0 * se) << "bound " << p.trace() << ", SE " << se;
 }
 
 TEST(FilteringBound, RefusesAnUnknownLandmark) {

@@ -7,6 +7,7 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <Eigen/LU>
+#include <type_traits>
 #include <vector>
 
 #include "reference/pcrb/linearised_slam.h"
@@ -95,6 +96,65 @@ inline std::vector<Mat3> InformationFilterPoseCovs(const LinearisedSlam& m) {
     out.emplace_back(js.inverse().topLeftCorner<3, 3>());
   }
   return out;
+}
+
+/// The position error |p_hat - p|^2 at the last step of one simulated run of the model: the true
+/// initial pose drawn from N(0, P0), the landmarks at `landmarks_at`, the control noise and the
+/// measurement noise drawn from `rng`; the estimate is the Kalman filter of the model (flat map
+/// prior: a landmark's mean and covariance from its first detection), the estimator the bound
+/// says is efficient.
+inline double KalmanSquaredPositionError(const LinearisedSlam& m,
+                                         const std::vector<Landmark>& landmarks_at,
+                                         RandomStream& rng) {
+  const int n = 3 + 2 * m.landmarks;
+  auto draw = [&rng](const auto& cov) {
+    using V = Eigen::Matrix<double, std::decay_t<decltype(cov)>::RowsAtCompileTime, 1>;
+    V z;
+    for (Eigen::Index i = 0; i < z.size(); ++i) z(i) = rng.Normal();
+    const auto llt = cov.llt();
+    return V(llt.matrixL() * z);
+  };
+  Vec3 x = Vec3::Zero();
+  if (m.initial_pose_cov.trace() > 0.0) x = draw(m.initial_pose_cov);
+  Eigen::VectorXd mean = Eigen::VectorXd::Zero(n);
+  Eigen::MatrixXd p = Eigen::MatrixXd::Zero(n, n);
+  p.topLeftCorner<3, 3>() = m.initial_pose_cov;
+  std::vector<bool> seen(static_cast<std::size_t>(m.landmarks), false);
+  for (const LinearStep& step : m.steps) {
+    for (const MotionBlock& b : step.motion) {
+      x = b.fx * x + b.fu * draw(m.control_noise_cov);
+      mean.head<3>() = b.fx * mean.head<3>();
+      p.topRows<3>() = (b.fx * p.topRows<3>()).eval();
+      p.leftCols<3>() = (p.leftCols<3>() * b.fx.transpose()).eval();
+      p.topLeftCorner<3, 3>() += b.fu * m.control_noise_cov * b.fu.transpose();
+    }
+    for (const Detection& d : step.detections) {
+      const Eigen::Index s = 3 + 2 * static_cast<Eigen::Index>(d.landmark);
+      const Vec2 z =
+          d.hx * x + d.hm * landmarks_at[static_cast<std::size_t>(d.landmark)] + draw(d.cov);
+      Eigen::MatrixXd h = Eigen::MatrixXd::Zero(2, n);
+      h.leftCols<3>() = d.hx;
+      h.middleCols<2>(s) = d.hm;
+      if (!seen[static_cast<std::size_t>(d.landmark)]) {
+        const Mat2 hm_inv = d.hm.inverse();
+        mean.segment<2>(s) = hm_inv * (z - d.hx * mean.head<3>());
+        const Eigen::MatrixXd rows = -hm_inv * d.hx * p.topRows<3>();
+        p.middleRows(s, 2) = rows;
+        p.middleCols(s, 2) = rows.transpose();
+        p.block<2, 2>(s, s) =
+            hm_inv * d.hx * p.topLeftCorner<3, 3>() * d.hx.transpose() * hm_inv.transpose() +
+            hm_inv * d.cov * hm_inv.transpose();
+        seen[static_cast<std::size_t>(d.landmark)] = true;
+        continue;
+      }
+      const Eigen::MatrixXd sm = h * p * h.transpose() + d.cov;
+      const Eigen::MatrixXd k = p * h.transpose() * sm.inverse();
+      mean += k * (z - h * mean);
+      p -= k * sm * k.transpose();
+      p = 0.5 * (p + p.transpose()).eval();
+    }
+  }
+  return (mean.head<2>() - x.head<2>()).squaredNorm();
 }
 
 }  // namespace phdslam::reference::pcrb::testing
