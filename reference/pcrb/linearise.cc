@@ -47,8 +47,31 @@ void CheckScenario(const datasets::Scenario& s, const PcrbParams& p, const std::
   }
 }
 
-std::vector<MotionBlock> StepMotion(const models::MotionModel& motion, const StepData& data,
-                                    Pose x) {
+// The control that moves the unicycle from `a` to `b` in dt: the exact inverse of the velocity
+// model (the chord at half the heading change, reference/ceres/velocity_odometry_factor.h).
+Control TrueVelocityControl(const Pose& a, const Pose& b, double dt) {
+  const double c = std::cos(a(2));
+  const double s = std::sin(a(2));
+  const double bx = c * (b(0) - a(0)) + s * (b(1) - a(1));
+  const double by = -s * (b(0) - a(0)) + c * (b(1) - a(1));
+  const double dtheta = b(2) - a(2);
+  const double h = dtheta / 2.0;
+  const double along = bx * std::cos(h) + by * std::sin(h);
+  const double ratio = std::abs(h) < 1e-4 ? 1.0 + h * h / 6.0 : h / std::sin(h);
+  return {along * ratio / dt, dtheta / dt};
+}
+
+std::vector<MotionBlock> StepMotion(const models::MotionModel& motion, const StepData& data, Pose x,
+                                    const Pose* end, bool velocity) {
+  if (velocity && end != nullptr && data.times.size() == 2 && data.controls.size() == 1) {
+    // One sub-interval of the unicycle: the Jacobians at the true control, which the true poses
+    // determine, rather than at the recorded (noisy) odometry.
+    const double dt = data.times[1] - data.times[0];
+    if (dt > 0.0) {
+      const models::MotionJacobians j = motion.Jacobians(x, TrueVelocityControl(x, *end, dt), dt);
+      return {{j.fx, j.fu}};
+    }
+  }
   std::vector<MotionBlock> blocks;
   for (std::size_t i = 0; i + 1 < data.times.size() && i < data.controls.size(); ++i) {
     const double dt = data.times[i + 1] - data.times[i];
@@ -132,7 +155,8 @@ LinearisedSlam Linearise(const datasets::Scenario& scenario, const PcrbParams& p
   for (std::size_t k = 0; k < scenario.steps.size(); ++k) {
     const Pose start = k == 0 ? scenario.initial_pose : scenario.truth.poses[k - 1];
     LinearStep step;
-    step.motion = StepMotion(*motion, scenario.steps[k].data, start);
+    step.motion = StepMotion(*motion, scenario.steps[k].data, start, &scenario.truth.poses[k],
+                             scenario.motion == datasets::MotionKind::kVelocity);
     step.detections = StepDetections(scenario, k, params, factors);
     model.steps.push_back(std::move(step));
   }

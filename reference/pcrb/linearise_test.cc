@@ -83,6 +83,31 @@ TEST(Linearise, ClutterLowersTheInformationOfEveryDetection) {
   EXPECT_GT(b.steps[5].detections[0].cov(0, 0), a.steps[5].detections[0].cov(0, 0));
 }
 
+// The motion Jacobians are those at the true control (recovered from consecutive true poses),
+// so the bound does not depend on the odometry noise drawn for the seed.
+TEST(Linearise, MotionJacobiansAreAtTheTrueControlsNotTheNoisyOdometry) {
+  CircleScenarioOptions o;
+  o.steps = 30;
+  o.landmarks = 6;
+  o.first_step_propagates = true;
+  o.noise = false;
+  const LinearisedSlam exact = Linearise(MakeCircleScenario(o), PcrbParams{}, 1, "x");
+  o.noise = true;
+  const LinearisedSlam noisy = Linearise(MakeCircleScenario(o), PcrbParams{}, 1, "x");
+  ASSERT_EQ(exact.steps.size(), noisy.steps.size());
+  for (std::size_t k = 0; k < exact.steps.size(); ++k) {
+    ASSERT_EQ(exact.steps[k].motion.size(), noisy.steps[k].motion.size());
+    for (std::size_t b = 0; b < exact.steps[k].motion.size(); ++b) {
+      EXPECT_LT((exact.steps[k].motion[b].fx - noisy.steps[k].motion[b].fx).cwiseAbs().maxCoeff(),
+                1e-9)
+          << "step " << k;
+      EXPECT_LT((exact.steps[k].motion[b].fu - noisy.steps[k].motion[b].fu).cwiseAbs().maxCoeff(),
+                1e-9)
+          << "step " << k;
+    }
+  }
+}
+
 TEST(Linearise, RefusesAScenarioWithoutTruth) {
   datasets::Scenario s = Circle(0.9, 1);
   s.name = "victoria-park";
