@@ -20,6 +20,8 @@ from .comparison import (
     paper_sources,
     secondary_references,
 )
+from .bound_efficiency import cell as efficiency_cell
+from .bound_efficiency import efficiency_rows, read_runs
 from .csv_table import ResultsFormatError
 from .figures.filter_vs_smoother import (
     ceiling_comparison,
@@ -28,7 +30,7 @@ from .figures.filter_vs_smoother import (
 )
 from .figures.glmb_paper import plot_mean_std_per_rate, plot_rmse_over_time
 from .figures.map_scaling import map_scaling_ratios, plot_map_scaling
-from .figures.metrics_over_time import collect_series, plot_metrics_over_time
+from .figures.metrics_over_time import BOUND_ESTIMATORS, collect_series, plot_metrics_over_time
 from .figures.nees import nees_series, plot_nees
 from .figures.nis import nis_series, plot_nis
 from .figures.parent_weights import (
@@ -81,7 +83,8 @@ from .tables_shared import matched_paper_tables, ours_with_se, paper_table_rows
 #: reference the particle filters' NEES is read against.
 REFERENCE_SMOOTHER = "smoother-"
 
-FOLDER_SECTIONS = ("summary", "paper-tables", "authors", "fig1", "fig2", "fig3", "smoothers",
+FOLDER_SECTIONS = ("summary", "paper-tables", "efficiency", "authors", "fig1", "fig2", "fig3",
+                   "smoothers",
                    "nees", "scaling", "map-scaling", "parent-weights")
 """Section ids of each results folder (prefixed by ``d<index>-`` when there are several)."""
 
@@ -231,6 +234,32 @@ class ReportBuilder:
                 parts.append(f"<p class=\"meta\">{escape(table.notes)}</p>")
         return Section(sid, title, body="\n".join(parts))
 
+    def efficiency_section(self, sid: str, folder: ResultsFolder) -> Section:
+        """Each estimator's RMSE over the posterior Cramer-Rao bounds of the same seeds, when the
+        folder holds the bound rows (docs/algorithms/pcrb.md section 6)."""
+        title = "Efficiency against the posterior Cramér-Rao bounds"
+        if not (folder.path / "runs.csv").is_file():
+            return Section(sid, title, skipped_note=f"no runs.csv in {folder.path}")
+        rows = efficiency_rows(read_runs(folder.path))
+        if not any(e["bound"] for e in rows):
+            return Section(sid, title, skipped_note="no pcrb or pcrb-smoother rows in runs.csv")
+        headers = ["estimator", "N", "runs", "position RMSE (m)", "/ pcrb", "/ pcrb-smoother",
+                   "heading RMSE (deg)", "/ pcrb", "/ pcrb-smoother"]
+        body_rows = []
+        for e in rows:
+            name = self._name(e["estimator"]) + (" (bound)" if e["bound"] else "")
+            cells = [name, str(e["particles"]), str(e["runs"])]
+            for label in ("position", "heading"):
+                cells += [efficiency_cell(e[f"{label}_rmse"]),
+                          efficiency_cell(e.get(f"{label}_ratio_pcrb")),
+                          efficiency_cell(e.get(f"{label}_ratio_pcrb-smoother"))]
+            body_rows.append([(c, "") for c in cells])
+        note = note_html(
+            "Bound rows hold the bound, not an error. Efficiency = RMSE / bound on the same seeds "
+            "± delta-method Monte Carlo SE; filters against pcrb, smoothers against "
+            "pcrb-smoother; ⚠ below: more than 2 SE under 1.")
+        return Section(sid, title, body=table_html(headers, body_rows) + note)
+
     def authors_section(self, sid: str, folder: ResultsFolder) -> Section:
         """phdslam against the authors' release on the same seeds (authors_comparison.py)."""
         title = "Against the authors' implementation"
@@ -276,6 +305,8 @@ class ReportBuilder:
         """
         chosen: dict[str, tuple[Group, int]] = {}
         for group in folder.groups():
+            if group.estimator in BOUND_ESTIMATORS:
+                continue  # a bound's trajectory and map are the truth: nothing to draw
             seeds = folder.seeds(group)
             if seeds and (group.estimator not in chosen
                           or group.particles > chosen[group.estimator][0].particles):
@@ -856,6 +887,7 @@ class ReportBuilder:
             built = [
                 self.summary_section(f"{prefix}summary", folder, comparison),
                 self.paper_tables_section(f"{prefix}paper-tables", folder, comparison),
+                self.efficiency_section(f"{prefix}efficiency", folder),
                 self.authors_section(f"{prefix}authors", folder),
                 self.trajectory_section(f"{prefix}fig1", prefix, folder),
                 self.metrics_over_time_section(f"{prefix}fig2", prefix, folder),

@@ -19,6 +19,9 @@ ESTIMATOR_COLOURS = {
     "phd3": "#d62728",
     "oracle": "#9467bd",
     "odometry": "#7f7f7f",
+    # the posterior Cramer-Rao bounds (docs/algorithms/pcrb.md): dark, so that they read as limits
+    "pcrb": "#111111",
+    "pcrb-smoother": "#555555",
 }
 _SPARE_COLOURS = ("#8c564b", "#e377c2", "#bcbd22", "#17becf", "#393b79", "#637939")
 LINE_STYLES = ("-", "--", ":", "-.")

@@ -33,8 +33,8 @@ class FullReportTest(unittest.TestCase):
             nees=True, particles_file=True, scaling=True, parent_weights=True, steps=40,
             steps_option=4000,
             groups=(("phd3", 1), ("phd3", 10), ("odometry", 1), ("smoother-known", 1),
-                    ("authors-phd3", 10)),
-            error_scale={"odometry": 4.0, "smoother-known": 0.2}))
+                    ("authors-phd3", 10), ("pcrb", 1)),
+            error_scale={"odometry": 4.0, "smoother-known": 0.2, "pcrb": 0.1}))
         cls.out = root / "report"
         cls.report = build_report([cls.results], cls.out)
         cls.html = (cls.out / "index.html").read_text(encoding="utf-8")

@@ -66,6 +66,10 @@ def needs_log_scale(means: list[np.ndarray], ratio: float = 20.0) -> bool:
     return len(levels) >= 2 and max(levels) > ratio * min(levels)
 
 
+# The posterior Cramer-Rao bounds: rows that hold a bound where the others hold an error.
+BOUND_ESTIMATORS = ("pcrb", "pcrb-smoother")
+
+
 def plot_metrics_over_time(
     series: list[GroupSeries], display_name: Callable[[str], str] = str,
     map_ospa_cutoff: float = 5.0,
@@ -93,6 +97,12 @@ def plot_metrics_over_time(
                 continue
             k = np.arange(band.mean.size)
             colour = estimator_colour(s.group.estimator, estimators)
+            if s.group.estimator in BOUND_ESTIMATORS:
+                # a bound (docs/algorithms/pcrb.md): a limit drawn over the estimators, no band
+                ax.plot(k, band.mean, color=colour, ls="-", lw=2.2, zorder=5,
+                        label=f"{display_name(s.group.estimator)} (bound, {s.runs} seeds)")
+                drawn = True
+                continue
             style = particle_line_style(s.group.particles, particles)
             ax.plot(k, band.mean, color=colour, ls=style,
                     label=f"{display_name(s.group.estimator)}, N = {s.group.particles} "

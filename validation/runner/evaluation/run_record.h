@@ -18,6 +18,9 @@ struct RunRecord {
   int particles = 1;
   std::uint64_t seed = 0;         ///< Monte Carlo (scenario) seed
   std::uint64_t stream_seed = 0;  ///< seed of the estimator's random stream
+  /// A posterior Cramer-Rao bound (EstimatorEntry::bound): poses are the truth and pose_covs the
+  /// bound, which the evaluation reports where other runs report errors.
+  bool bound = false;
 
   /// One entry per filter step k: the step's time stamp (its last one) and the estimate there.
   std::vector<double> step_times;

@@ -86,7 +86,7 @@ void RunBatch(const EstimatorEntry& entry, const EstimatorRequest& request,
     record.pose_covs = std::move(result.pose_covs);
   }
   record.final_map = std::move(result.map);
-  record.solver_iterations = result.iterations;
+  if (!entry.bound) record.solver_iterations = result.iterations;  // a bound solves nothing
   record.solver_converged = result.converged;
   record.relocalisations = result.relocalisations;
   record.neg_log_posterior = result.neg_log_posterior;
@@ -111,6 +111,7 @@ RunRecord RunEstimator(const EstimatorEntry& entry, const EstimatorRequest& requ
   record.particles = request.particles;
   record.seed = scenario.seed;
   record.stream_seed = request.stream_seed;
+  record.bound = entry.bound;
   record.step_times.reserve(scenario.steps.size());
   for (std::size_t k = 0; k < scenario.steps.size(); ++k) {
     if (scenario.steps[k].data.times.empty()) {

@@ -563,5 +563,34 @@ TEST(RunEstimator, StepsAnOnlineEstimatorAndTimesEachStep) {
   EXPECT_DOUBLE_EQ(r.total_ms, sum);
 }
 
+// A bound's record (pcrb): its poses are the truth and its covariances the bound; the error
+// columns hold the root of the position block's trace and of the heading entry, the RMSE columns
+// the roots of their means, and nothing an estimate would have (GOSPA, NEES).
+TEST(EvaluateRun, ABoundPutsTheBoundWhereAnEstimatorHasItsError) {
+  const datasets::Scenario s = TruthScenario();
+  RunRecord r;
+  r.estimator = "pcrb";
+  r.bound = true;
+  r.seed = 4;
+  r.step_times = {0.0, 1.0, 2.0};
+  r.poses = s.truth.poses;
+  r.pose_covs = {Mat3::Zero(), Vec3(1.0, 3.0, 0.01).asDiagonal().toDenseMatrix(),
+                 Vec3(4.0, 5.0, 0.04).asDiagonal().toDenseMatrix()};
+  r.final_map.means = s.truth.landmarks;
+  r.final_map.covs = {Mat2::Identity(), Mat2::Identity()};
+  r.final_map.log_weights = {0.0, 0.0};
+  const RunEvaluation ev = EvaluateRun(r, s);
+  EXPECT_DOUBLE_EQ(ev.position_error_m[0], 0.0);
+  EXPECT_DOUBLE_EQ(ev.position_error_m[1], 2.0);
+  EXPECT_DOUBLE_EQ(ev.position_error_m[2], 3.0);
+  EXPECT_NEAR(ev.heading_error_deg[2], 0.2 * kDeg, 1e-12);
+  EXPECT_NEAR(*ev.metrics.position_m.Rms(), std::sqrt((0.0 + 4.0 + 9.0) / 3.0), 1e-12);
+  EXPECT_NEAR(*ev.metrics.heading_deg.Rms(), std::sqrt((0.0 + 0.01 + 0.04) / 3.0) * kDeg, 1e-12);
+  EXPECT_FALSE(ev.metrics.gospa.has_value());
+  EXPECT_EQ(ev.metrics.pose_nees.count, 0U);
+  EXPECT_TRUE(std::isnan(ev.pose_nees[1]));
+  EXPECT_EQ(ev.metrics.map_size, 2U);
+}
+
 }  // namespace
 }  // namespace phdslam::validation

@@ -203,6 +203,7 @@ std::vector<EstimatorEntry> BuildTable() {
   table.push_back(OracleFastSlam1Entry());
   for (EstimatorEntry& e : MrptEstimators()) table.push_back(std::move(e));
   for (EstimatorEntry& e : CeresEstimators()) table.push_back(std::move(e));
+  for (EstimatorEntry& e : BoundEstimators()) table.push_back(std::move(e));
   return table;
 }
 

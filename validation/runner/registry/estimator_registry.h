@@ -59,6 +59,9 @@ struct EstimatorEntry {
   /// Set for estimators that read the hidden truth (origin labels): the oracle, smoother-known.
   /// Online ones provide make_online_with_truth; batch ones receive the labels in Solve.
   bool reads_truth = false;
+  /// Set for the posterior Cramer-Rao bounds (pcrb, pcrb-smoother: a batch entry that reads the
+  /// truth): the evaluation puts the bound where other rows hold an error (run_metrics.h).
+  bool bound = false;
   OnlineFactory make_online;
   TruthReadingFactory make_online_with_truth;
   BatchFactory make_batch;
@@ -126,6 +129,8 @@ Params ResolveParameters(const EstimatorRequest& request,
 /// built (the build picks the source file: reference_estimators_*.cc).
 std::vector<EstimatorEntry> MrptEstimators();
 std::vector<EstimatorEntry> CeresEstimators();
+/// The posterior Cramer-Rao bounds, pcrb and pcrb-smoother (pcrb_entries.cc).
+std::vector<EstimatorEntry> BoundEstimators();
 
 template <class Params>
 Params ResolveParameters(const EstimatorRequest& request,

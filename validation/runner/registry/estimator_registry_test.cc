@@ -89,6 +89,32 @@ TEST(OdometryEntry, RejectsParticlesAndParameters) {
   EXPECT_THROW(entry.make_online(request), std::invalid_argument);
 }
 
+// The posterior Cramer-Rao bounds: batch entries that read the truth and are marked as bounds,
+// one particle, refused when the run is planned on a scenario without a true map.
+TEST(BoundEntries, AreTruthReadingDeterministicBoundsRefusedOnVictoriaPark) {
+  for (const std::string name : {"pcrb", "pcrb-smoother"}) {
+    const EstimatorEntry& entry = FindEstimator(name);
+    EXPECT_TRUE(entry.bound && entry.batch && entry.reads_truth) << name;
+    EstimatorRequest request;
+    request.name = name;
+    request.scenario_name = "paper-synthetic";
+    EXPECT_EQ(entry.resolved_parameters(request).at("detection_model"), "conditioned");
+    request.particles = 2;
+    EXPECT_THROW(entry.resolved_parameters(request), SingleParticleOnly) << name;
+    request.particles = 1;
+    request.overrides = {{"detection_model", "enumerated"}};
+    EXPECT_THROW(entry.resolved_parameters(request), std::invalid_argument) << name;
+    request.overrides = nlohmann::json::object();
+    request.scenario_name = "victoria-park";
+    try {
+      entry.resolved_parameters(request);
+      ADD_FAILURE() << name << " accepted victoria-park";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("victoria-park"), std::string::npos) << e.what();
+    }
+  }
+}
+
 TEST(PhdSlamEntries, VictoriaParkResamplingThresholdDependsOnTheVariant) {
   EstimatorRequest request;
   request.scenario_name = "victoria-park";

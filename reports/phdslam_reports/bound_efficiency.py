@@ -1,0 +1,98 @@
+"""Estimators' RMSE over the posterior Cramer-Rao bounds (docs/algorithms/pcrb.md section 6).
+
+Per (estimator, N), over the seeds that have both the estimator's run and the bound's: the pooled
+RMSE (root of the mean over runs of each run's mean squared error, every run having the same
+steps), and the efficiency ratio RMSE / bound with its Monte Carlo standard error (delta method on
+the paired per-seed mean squared errors: var log r = (var a / a^2 + var b / b^2 - 2 cov(a, b) /
+(a b)) / 4n). A ratio more than two standard errors below 1 is flagged.
+"""
+
+from __future__ import annotations
+
+import csv
+import math
+from collections import defaultdict
+from pathlib import Path
+
+BOUNDS = ("pcrb", "pcrb-smoother")
+METRICS = (("pos_rmse_m", "position"), ("heading_rmse_deg", "heading"))
+
+
+def read_runs(folder: Path) -> list[dict]:
+    with (folder / "runs.csv").open(newline="", encoding="utf-8") as f:
+        return list(csv.DictReader(f))
+
+
+def squared(row: dict, key: str) -> float | None:
+    text = row.get(key, "")
+    if text in ("", None):
+        return None
+    value = float(text)
+    return value * value if math.isfinite(value) else None
+
+
+def ratio_with_error(a: list[float], b: list[float]) -> tuple[float, float]:
+    """sqrt(mean a / mean b) and its delta-method standard error over paired samples."""
+    n = len(a)
+    ma, mb = sum(a) / n, sum(b) / n
+    r = math.sqrt(ma / mb)
+    if n < 2:
+        return r, math.nan
+    va = sum((x - ma) ** 2 for x in a) / (n - 1)
+    vb = sum((y - mb) ** 2 for y in b) / (n - 1)
+    cab = sum((x - ma) * (y - mb) for x, y in zip(a, b)) / (n - 1)
+    var_log = (va / ma**2 + vb / mb**2 - 2.0 * cab / (ma * mb)) / (4.0 * n)
+    return r, r * math.sqrt(max(var_log, 0.0))
+
+
+def efficiency_rows(runs: list[dict]) -> list[dict]:
+    """One dict per (estimator, N): pooled RMSEs, bounds and ratios against each bound."""
+    by_key: dict[tuple[str, int], dict[int, dict]] = defaultdict(dict)
+    for row in runs:
+        by_key[(row["estimator"], int(row["particles"]))][int(row["seed"])] = row
+    bounds = {name: by_key.get((name, 1), {}) for name in BOUNDS}
+    out = []
+    for (estimator, n), seeds in sorted(by_key.items()):
+        entry = {"estimator": estimator, "particles": n, "bound": estimator in BOUNDS}
+        for key, label in METRICS:
+            values = [squared(r, key) for r in seeds.values()]
+            values = [v for v in values if v is not None]
+            entry[f"{label}_rmse"] = math.sqrt(sum(values) / len(values)) if values else math.nan
+            entry["runs"] = len(values)
+            for bound_name, bound_runs in bounds.items():
+                pairs = [(squared(seeds[s], key), squared(bound_runs[s], key))
+                         for s in seeds if s in bound_runs]
+                pairs = [(x, y) for x, y in pairs if x is not None and y is not None and y > 0]
+                if not pairs or entry["bound"]:
+                    continue
+                r, se = ratio_with_error([x for x, _ in pairs], [y for _, y in pairs])
+                entry[f"{label}_ratio_{bound_name}"] = (r, se)
+                entry[f"{label}_bound_{bound_name}"] = math.sqrt(
+                    sum(y for _, y in pairs) / len(pairs))
+        out.append(entry)
+    return out
+
+
+def cell(value) -> str:
+    if isinstance(value, tuple):
+        r, se = value
+        flag = " ⚠ below" if math.isfinite(se) and r + 2.0 * se < 1.0 else ""
+        return f"{r:.3g} ± {se:.2g}{flag}"
+    if value is None or (isinstance(value, float) and not math.isfinite(value)):
+        return "—"
+    return f"{value:.4g}"
+
+
+def markdown(rows: list[dict], point: str = "") -> str:
+    head = ("| " + ("point | " if point else "") + "estimator | N | runs | position RMSE (m) | "
+            "efficiency vs pcrb | efficiency vs pcrb-smoother | heading RMSE (deg) | "
+            "efficiency vs pcrb | efficiency vs pcrb-smoother |")
+    lines = [head, "|" + "---|" * (head.count("|") - 1)]
+    for e in rows:
+        name = f"{e['estimator']} (bound)" if e["bound"] else e["estimator"]
+        cells = ([point] if point else []) + [name, str(e["particles"]), str(e["runs"])]
+        for label in ("position", "heading"):
+            cells += [cell(e[f"{label}_rmse"]), cell(e.get(f"{label}_ratio_pcrb")),
+                      cell(e.get(f"{label}_ratio_pcrb-smoother"))]
+        lines.append("| " + " | ".join(cells) + " |")
+    return "\n".join(lines)
