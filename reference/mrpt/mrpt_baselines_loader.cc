@@ -63,7 +63,9 @@ std::string LoaderMessage() {
 
 const MrptBaselineFactories& LoadMrptBaselinesPlugin(const std::filesystem::path& path) {
   const std::string failure = "cannot load the MRPT baselines' plugin " + path.string() + ": ";
-  RequireCompleteSharedObject(path);
+  // A bare name (no '/') is dlopen's own library search, which finds the file itself; a path is
+  // checked before it is mapped.
+  if (path.string().find('/') != std::string::npos) RequireCompleteSharedObject(path);
   // RTLD_LOCAL: the plugin's symbols stay its own. Never closed: the estimators it made run its
   // code until the process ends.
   void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);

@@ -30,6 +30,7 @@ constexpr std::uint16_t kMachine = EM_NONE;  // not checked
 
 std::uintmax_t PluginFileSize(const fs::path& path) {
   std::error_code ec;
+  if (!fs::exists(path, ec)) RefusePlugin(path, "does not exist");
   if (!fs::is_regular_file(path, ec)) RefusePlugin(path, "is not a regular file");
   const std::uintmax_t size = fs::file_size(path, ec);
   if (ec) RefusePlugin(path, "cannot be read (" + ec.message() + ")");

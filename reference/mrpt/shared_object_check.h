@@ -7,9 +7,10 @@
 
 namespace phdslam::reference {
 
-/// Throws std::runtime_error naming `path` unless it is a regular file holding a complete ELF
-/// shared object of this machine's class, byte order and architecture: its header, program
-/// headers, every loaded segment and its section headers lie inside the file.
+/// Throws std::runtime_error naming `path` (and saying that it does not exist, is not a regular
+/// file, is cut short or is not an ELF object of this machine) unless it is a regular file holding
+/// a complete ELF shared object of this machine's class, byte order and architecture: its header,
+/// program headers, every loaded segment and its section headers lie inside the file.
 void RequireCompleteSharedObject(const std::filesystem::path& path);
 
 }  // namespace phdslam::reference

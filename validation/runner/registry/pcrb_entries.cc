@@ -27,6 +27,7 @@ EstimatorEntry BoundEntry(const std::string& name, reference::pcrb::BoundKind ki
   e.batch = true;
   e.reads_truth = true;
   e.bound = true;
+  e.parameters = reference::pcrb::PcrbParamsTable().Descriptions();
   e.resolved_parameters = [](const EstimatorRequest& r) {
     return reference::pcrb::PcrbParamsTable().ToJson(ResolvePcrbParams(r));
   };

@@ -96,18 +96,21 @@ TEST(MrptBaselinesPlugin, AFileThatIsNotThePluginIsAClearError) {
     return "";
   };
   const std::string missing = "/nonexistent/libphdslam_mrpt_baselines.so";
-  EXPECT_NE(message(missing).find(missing + ": " + missing), std::string::npos) << message(missing);
+  EXPECT_NE(message(missing).find(missing + " does not exist"), std::string::npos)
+      << message(missing);
 
   const std::filesystem::path text =
       std::filesystem::path(::testing::TempDir()) / "mrpt_baselines_plugin_test_not_a_library.so";
   std::ofstream(text) << "not a shared library\n";
   const std::string not_elf = message(text);
-  EXPECT_NE(not_elf.find("cannot load the MRPT baselines' plugin " + text.string() + ": "),
+  // Checked before dlopen maps it: 21 bytes are less than an ELF header.
+  EXPECT_NE(not_elf.find("the MRPT baselines' plugin " + text.string() + " is cut short (21 bytes"),
             std::string::npos)
       << not_elf;
   std::filesystem::remove(text);
 
-  // A shared library without the entry point: the loader names the missing symbol.
+  // A shared library without the entry point, found by dlopen's search (a bare name is not
+  // checked as a path): the loader names the missing symbol.
   const std::string no_entry = message("libm.so.6");
   EXPECT_NE(no_entry.find("libm.so.6"), std::string::npos) << no_entry;
   EXPECT_NE(no_entry.find("phdslam_mrpt_baselines"), std::string::npos) << no_entry;
