@@ -12,7 +12,7 @@ namespace phdslam::apps {
 /// `app`; "" otherwise.
 inline std::string UnknownSubcommand(const CLI::App& app, int argc, char** argv) {
   if (argc < 2) return "";
-  const std::string first = argv[1];
+  std::string first = argv[1];
   if (first.empty() || first.front() == '-') return "";
   for (const CLI::App* candidate : app.get_subcommands({})) {
     if (candidate->get_name() == first) return "";
