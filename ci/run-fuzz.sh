@@ -22,11 +22,20 @@ targets=(mat_file victoria_park tum_trajectory map_csv experiment_file mrclam sc
 
 # -O1 with line tables only, as fuzzing builds usually are: about a quarter quicker to compile than
 # RelWithDebInfo's -O2 -g, and a sanitizer's stack trace still names file and line.
-cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+# The build's output is kept in a log and printed when it fails, so a target that no longer links
+# names its missing symbol instead of ending the stage without a word.
+mkdir -p "$build"
+build_log=$build/build.log
+if ! { cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only -DNDEBUG" -DCMAKE_CXX_COMPILER=clang++-14 \
   -DPHDSLAM_FUZZ=ON -DPHDSLAM_BUILD_TESTS=OFF -DPHDSLAM_BUILD_BENCHMARKS=OFF \
-  -DPHDSLAM_WITH_CERES=OFF -DPHDSLAM_WITH_MRPT=OFF -DPHDSLAM_UNITY_BUILD=ON >/dev/null
-cmake --build "$build" -j "$(nproc 2>/dev/null || echo 2)" --target "${targets[@]/#/fuzz_}" >/dev/null
+  -DPHDSLAM_WITH_CERES=OFF -DPHDSLAM_WITH_MRPT=OFF -DPHDSLAM_UNITY_BUILD=ON &&
+  cmake --build "$build" -j "$(nproc 2>/dev/null || echo 2)" --target "${targets[@]/#/fuzz_}"; } \
+  >"$build_log" 2>&1; then
+  grep -E "error|FAILED" "$build_log" | head -20 >&2 || tail -20 "$build_log" >&2
+  echo "run-fuzz: building the fuzz targets failed (the whole log: $build_log)" >&2
+  exit 1
+fi
 
 # Seed corpus, rebuilt on every call from the real files.
 corpus=$build/corpus
