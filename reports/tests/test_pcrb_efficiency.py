@@ -33,7 +33,8 @@ class PcrbEfficiencyTest(unittest.TestCase):
                            pcrb_efficiency.read_runs(Path(tmp)))}
         phd3 = entries[("phd3", 10)]
         self.assertAlmostEqual(phd3["position_rmse"], math.sqrt((3 * 4.0 + 100.0) / 4))
-        r, se = phd3["position_ratio_pcrb"]
+        r, se, seeds = phd3["position_ratio_pcrb"]
+        self.assertEqual(seeds, 3)  # the seeds with both runs
         self.assertAlmostEqual(r, 2.0)
         self.assertAlmostEqual(se, 0.0)
         self.assertAlmostEqual(phd3["position_ratio_pcrb-smoother"][0], 4.0)
@@ -48,8 +49,13 @@ class PcrbEfficiencyTest(unittest.TestCase):
         self.assertAlmostEqual(r, math.sqrt(sum(a) / sum(b)))
         self.assertGreater(se, 0.0)
         self.assertLess(se, 0.05)
-        self.assertIn("below", pcrb_efficiency.cell((r, se)))
-        self.assertNotIn("below", pcrb_efficiency.cell((1.2, 0.05)))
+        enough = pcrb_efficiency.MIN_FLAG_SEEDS
+        self.assertIn("below", pcrb_efficiency.cell((r, se, enough)))
+        self.assertNotIn("below", pcrb_efficiency.cell((1.2, 0.05, enough)))
+        # On fewer seeds a heavy-tailed mean and its error are low together: marked, not flagged.
+        few = pcrb_efficiency.cell((r, se, enough - 1))
+        self.assertNotIn("below", few)
+        self.assertIn(f"few seeds: {enough - 1}", few)
 
     def test_markdown_labels_the_bound_rows(self):
         rows = [["pcrb", 1, 1, 1.0, 0.1], ["oracle", 10, 1, 2.0, 0.3]]
