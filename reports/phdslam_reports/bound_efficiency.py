@@ -10,24 +10,49 @@ large drift carry much of the mean; paper-synthetic, smoother-known, 1000 steps:
 from 0.03 to 3.0 m^2 about a median of 0.26), so on few seeds the mean and its standard error are
 low together when no such run was drawn. Seeds 1-10 there give 0.68 +- 0.09, seeds 1-200
 1.04 +- 0.04 (docs/algorithms/pcrb.md section 8). Below MIN_FLAG_SEEDS the ratio is marked
-"few seeds" instead.
+"few seeds" instead. The filtering bound `pcrb` holds only for an estimator whose estimate at a
+step uses the data up to that step: a batch estimator (config.json's `batch`, the smoothers) is
+compared with it but never flagged below it; `pcrb-smoother` holds for every estimator.
 """
 
 from __future__ import annotations
 
 import csv
+import json
 import math
 from collections import defaultdict
 from pathlib import Path
+from typing import NamedTuple
 
 BOUNDS = ("pcrb", "pcrb-smoother")
 MIN_FLAG_SEEDS = 50
 METRICS = (("pos_rmse_m", "position"), ("heading_rmse_deg", "heading"))
 
 
+class Efficiency(NamedTuple):
+    """An estimator's RMSE over a bound on the same seeds."""
+
+    ratio: float
+    se: float
+    seeds: int
+    bound_applies: bool = True  # False: a batch estimator against the filtering bound
+
+
 def read_runs(folder: Path) -> list[dict]:
     with (folder / "runs.csv").open(newline="", encoding="utf-8") as f:
         return list(csv.DictReader(f))
+
+
+def read_batch_estimators(folder: Path) -> frozenset[str]:
+    """The estimators config.json records as batch (smoothers); none when it is absent."""
+    path = folder / "config.json"
+    if not path.exists():
+        return frozenset()
+    estimators = json.loads(path.read_text(encoding="utf-8")).get("estimators", {})
+    if not isinstance(estimators, dict):
+        raise ValueError(f"{path}: 'estimators' is not an object")
+    return frozenset(name for name, e in estimators.items()
+                     if isinstance(e, dict) and e.get("batch") is True)
 
 
 def squared(row: dict, key: str) -> float | None:
@@ -52,8 +77,10 @@ def ratio_with_error(a: list[float], b: list[float]) -> tuple[float, float]:
     return r, r * math.sqrt(max(var_log, 0.0))
 
 
-def efficiency_rows(runs: list[dict]) -> list[dict]:
-    """One dict per (estimator, N): pooled RMSEs, bounds and ratios against each bound."""
+def efficiency_rows(runs: list[dict], batch: frozenset[str] = frozenset()) -> list[dict]:
+    """One dict per (estimator, N): pooled RMSEs, bounds and ratios against each bound.
+
+    `batch`: the batch estimators (read_batch_estimators), to which `pcrb` does not apply."""
     by_key: dict[tuple[str, int], dict[int, dict]] = defaultdict(dict)
     for row in runs:
         by_key[(row["estimator"], int(row["particles"]))][int(row["seed"])] = row
@@ -73,7 +100,8 @@ def efficiency_rows(runs: list[dict]) -> list[dict]:
                 if not pairs or entry["bound"]:
                     continue
                 r, se = ratio_with_error([x for x, _ in pairs], [y for _, y in pairs])
-                entry[f"{label}_ratio_{bound_name}"] = (r, se, len(pairs))
+                applies = bound_name != "pcrb" or estimator not in batch
+                entry[f"{label}_ratio_{bound_name}"] = Efficiency(r, se, len(pairs), applies)
                 entry[f"{label}_bound_{bound_name}"] = math.sqrt(
                     sum(y for _, y in pairs) / len(pairs))
         out.append(entry)
@@ -81,10 +109,12 @@ def efficiency_rows(runs: list[dict]) -> list[dict]:
 
 
 def cell(value) -> str:
-    if isinstance(value, tuple):
-        r, se, seeds = value
+    if isinstance(value, Efficiency):
+        r, se, seeds, applies = value
         flag = ""
-        if seeds < MIN_FLAG_SEEDS:
+        if not applies:
+            flag = " (batch: filtering bound not binding)"
+        elif seeds < MIN_FLAG_SEEDS:
             flag = f" (few seeds: {seeds})"
         elif math.isfinite(se) and r + 2.0 * se < 1.0:
             flag = " ⚠ below"

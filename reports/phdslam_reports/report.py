@@ -21,7 +21,7 @@ from .comparison import (
     secondary_references,
 )
 from .bound_efficiency import cell as efficiency_cell
-from .bound_efficiency import efficiency_rows, read_runs
+from .bound_efficiency import efficiency_rows, read_batch_estimators, read_runs
 from .csv_table import ResultsFormatError
 from .figures.filter_vs_smoother import (
     ceiling_comparison,
@@ -240,7 +240,7 @@ class ReportBuilder:
         title = "Efficiency against the posterior Cramér-Rao bounds"
         if not (folder.path / "runs.csv").is_file():
             return Section(sid, title, skipped_note=f"no runs.csv in {folder.path}")
-        rows = efficiency_rows(read_runs(folder.path))
+        rows = efficiency_rows(read_runs(folder.path), read_batch_estimators(folder.path))
         if not any(e["bound"] for e in rows):
             return Section(sid, title, skipped_note="no pcrb or pcrb-smoother rows in runs.csv")
         headers = ["estimator", "N", "runs", "position RMSE (m)", "/ pcrb", "/ pcrb-smoother",

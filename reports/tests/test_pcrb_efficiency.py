@@ -1,6 +1,7 @@
 """reports/pcrb_efficiency.py: estimators' RMSE over the posterior Cramer-Rao bounds."""
 
 import csv
+import json
 import math
 import tempfile
 import unittest
@@ -33,7 +34,8 @@ class PcrbEfficiencyTest(unittest.TestCase):
                            pcrb_efficiency.read_runs(Path(tmp)))}
         phd3 = entries[("phd3", 10)]
         self.assertAlmostEqual(phd3["position_rmse"], math.sqrt((3 * 4.0 + 100.0) / 4))
-        r, se, seeds = phd3["position_ratio_pcrb"]
+        r, se, seeds, applies = phd3["position_ratio_pcrb"]
+        self.assertTrue(applies)  # no config.json: nothing is batch
         self.assertEqual(seeds, 3)  # the seeds with both runs
         self.assertAlmostEqual(r, 2.0)
         self.assertAlmostEqual(se, 0.0)
@@ -50,12 +52,34 @@ class PcrbEfficiencyTest(unittest.TestCase):
         self.assertGreater(se, 0.0)
         self.assertLess(se, 0.05)
         enough = pcrb_efficiency.MIN_FLAG_SEEDS
-        self.assertIn("below", pcrb_efficiency.cell((r, se, enough)))
-        self.assertNotIn("below", pcrb_efficiency.cell((1.2, 0.05, enough)))
+        efficiency = pcrb_efficiency.Efficiency
+        self.assertIn("below", pcrb_efficiency.cell(efficiency(r, se, enough)))
+        self.assertNotIn("below", pcrb_efficiency.cell(efficiency(1.2, 0.05, enough)))
+        # A batch estimator against the filtering bound: shown, never flagged.
+        batch = pcrb_efficiency.cell(efficiency(r, se, enough, bound_applies=False))
+        self.assertNotIn("below", batch)
+        self.assertIn("not binding", batch)
         # On fewer seeds a heavy-tailed mean and its error are low together: marked, not flagged.
-        few = pcrb_efficiency.cell((r, se, enough - 1))
+        few = pcrb_efficiency.cell(efficiency(r, se, enough - 1))
         self.assertNotIn("below", few)
         self.assertIn(f"few seeds: {enough - 1}", few)
+
+    def test_batch_estimators_are_not_held_to_the_filtering_bound(self):
+        rows = [["pcrb", 1, s, 1.0, 0.1] for s in (1, 2)]
+        rows += [["pcrb-smoother", 1, s, 0.5, 0.05] for s in (1, 2)]
+        rows += [["smoother-known", 1, s, 0.6, 0.06] for s in (1, 2)]
+        with tempfile.TemporaryDirectory() as tmp:
+            folder = Path(tmp)
+            write_runs(folder, rows)
+            (folder / "config.json").write_text(json.dumps({"estimators": {
+                "smoother-known": {"batch": True}, "pcrb": {"batch": True}}}), encoding="utf-8")
+            batch = pcrb_efficiency.read_batch_estimators(folder)
+            entry = [e for e in pcrb_efficiency.efficiency_rows(
+                pcrb_efficiency.read_runs(folder), batch) if e["estimator"] == "smoother-known"][0]
+        self.assertEqual(batch, frozenset({"smoother-known", "pcrb"}))
+        self.assertFalse(entry["position_ratio_pcrb"].bound_applies)
+        self.assertTrue(entry["position_ratio_pcrb-smoother"].bound_applies)
+        self.assertAlmostEqual(entry["position_ratio_pcrb-smoother"].ratio, 1.2)
 
     def test_markdown_labels_the_bound_rows(self):
         rows = [["pcrb", 1, 1, 1.0, 0.1], ["oracle", 10, 1, 2.0, 0.3]]
