@@ -18,7 +18,13 @@ wrong Jacobian, a step misaligned between data and truth, a detection left out o
 differs from the batch inverse shows as a relative difference above the tolerance. The clutter
 rate is 0 so that the conditioned bound's clutter factor is 1 exactly.
 
-    dense_fisher_check.py PHDSLAM_BINARY WORK_DIR [--steps 300] [--seed 1]
+    dense_fisher_check.py PHDSLAM_BINARY WORK_DIR [--steps 300] [--seed 1] [--mse-distribution]
+
+With --mse-distribution it also prints the distribution of one run's mean squared position error
+for an efficient estimator (the errors Gaussian with the dense smoothing covariance): its mean
+(the squared smoothing bound), standard deviation, effective degrees of freedom 2 mean^2 / var,
+the share of the largest eigenvalues and, by simulation, its quantiles and the spread of the
+efficiency ratio over n seeds (docs/algorithms/pcrb.md section 8).
 
 Exit 0 when every compared entry agrees to the tolerance, 1 when one does not, 2 for bad input.
 """
@@ -164,12 +170,33 @@ class Comparison:
             self.worst = (rel, f"{what}: bound {tool:.9g}, dense {dense:.9g}")
 
 
+def print_mse_distribution(cov, steps):
+    """One run's MSE for an efficient estimator: sum of eigenvalue-weighted chi-squares."""
+    position = [3 * (k - 1) + j for k in range(1, steps) for j in range(2)]
+    eig = np.linalg.eigvalsh(cov[np.ix_(position, position)] / steps)[::-1]
+    mean, var = eig.sum(), 2.0 * (eig ** 2).sum()
+    print(f"efficient estimator, one run's position MSE: mean {mean:.4g} m^2 (bound "
+          f"{math.sqrt(mean):.4g} m), sd {math.sqrt(var):.4g}, effective dof "
+          f"{2 * mean ** 2 / var:.3g}, largest eigenvalues' shares "
+          f"{', '.join(f'{x / mean:.3f}' for x in eig[:3])}")
+    rng = np.random.default_rng(1)
+    runs = (rng.chisquare(1, size=(20000, 60)) * eig[:60]).sum(axis=1) + eig[60:].sum()
+    quantiles = np.quantile(runs, [0.0, 0.1, 0.25, 0.5, 0.75, 0.9, 1.0])
+    print("quantiles (0, .1, .25, .5, .75, .9, 1) of 20000 simulated runs: "
+          + ", ".join(f"{q:.3g}" for q in quantiles))
+    for n in (10, 20, 50, 100, 200):
+        ratio = np.sqrt(rng.choice(runs, size=(20000, n)).mean(axis=1) / mean)
+        print(f"{n} seeds: efficiency ratio sd {ratio.std():.3f}, P(ratio < 0.7) "
+              f"{(ratio < 0.7).mean():.4f}, P(ratio < 0.85) {(ratio < 0.85).mean():.4f}")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("binary")
     parser.add_argument("work", type=pathlib.Path)
     parser.add_argument("--steps", type=int, default=300)
     parser.add_argument("--seed", type=int, default=1)
+    parser.add_argument("--mse-distribution", action="store_true")
     args = parser.parse_args()
     if not 10 <= args.steps <= 1000:
         fail(f"--steps must be in [10, 1000], got {args.steps}")
@@ -198,6 +225,8 @@ def main():
     compare = Comparison()
     smoother = read_csv(results / "runs" / "pcrb-smoother-N1" / f"seed-{seed}" / "steps.csv")
     cov, position = fisher(poses, landmarks, steps, odometry_dt, detections, q_u, r)
+    if args.mse_distribution:
+        print_mse_distribution(cov, steps)
     for row in smoother:
         k = int(row["step"])
         pos, heading = pose_std(cov, k)
