@@ -25,6 +25,13 @@ MIN_FLAG_SEEDS = 50
 METRICS = (("pos_rmse_m", "position"), ("heading_rmse_deg", "heading"))
 
 
+def row_name(display: str, estimator: str) -> str:
+    """A row's or a line's label: a bound's display name says that it is a bound."""
+    if estimator in BOUNDS and "bound" not in display.lower():
+        return f"{display} (bound)"
+    return display
+
+
 def read_runs(folder: Path) -> list[dict]:
     with (folder / "runs.csv").open(newline="", encoding="utf-8") as f:
         return list(csv.DictReader(f))
