@@ -21,7 +21,7 @@ from .comparison import (
     secondary_references,
 )
 from .bound_efficiency import cell as efficiency_cell
-from .bound_efficiency import efficiency_rows, read_runs, row_name
+from .bound_efficiency import BOUNDS, efficiency_rows, read_runs, row_name
 from .csv_table import ResultsFormatError
 from .figures.filter_vs_smoother import (
     ceiling_comparison,
@@ -83,6 +83,9 @@ from .tables_shared import matched_paper_tables, ours_with_se, paper_table_rows
 #: Estimators whose pose covariances are the Ceres batch smoother's marginals: the consistency
 #: reference the particle filters' NEES is read against.
 REFERENCE_SMOOTHER = "smoother-"
+
+BOUND_CAPTION = (" Position RMSE, dashed: the posterior Cram\u00e9r-Rao bound at each point (a "
+                 "bound, not an estimator; docs/algorithms/pcrb.md).")
 
 FOLDER_SECTIONS = ("summary", "paper-tables", "efficiency", "authors", "fig1", "fig2", "fig3",
                    "smoothers",
@@ -739,6 +742,8 @@ class ReportBuilder:
                 fig = plot_sweep_lines(table, self._name)
                 caption = (f"Sweep over {names} ({table.root.name}): final-map GOSPA (\u00b1 SE) "
                            f"and position RMSE against {names}.")
+                if any(r.estimator in BOUNDS for r in table.rows):
+                    caption += BOUND_CAPTION
                 file_name = f"sweep{index + 1}-lines.png"
             if fig is None:
                 body += note_html(f"{table.root}: a sweep over {len(table.parameters)} "
@@ -766,9 +771,11 @@ class ReportBuilder:
                 "sweep.csv / summary.csv with pd or clutter_rate columns)"))
         body = general_body
         if fig is not None:
-            body += self._figure(fig, "fig5-sensitivity.png",
-                                 "Final-map GOSPA and position RMSE (\u00b1 SE) against the "
-                                 "detection probability and the clutter rate.")
+            caption = ("Final-map GOSPA and position RMSE (\u00b1 SE) against the detection "
+                       "probability and the clutter rate.")
+            if any(p.estimator in BOUNDS for p in points):
+                caption += BOUND_CAPTION
+            body += self._figure(fig, "fig5-sensitivity.png", caption)
             body += "".join(note_html(n) for n in notes)
         return Section("sensitivity", title, body=body)
 
