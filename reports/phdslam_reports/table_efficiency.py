@@ -45,6 +45,12 @@ def efficiency_headers(metrics: list[str]) -> list[str]:
             for m in metrics if m in EFFICIENCY_METRICS]
 
 
+def efficiency_position(metrics: list[str]) -> int:
+    """The column index (after Filter and N) right after the table's last metric with a bound."""
+    with_bound = [i for i, m in enumerate(metrics) if m in EFFICIENCY_METRICS]
+    return 2 + (with_bound[-1] + 1 if with_bound else len(metrics))
+
+
 def efficiency_cells(efficiencies: Efficiencies, estimator: str, particles: int,
                      metrics: list[str]) -> list[str]:
     """The efficiency cells of one row: "ratio ± SE", or an em dash (a bound row, no paired

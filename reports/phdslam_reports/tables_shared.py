@@ -13,6 +13,7 @@ from .table_efficiency import (
     Efficiencies,
     efficiency_cells,
     efficiency_headers,
+    efficiency_position,
 )
 
 
@@ -55,20 +56,21 @@ def paper_table_rows(
     """The table in the paper's layout: one row per (filter, N) we have, "ours ± SE (paper)".
 
     With ``efficiencies`` (the folder holds a bound's rows: table_efficiency.py) each row also
-    gets its efficiency, the folder's estimators the paper lacks follow with "(—)", and the bound
-    rows come last, labelled as bounds.
+    gets its efficiency, in columns right after the RMSEs, the folder's estimators the paper lacks
+    follow with "(—)", and the bound rows come last, labelled as bounds.
     """
     headers = ["Filter", "N"] + [paper.metric_label(m) for m in table.metrics]
+    at = efficiency_position(table.metrics)
+    if efficiencies is not None:
+        headers[at:at] = efficiency_headers(table.metrics)
     rows = []
     for row in _rows_in_table_order(table, comparison, efficiencies is not None):
         estimator, n = row.group.estimator, row.group.particles
         name = row_name(paper.display_name(estimator), estimator)
         cells = [name, str(n)] + [_paper_cell(row, table, metric) for metric in table.metrics]
         if efficiencies is not None:
-            cells += efficiency_cells(efficiencies, estimator, n, table.metrics)
+            cells[at:at] = efficiency_cells(efficiencies, estimator, n, table.metrics)
         rows.append(cells)
-    if efficiencies is not None:
-        headers += efficiency_headers(table.metrics)
     return headers, rows
 
 
