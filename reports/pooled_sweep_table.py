@@ -102,26 +102,43 @@ def pool_sweep(root: Path) -> tuple[list[str], dict[tuple[str, int], Pool]]:
     folders = sweep["folders"]
     pools: dict[tuple[str, int], Pool] = defaultdict(Pool)
     for point in folders:
-        for row in read_csv(root / point / "runs.csv"):
-            p = pools[(row["estimator"], int(row["particles"]))]
-            p.runs += 1
-            count = number(row, "pos_err_count")
-            p.add_rms("pos", number(row, "pos_rmse_m"), count)
-            p.add_rms("heading", number(row, "heading_rmse_deg"), count)
-            p.add_rms(f"pos:{point}", number(row, "pos_rmse_m"), count)
-            p.add_run((point, int(row["seed"])), row, count)
-            p.add_weighted("nis", number(row, "nis_mean"), number(row, "nis_count"))
-            p.add_weighted("coverage", number(row, "coverage"), count)
-            p.add_weighted("coverage_rb", number(row, "coverage_rb"), count)
-            for key in ("gospa_m", "n_missed", "n_false", "map_size", "ms_per_step_mean"):
-                value = number(row, key)
-                if value is not None:
-                    p.means[key].append(value)
-        for row in read_csv(root / point / "summary.csv"):
-            p = pools[(row["estimator"], int(row["particles"]))]
-            p.add_weighted("tpr", number(row, "da_tpr"), number(row, "da_positives"))
-            p.add_weighted("tnr", number(row, "da_tnr"), number(row, "da_negatives"))
+        for_each_row(root / point / "runs.csv", lambda row: add_run_row(pools, point, row))
+        for_each_row(root / point / "summary.csv", lambda row: add_summary_row(pools, row))
     return folders, pools
+
+
+def for_each_row(path: Path, add) -> None:
+    """Calls ``add`` on every row of a CSV file; a malformed cell is named by file and line."""
+    for line, row in enumerate(read_csv(path), start=2):
+        try:
+            add(row)
+        except KeyError as error:
+            raise ValueError(f"{path}, line {line}: no column {error}") from error
+        except ValueError as error:
+            raise ValueError(f"{path}, line {line}: {error}") from error
+
+
+def add_run_row(pools: dict[tuple[str, int], Pool], point: str, row: dict) -> None:
+    p = pools[(row["estimator"], int(row["particles"]))]
+    p.runs += 1
+    count = number(row, "pos_err_count")
+    p.add_rms("pos", number(row, "pos_rmse_m"), count)
+    p.add_rms("heading", number(row, "heading_rmse_deg"), count)
+    p.add_rms(f"pos:{point}", number(row, "pos_rmse_m"), count)
+    p.add_run((point, int(row["seed"])), row, count)
+    p.add_weighted("nis", number(row, "nis_mean"), number(row, "nis_count"))
+    p.add_weighted("coverage", number(row, "coverage"), count)
+    p.add_weighted("coverage_rb", number(row, "coverage_rb"), count)
+    for key in ("gospa_m", "n_missed", "n_false", "map_size", "ms_per_step_mean"):
+        value = number(row, key)
+        if value is not None:
+            p.means[key].append(value)
+
+
+def add_summary_row(pools: dict[tuple[str, int], Pool], row: dict) -> None:
+    p = pools[(row["estimator"], int(row["particles"]))]
+    p.add_weighted("tpr", number(row, "da_tpr"), number(row, "da_positives"))
+    p.add_weighted("tnr", number(row, "da_tnr"), number(row, "da_negatives"))
 
 
 def efficiency(pools: dict[tuple[str, int], Pool], estimator: str, n: int,
@@ -175,7 +192,7 @@ def main(argv: list[str] | None = None) -> int:
     try:
         folders, pools = pool_sweep(args.sweep_root)
     except (OSError, KeyError, ValueError) as error:
-        print(f"error: {args.sweep_root}: {error}", file=sys.stderr)
+        print(f"error: {args.sweep_root}: {error}".splitlines()[0], file=sys.stderr)
         return 1
     sys.stdout.write(markdown(folders, pools))
     return 0

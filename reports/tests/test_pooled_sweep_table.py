@@ -1,6 +1,8 @@
 """reports/pooled_sweep_table.py: runs pooled over the points of a sweep."""
 
+import contextlib
 import csv
+import io
 import json
 import math
 import tempfile
@@ -95,6 +97,23 @@ class PooledSweepTableTest(unittest.TestCase):
             write(root / "sweep-robot-1" / "summary.csv", SUMMARY, [])
             table = pooled_sweep_table.markdown(*pooled_sweep_table.pool_sweep(root))
         self.assertNotIn("efficiency", table)
+
+    def test_a_malformed_seed_is_one_line_naming_the_file_and_line(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            root = Path(tmp)
+            (root / "sweep.json").write_text(json.dumps({"folders": ["sweep-robot-1"]}))
+            (root / "sweep-robot-1").mkdir()
+            write(root / "sweep-robot-1" / "runs.csv", RUNS,
+                  [["pcrb", 1, "first", 0.2, 3.0, 100] + [""] * (len(RUNS) - 6)])
+            write(root / "sweep-robot-1" / "summary.csv", SUMMARY, [])
+            stderr = io.StringIO()
+            with contextlib.redirect_stderr(stderr):
+                code = pooled_sweep_table.main([str(root)])
+        self.assertEqual(code, 1)
+        message = stderr.getvalue()
+        self.assertEqual(message.count("\n"), 1)
+        self.assertIn("sweep-robot-1/runs.csv, line 2: ", message)
+        self.assertIn("'first'", message)
 
 
 if __name__ == "__main__":
