@@ -38,6 +38,13 @@ class Efficiency(NamedTuple):
     bound_applies: bool = True  # False: a batch estimator against the filtering bound
 
 
+def row_name(display: str, estimator: str) -> str:
+    """A row's or a line's label: a bound's display name says that it is a bound."""
+    if estimator in BOUNDS and "bound" not in display.lower():
+        return f"{display} (bound)"
+    return display
+
+
 def read_runs(folder: Path) -> list[dict]:
     with (folder / "runs.csv").open(newline="", encoding="utf-8") as f:
         return list(csv.DictReader(f))

@@ -14,6 +14,7 @@ from .comparison import (
 from .paper import PaperValues
 from .results import ResultsFolder
 from .stats import relative_difference
+from .table_efficiency import folder_efficiencies
 from .tables_shared import matched_paper_tables, ours_with_se, paper_table_rows
 
 FLAG_MARK = "\u26a0"
@@ -70,8 +71,9 @@ def report_markdown(results: ResultsFolder, paper: PaperValues, comparison: Comp
                       + (f" {table.notes}" if table.notes else ""), ""]
     else:
         parts += ["No summary.csv: nothing to tabulate.", ""]
+    efficiencies = folder_efficiencies(results)
     for table in matched_paper_tables(results, paper, comparison):
-        headers, rows = paper_table_rows(table, comparison, paper)
+        headers, rows = paper_table_rows(table, comparison, paper, efficiencies)
         parts += [f"## {table.title}", "", markdown_table(headers, rows), ""]
         if table.notes:
             parts += [f"_{table.notes}_", ""]

@@ -21,7 +21,7 @@ from .comparison import (
     secondary_references,
 )
 from .bound_efficiency import cell as efficiency_cell
-from .bound_efficiency import efficiency_rows, read_batch_estimators, read_runs
+from .bound_efficiency import BOUNDS, efficiency_rows, read_batch_estimators, read_runs, row_name
 from .csv_table import ResultsFormatError
 from .figures.filter_vs_smoother import (
     ceiling_comparison,
@@ -77,11 +77,15 @@ from .smoother_posterior import posterior_gaps, posterior_sentence
 from .stats import nan_mean, relative_difference, stack_ragged, standard_error_of_values
 from .style import save_figure
 from .sweep_table import SweepTable, read_sweep_table, sweep_point_of, sweep_root_of
+from .table_efficiency import folder_efficiencies
 from .tables_shared import matched_paper_tables, ours_with_se, paper_table_rows
 
 #: Estimators whose pose covariances are the Ceres batch smoother's marginals: the consistency
 #: reference the particle filters' NEES is read against.
 REFERENCE_SMOOTHER = "smoother-"
+
+BOUND_CAPTION = (" Position RMSE, dashed: the posterior Cram\u00e9r-Rao bound at each point (a "
+                 "bound, not an estimator; docs/algorithms/pcrb.md).")
 
 FOLDER_SECTIONS = ("summary", "paper-tables", "efficiency", "authors", "fig1", "fig2", "fig3",
                    "smoothers",
@@ -225,8 +229,15 @@ class ReportBuilder:
                 "filters and particle counts)"))
         parts = ["<p>Each cell: ours \u00b1 SE (paper); \u26a0 marks a difference beyond "
                  "15 % (a time per step only when it is slower than the paper's).</p>"]
+        efficiencies = folder_efficiencies(folder)
+        if efficiencies is not None:
+            parts.append(note_html(
+                "The bound rows hold the posterior Cramér-Rao bound, not an estimator's error: "
+                "they are no result to rank. Efficiency = RMSE / bound on the same seeds "
+                "\u00b1 delta-method Monte Carlo SE; filters against pcrb, smoothers against "
+                "pcrb-smoother. The estimators the paper lacks follow its rows, with (\u2014)."))
         for table in tables:
-            headers, rows = paper_table_rows(table, comparison, self.paper)
+            headers, rows = paper_table_rows(table, comparison, self.paper, efficiencies)
             parts.append(f"<h3>{escape(table.title)}</h3>")
             parts.append(table_html(headers, [[(c, "name" if i < 1 else "") for i, c in
                                                enumerate(r)] for r in rows]))
@@ -247,7 +258,7 @@ class ReportBuilder:
                    "heading RMSE (deg)", "/ pcrb", "/ pcrb-smoother"]
         body_rows = []
         for e in rows:
-            name = self._name(e["estimator"]) + (" (bound)" if e["bound"] else "")
+            name = row_name(self._name(e["estimator"]), e["estimator"])
             cells = [name, str(e["particles"]), str(e["runs"])]
             for label in ("position", "heading"):
                 cells += [efficiency_cell(e[f"{label}_rmse"]),
@@ -731,6 +742,8 @@ class ReportBuilder:
                 fig = plot_sweep_lines(table, self._name)
                 caption = (f"Sweep over {names} ({table.root.name}): final-map GOSPA (\u00b1 SE) "
                            f"and position RMSE against {names}.")
+                if any(r.estimator in BOUNDS for r in table.rows):
+                    caption += BOUND_CAPTION
                 file_name = f"sweep{index + 1}-lines.png"
             if fig is None:
                 body += note_html(f"{table.root}: a sweep over {len(table.parameters)} "
@@ -758,9 +771,11 @@ class ReportBuilder:
                 "sweep.csv / summary.csv with pd or clutter_rate columns)"))
         body = general_body
         if fig is not None:
-            body += self._figure(fig, "fig5-sensitivity.png",
-                                 "Final-map GOSPA and position RMSE (\u00b1 SE) against the "
-                                 "detection probability and the clutter rate.")
+            caption = ("Final-map GOSPA and position RMSE (\u00b1 SE) against the detection "
+                       "probability and the clutter rate.")
+            if any(p.estimator in BOUNDS for p in points):
+                caption += BOUND_CAPTION
+            body += self._figure(fig, "fig5-sensitivity.png", caption)
             body += "".join(note_html(n) for n in notes)
         return Section("sensitivity", title, body=body)
 

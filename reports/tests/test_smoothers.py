@@ -145,6 +145,21 @@ class NoCeilingTest(unittest.TestCase):
             self.assertIn("The ceiling is PHD", body)
             self.assertIn("No smoother bounds the filter here", body)
 
+    def test_a_bound_is_neither_the_filter_nor_the_ceiling(self):
+        # The bounds have the lowest errors of all (error scale 0.01), but they hold a bound.
+        with tempfile.TemporaryDirectory() as tmp:
+            results, report = build(
+                Path(tmp), (("phd3", 10), ("smoother-known", 1), ("pcrb", 1),
+                            ("pcrb-smoother", 1)),
+                {"smoother-known": 0.2, "pcrb": 0.01, "pcrb-smoother": 0.01})
+            comparison = ceiling_comparison(ResultsFolder(results))
+            body = report.section("smoothers").body
+        self.assertEqual(comparison.filter.group.estimator, "phd3")
+        self.assertEqual([s.group.estimator for s in comparison.smoothers], ["smoother-known"])
+        self.assertEqual(comparison.ceiling.group.estimator, "smoother-known")
+        self.assertRegex(body, r"The ceiling is smoother-known \(N = 1\)")
+        self.assertNotIn("PCRB", body)
+
     def test_skipped_without_a_smoother(self):
         with tempfile.TemporaryDirectory() as tmp:
             _, report = build(Path(tmp), (("phd3", 10), ("odometry", 1)), {})

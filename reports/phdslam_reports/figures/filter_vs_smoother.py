@@ -3,9 +3,9 @@
 The smoothers (``smoother-*``, the batch ones, and ``window*``, the fixed-lag ones) use every
 measurement for every pose, so on the same data they should bound the filters from below: the
 estimator with the lower position error is the ceiling. This module picks the filter (the online
-estimator with the lowest pooled position RMSE, dead reckoning left out), the first seed the filter
-and the smoothers share, and draws the position error over time and the trajectories over the
-truth (or the GPS fixes of real data without true poses).
+estimator with the lowest pooled position RMSE, dead reckoning and the bounds left out), the
+first seed the filter and the smoothers share, and draws the position error over time and the
+trajectories over the truth (or the GPS fixes of real data without true poses).
 """
 
 from __future__ import annotations
@@ -17,6 +17,7 @@ from typing import Callable
 import numpy as np
 from matplotlib.figure import Figure
 
+from ..bound_efficiency import BOUNDS
 from ..results import Group, ResultsFolder
 from ..style import GPS_COLOUR, TRUTH_COLOUR, estimator_colour, new_figure
 
@@ -25,6 +26,9 @@ SMOOTHER_PREFIXES = ("smoother-", "window")
 
 FLOOR_ESTIMATORS = ("odometry",)
 """Estimators that are floors, never the filter drawn against the smoothers."""
+
+# The posterior Cramer-Rao bounds hold a bound, not an estimate: neither the filter nor the ceiling.
+LEFT_OUT = FLOOR_ESTIMATORS + BOUNDS
 
 
 def is_smoother(estimator: str) -> bool:
@@ -74,7 +78,7 @@ def ceiling_comparison(folder: ResultsFolder) -> CeilingComparison | None:
     filters, smoothers = [], []
     for group in folder.groups():
         rmse = _pooled_rmse(folder, group)
-        if not math.isfinite(rmse) or group.estimator in FLOOR_ESTIMATORS:
+        if not math.isfinite(rmse) or group.estimator in LEFT_OUT:
             continue
         (smoothers if is_smoother(group.estimator) else filters).append(Contender(group, rmse))
     if not filters or not smoothers:

@@ -8,6 +8,7 @@ from typing import Callable
 import numpy as np
 from matplotlib.figure import Figure
 
+from ..bound_efficiency import BOUNDS
 from ..results import Group, ResultsFolder
 from ..stats import Band, band_over_runs, stack_ragged
 from ..style import estimator_colour, new_figure, particle_line_style
@@ -67,7 +68,7 @@ def needs_log_scale(means: list[np.ndarray], ratio: float = 20.0) -> bool:
 
 
 # The posterior Cramer-Rao bounds: rows that hold a bound where the others hold an error.
-BOUND_ESTIMATORS = ("pcrb", "pcrb-smoother")
+BOUND_ESTIMATORS = BOUNDS
 
 
 def plot_metrics_over_time(
@@ -80,7 +81,8 @@ def plot_metrics_over_time(
     if not series:
         return None
     estimators = [s.group.estimator for s in series]
-    particles = [s.group.particles for s in series]
+    # line styles tell the estimators' particle counts apart; a bound's N (1) is none of them
+    particles = [s.group.particles for s in series if s.group.estimator not in BOUND_ESTIMATORS]
     with_ospa = any(MAP_OSPA_PANEL[0] in s.bands for s in series)
     ospa_panel = (MAP_OSPA_PANEL[0], MAP_OSPA_PANEL[1].format(c=map_ospa_cutoff))
     panels = PANELS + (ospa_panel,) if with_ospa else PANELS

@@ -9,8 +9,10 @@ from typing import Callable, Iterable
 import numpy as np
 from matplotlib.figure import Figure
 
+from ..bound_efficiency import BOUNDS
 from ..csv_table import CsvTable
 from ..style import estimator_colour, new_figure, particle_line_style
+from .bound_line import plot_bound_line
 
 PD_COLUMNS = ("pd", "detection_probability", "detection_probability_nominal")
 CLUTTER_COLUMNS = ("clutter_rate",)
@@ -80,7 +82,8 @@ def plot_sensitivity(
     if not sweeps:
         return None
     estimators = sorted({p.estimator for p in points})
-    particle_counts = sorted({p.particles for p in points})
+    # line styles tell the estimators' particle counts apart; a bound's N (1) is none of them
+    particle_counts = sorted({p.particles for p in points if p.estimator not in BOUNDS})
     fig, axes = new_figure(12.0, 4.3 * len(sweeps), len(sweeps), 2)
     x_labels = {"pd": "detection probability pD", "clutter_rate": "clutter rate \u03bb (per scan)"}
     for row, attribute in enumerate(sweeps):
@@ -106,6 +109,10 @@ def plot_sensitivity(
                 name = f"{display_name(estimator)}, N = {n}"
                 if len(others_per_line[(estimator, n)]) > 1:
                     name += f" ({OTHER_SYMBOL[attribute]} = {fixed:g})"
+                if estimator in BOUNDS:
+                    if metric == "pos_rmse_m":
+                        plot_bound_line(ax, x, y, estimator, display_name)
+                    continue
                 ax.errorbar(x, y, yerr=np.where(np.isfinite(err), err, 0.0), marker="o", ms=4,
                             capsize=3, color=estimator_colour(estimator, estimators),
                             ls=particle_line_style(n, particle_counts), label=name)

@@ -9,8 +9,10 @@ from typing import Callable
 import numpy as np
 from matplotlib.figure import Figure
 
+from ..bound_efficiency import BOUNDS
 from ..style import estimator_colour, new_figure, particle_line_style
 from ..sweep_table import SweepTable
+from .bound_line import plot_bound_line
 
 METRICS = (("gospa_mean_m", "gospa_sem_m", "GOSPA (m)"),
            ("pos_rmse_m", "", "Position RMSE (m)"))
@@ -37,7 +39,9 @@ def plot_sweep_lines(table: SweepTable,
     values = table.values[0]
     x_all, numeric = _positions(values)
     estimators = sorted({r.estimator for r in table.rows})
-    particle_counts = sorted({r.particles for r in table.rows})
+    # line styles tell the estimators' particle counts apart; a bound's N (1) is none of them
+    particle_counts = sorted({r.particles for r in table.rows if r.estimator not in BOUNDS})
+    particle_counts = particle_counts or [1]
     fig, axes = new_figure(12.0, 4.3, 1, 2)
     for col, (metric, se, label) in enumerate(METRICS):
         ax = axes[0][col]
@@ -53,6 +57,10 @@ def plot_sweep_lines(table: SweepTable,
             y = np.array([by_value[values[i]][0] for i in index])
             err = np.array([by_value[values[i]][1] for i in index])
             name = display_name(estimator) + (f", N = {n}" if n is not None else "")
+            if estimator in BOUNDS:
+                if metric == "pos_rmse_m":
+                    plot_bound_line(ax, x_all[index], y, estimator, display_name)
+                continue
             ax.errorbar(x_all[index], y, yerr=np.where(np.isfinite(err), err, 0.0), marker="o",
                         ms=4, capsize=3, color=estimator_colour(estimator, estimators),
                         ls=particle_line_style(n if n is not None else particle_counts[0],
