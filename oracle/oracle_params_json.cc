@@ -17,7 +17,8 @@ const params::ParameterTable<OracleParams>& OracleParamsTable() {
       params::NumberField<P>(
           "ess_threshold", [](auto& p) -> auto& { return p.ess_threshold; }, AtLeast(0.0))
           .Means("resample when the effective sample size is at most this fraction of the particle "
-                 "count"),
+                 "count")
+          .UsedOnlyWith("resampling", {true}),
       params::IntField<P>(
           "ipl_iterations", [](auto& p) -> auto& { return p.ipl_iterations; }, AtLeast(1))
           .Means("L: most iterations of the iterated posterior linearisation of the pose proposal"),

@@ -22,6 +22,7 @@ ensure_dependencies()
 from phdslam_reports.csv_table import ResultsFormatError  # noqa: E402
 from phdslam_reports.paper import DEFAULT_PAPER_VALUES, PaperValues  # noqa: E402
 from phdslam_reports.report import ReportOptions, build_report  # noqa: E402
+from phdslam_reports.sweep_folders import sweep_folder_names  # noqa: E402
 
 
 def parse_arguments(argv: list[str] | None = None) -> argparse.Namespace:
@@ -65,18 +66,10 @@ def expand_sweep_roots(dirs: list[Path]) -> list[Path]:
     stands for its value folders, in the order of sweep.json."""
     expanded: list[Path] = []
     for folder in dirs:
-        sweep_file = folder / "sweep.json"
-        if not sweep_file.is_file() or (folder / "summary.csv").is_file():
+        if not (folder / "sweep.json").is_file() or (folder / "summary.csv").is_file():
             expanded.append(folder)
             continue
-        try:
-            sweep = json.loads(sweep_file.read_text(encoding="utf-8"))
-        except (OSError, ValueError) as error:
-            raise ResultsFormatError(f"{sweep_file}: {error}") from error
-        folders = sweep.get("folders") if isinstance(sweep, dict) else None
-        if (not isinstance(folders, list) or not folders
-                or not all(isinstance(f, str) and f for f in folders)):
-            raise ResultsFormatError(f"{sweep_file}: 'folders' must be a non-empty list of names")
+        folders = sweep_folder_names(folder)
         expanded.extend(folder / f for f in folders)
     return expanded
 

@@ -24,7 +24,6 @@ config.json's `batch`): their ratio against it is shown, never flagged. The boun
 from __future__ import annotations
 
 import argparse
-import json
 import sys
 from pathlib import Path
 
@@ -39,6 +38,7 @@ from phdslam_reports.bound_efficiency import (  # noqa: F401  (re-exported for t
     read_batch_estimators,
     read_runs,
 )
+from phdslam_reports.sweep_folders import sweep_folder_names
 
 
 def rows_of(folder: Path) -> list[dict]:
@@ -50,13 +50,12 @@ def main(argv: list[str]) -> int:
     parser.add_argument("results", type=Path, help="a results folder or a sweep root")
     args = parser.parse_args(argv)
     try:
-        sweep = args.results / "sweep.json"
-        if sweep.exists():
-            folders = json.loads(sweep.read_text(encoding="utf-8"))["folders"]
+        folders = sweep_folder_names(args.results)
+        if folders is not None:
             tables = [markdown(rows_of(args.results / f), f) for f in folders]
         else:
             tables = [markdown(rows_of(args.results))]
-    except (OSError, KeyError, ValueError) as error:
+    except (OSError, KeyError, ValueError, TypeError) as error:
         print(f"error: {args.results}: {error}", file=sys.stderr)
         return 2
     print("\n\n".join(tables))

@@ -608,6 +608,19 @@ case("compare seed not an integer", lambda: phdslam(
     "compare", "--out", str(run_copy(set_runs_cell("seed", "x")))), "error", ["runs.csv", "seed"])
 case("compare of a valid folder", lambda: phdslam("compare", "--out", str(run_copy(
     lambda f: None))), "ok")
+BOM_COMPARE = W / "compare-bom"
+
+
+def add_bom(folder: Path) -> None:
+    (folder / "runs.csv").write_bytes(b"\xef\xbb\xbf" + (folder / "runs.csv").read_bytes())
+
+
+case("compare runs.csv with a byte-order mark", lambda: phdslam(
+    "compare", "--out", str(BOM_COMPARE)), "ok",
+     setup=lambda: (shutil.rmtree(BOM_COMPARE, ignore_errors=True),
+                    shutil.copytree(RUN, BOM_COMPARE), add_bom(BOM_COMPARE)),
+     check=lambda: None if (BOM_COMPARE / "comparison.csv").is_file() and "estimator" in
+     (BOM_COMPARE / "comparison.csv").read_text() else "no comparison.csv")
 MERGED = W / "merged"
 case("merge a missing folder", lambda: phdslam(
     "merge", "--out", str(fresh("merged")), str(W / "nowhere")), "error", ["nowhere"])
@@ -981,6 +994,66 @@ for name, edit, culprit in [
          phdslam("merge", "--out", str(existing), str(source)), "error", [culprit],
          guard=existing)
 
+# merge is staged beside its output: a failure after every file was checked (a truth file that
+# is a folder) leaves the output as it was, and nothing beside it.
+def truth_file_a_folder(folder: Path) -> None:
+    path = folder / "truth" / "seed-1" / "truth.tum"
+    path.unlink()
+    path.mkdir()
+
+
+def damaged_error_json(folder: Path) -> None:
+    run = folder / "runs" / "phd3-N3" / "seed-2"
+    metrics = (run / "metrics.json").read_bytes()
+    (run / "metrics.json").unlink()
+    (run / "error.json").write_bytes(metrics[:len(metrics) // 3])
+
+
+for name, edit, culprit in [
+        ("a truth file that is a folder", truth_file_a_folder, "seed-1/truth.tum"),
+        ("error.json cut short", damaged_error_json, "seed-2/error.json")]:
+    source = fresh("merge-source")
+    shutil.copytree(RUN, source)
+    edit(source)
+    parent = fresh("merge-parent")
+    existing = parent / "results"
+    shutil.copytree(RUN, existing)
+    shutil.rmtree(existing / "runs" / "phd3-N3")
+    shutil.rmtree(existing / "truth")
+    (existing / "truth_map.csv").unlink(missing_ok=True)
+    case(f"merge input with {name} into an existing folder", phdslam(
+        "merge", "--out", str(existing), str(source)), "error", [culprit], guard=parent)
+    new_parent = fresh("merge-parent-new")
+    new_parent.mkdir()
+    case(f"merge input with {name} into a new folder", phdslam(
+        "merge", "--out", str(new_parent / "results"), str(source)), "error", [culprit],
+         guard=new_parent)
+MERGE_FILE_INPUT = W / "merge-input-file"
+MERGE_FILE_INPUT.write_text("not a folder\n")
+case("merge an input that is a file", phdslam(
+    "merge", "--out", str(fresh("merged")), str(MERGE_FILE_INPUT)), "error",
+     [str(MERGE_FILE_INPUT)])
+MERGE_OUT_PARENT = fresh("merge-out-file")
+MERGE_OUT_PARENT.mkdir()
+MERGE_OUT_FILE = MERGE_OUT_PARENT / "results"
+MERGE_OUT_FILE.write_text("a file\n")
+case("merge into a path that is a file", phdslam(
+    "merge", "--out", str(MERGE_OUT_FILE), str(RUN)), "error", [str(MERGE_OUT_FILE)],
+     guard=MERGE_OUT_PARENT)
+MERGE_AGAIN_PARENT = fresh("merge-again")
+MERGE_AGAIN = MERGE_AGAIN_PARENT / "results"
+
+
+def merged_twice() -> str | None:
+    problem = summary_has(MERGE_AGAIN, "phd3,3,3,5,")
+    left = sorted(p.name for p in MERGE_AGAIN_PARENT.iterdir())
+    return problem or (None if left == ["results"] else f"left beside the output: {left}")
+
+
+case("merge into a folder that holds the same runs", phdslam(
+    "merge", "--out", str(MERGE_AGAIN), str(RUN), str(RUN)), "ok", check=merged_twice,
+     setup=lambda: must(phdslam("merge", "--out", str(MERGE_AGAIN), str(RUN))))
+
 # A results folder whose only run failed before computing anything accepts the corrected rerun.
 SURFACE[0] = "results folder reruns"
 RERUN = W / "rerun-after-failure"
@@ -1052,6 +1125,73 @@ if HAVE_CERES:
         "run", "--experiment", str(SWEEP_SOLVE), "--quiet", "--out", str(W / "sweep-solve")),
          "error", ["sweep point solve_every = 0", "must be >= 1"], guard=W / "sweep-solve")
 
+# The same rule for every estimator: a parameter without effect in the chosen mode is refused
+# naming the mode that would use it; with that mode it runs.
+HAVE_MRPT = b"mrpt-ekf" in run_command(phdslam("list")).stdout
+MODE_RUN = ["run", "--scenario", "generated", "--steps", "5", "--seeds", "1", "--quiet"]
+MODE_CASES = [("phd3", ["resampling=false", "ess_threshold=0.5"], "resampling=true"),
+              ("phd1", ["resampling=false", "ess_threshold_kind=absolute"], "resampling=true"),
+              ("phd2b", ["resampling=false", "ess_threshold=0"], "resampling=true"),
+              ("rbphd", ["resampling=false", "ess_threshold=0.9"], "resampling=true"),
+              ("oracle", ["resampling=false", "ess_threshold=0.9"], "resampling=true"),
+              ("glmb2", ["resampling=every-step", "ess_threshold=0.4"], "resampling=ess"),
+              ("lmb", ["resampling=every-step", "ess_threshold_kind=absolute"],
+               "resampling=ess"),
+              ("glmb1", ["birth_rule=continuous", "birth_assigned_threshold=0.6"],
+               "birth_rule=thresholded"),
+              ("pcrb", ["gate_sigma=4"], "detection_model=irf"),
+              ("pcrb-smoother", ["irf_samples=5000"], "detection_model=irf")]
+if HAVE_MRPT:
+    MODE_CASES.append(("mrpt-ekf", ["prune_after_steps=0", "prune_min_associations=3"],
+                       "prune_after_steps other than 0"))
+for estimator, settings, mode in MODE_CASES:
+    sets = [a for kv in settings for a in ("--set", f"{estimator}:{kv}")]
+    out = W / f"mode-{len(CASES)}"
+    key = settings[-1].split("=")[0]
+    case(f"{estimator}:{settings[-1]} without {mode}", phdslam(
+        *MODE_RUN, "--estimator", estimator, *sets, "--out", str(out)), "error",
+         [key, "has no effect", mode], guard=out)
+for estimator, settings in [("phd3", ["resampling=true", "ess_threshold=0.5"]),
+                            ("glmb2", ["resampling=ess", "ess_threshold=0.4"]),
+                            ("pcrb", ["detection_model=irf", "gate_sigma=4"])]:
+    out = W / f"mode-used-{estimator}"
+    sets = [a for kv in settings for a in ("--set", f"{estimator}:{kv}")]
+    case(f"{estimator}:{settings[-1]} with {settings[0]}", phdslam(
+        *MODE_RUN, "--estimator", estimator, *sets, "--out", str(out)), "ok",
+         check=lambda f=out, e=estimator: summary_has(f, f"{e},1,1,5,"))
+LIST_PHD3 = run_command(phdslam("list", "--estimator", "phd3")).stdout.decode()
+case("list marks a parameter used in one mode only", phdslam("list", "--estimator", "phd3"), "ok",
+     check=lambda: None if "[used only with resampling=true]" in LIST_PHD3 else
+     "phdslam list --estimator phd3 does not mark ess_threshold [used only with ...]")
+
+# The run-length bounds checked with the plan when the data fix the length (--steps 0: the
+# synthetic scenario's 4000 steps), before any run or sweep point starts.
+if HAVE_CERES:
+    FULL = ["run", "--scenario", "paper-synthetic", "--steps", "0", "--seeds", "1", "--quiet"]
+    for estimator, settings, key in [
+            ("window-known", ["window_length=4001"], "window_length"),
+            ("window", ["solve_every=5000"], "solve_every"),
+            ("smoother-known", ["initialisation=incremental", "incremental_chunk_steps=4001"],
+             "incremental_chunk_steps")]:
+        out = W / f"full-length-{len(CASES)}"
+        sets = [a for kv in settings for a in ("--set", f"{estimator}:{kv}")]
+        case(f"{estimator}:{settings[-1]} on the whole data set", phdslam(
+            *FULL, "--estimator", f"odometry,{estimator}", *sets, "--out", str(out)), "error",
+             [key, "longer than the run", "4000 steps"], guard=out)
+    CHUNK_OUT = W / "chunk-past-the-run"
+    case("smoother-known:incremental_chunk_steps past a 20-step run", phdslam(
+        *SMOOTHER_RUN, "--estimator", "smoother-known", "--set",
+        "smoother-known:initialisation=incremental", "--set",
+        "smoother-known:incremental_chunk_steps=21", "--out", str(CHUNK_OUT)), "error",
+         ["incremental_chunk_steps", "longer than the run"], guard=CHUNK_OUT)
+    SWEEP_FULL = EXP_DIR / "sweep-window-full.yaml"
+    SWEEP_FULL.write_text("scenario: paper-synthetic\nestimators: [window-known]\nseeds: 1\n"
+                          "steps: 0\nsweep: {parameter: window_length, values: [10, 4001]}\n")
+    SWEEP_FULL_OUT = W / "sweep-window-full"
+    case("sweep window_length past the data set's length", phdslam(
+        "run", "--experiment", str(SWEEP_FULL), "--quiet", "--out", str(SWEEP_FULL_OUT)),
+         "error", ["window_length", "4001", "longer than the run"], guard=SWEEP_FULL_OUT)
+
 # Every numeric option of the simulated scenarios at the ends of its range and at the extremes
 # of the floating-point range: it runs (a summary with the run) or is refused naming it.
 SURFACE[0] = "scenario option ranges"
@@ -1109,6 +1249,8 @@ for value in ("0", "-1", "1e400"):
 # ---------------------------------------------------------------------------------------------
 def classify(c: Case) -> tuple[str, str]:
     """(class, detail): clear, correct, crash, damaged, silent, unclear, wrong."""
+    if c.setup:
+        c.setup()
     before = folder_digest(c.guard) if c.guard else None
     argv = c.argv()
     try:

@@ -46,6 +46,16 @@ void AddRunCommand(CLI::App& app, RunArguments& a) {
 
 namespace {
 
+// A deterministic estimator beside particle filters runs at N = 1 whatever --particles lists:
+// said under the table, so that N = 1 in its row is not taken for a lost setting.
+void PrintHeldAtOneParticle(const v::MonteCarloPlan& plan) {
+  for (const v::EstimatorSelection& s : plan.estimators) {
+    if (!s.held_at_one_particle) continue;
+    std::cout << "note: " << s.entry.name << " is deterministic (no particles) and ran at N = 1 "
+              << "only; the other particle counts are for the other estimators\n";
+  }
+}
+
 void PrintRunReport(const v::ExperimentPart& part, const v::MonteCarloReport& report,
                     const std::vector<v::ExperimentSweep>& sweep, bool quiet) {
   if (!quiet) {
@@ -55,6 +65,7 @@ void PrintRunReport(const v::ExperimentPart& part, const v::MonteCarloReport& re
     }
     if (!part.sweep_point.empty()) std::cout << ":\n";
     std::cout << v::FormatSummaryTable(v::SummariseGroups(v::ReadResults(part.out)));
+    PrintHeldAtOneParticle(part.plan);
     std::cout << "runs: " << report.planned << " planned, " << report.skipped
               << " already finished, " << report.finished << " computed, " << report.failures.size()
               << " failed";

@@ -23,13 +23,72 @@ import os
 import sys
 
 
+class TraceError(ValueError):
+    """A trace file that cannot be compared: the message names the file, line and column."""
+
+
+class Row(dict):
+    """One CSV row with the file and line it came from, for the messages."""
+
+    def __init__(self, cells, path, line):
+        super().__init__(cells)
+        self.path = path
+        self.line = line
+
+    def where(self, key):
+        return f"{self.path} line {self.line} column '{key}'"
+
+
 def read_rows(path):
-    with open(path, encoding="ascii") as f:
-        return list(csv.DictReader(f))
+    """The rows of a trace CSV; TraceError for a byte-order mark, bytes that are not ASCII, a row
+    with more or fewer cells than the header, or no header."""
+    try:
+        with open(path, "rb") as f:
+            data = f.read()
+    except OSError as e:
+        raise TraceError(f"{path}: cannot read ({e.strerror or e})") from None
+    if data.startswith(b"\xef\xbb\xbf"):
+        raise TraceError(f"{path}: starts with a byte-order mark; write it without one")
+    try:
+        text = data.decode("ascii")
+    except UnicodeDecodeError as e:
+        line = data[:e.start].count(b"\n") + 1
+        raise TraceError(f"{path} line {line}: a byte that is not ASCII (0x{data[e.start]:02x})") \
+            from None
+    reader = csv.reader(text.splitlines())
+    try:
+        header = next(reader)
+    except StopIteration:
+        raise TraceError(f"{path}: empty (no header line)") from None
+    rows = []
+    for cells in reader:
+        if len(cells) != len(header):
+            raise TraceError(f"{path} line {reader.line_num}: {len(cells)} cells, the header has "
+                             f"{len(header)} (a line cut short?)")
+        rows.append(Row(zip(header, cells), path, reader.line_num))
+    return rows
+
+
+def field(row, key):
+    if key not in row:
+        raise TraceError(f"{row.path}: no column '{key}'")
+    return row[key]
 
 
 def num(row, key):
-    return float(row[key])
+    text = field(row, key)
+    try:
+        return float(text)
+    except ValueError:
+        raise TraceError(f"{row.where(key)}: not a number: {text!r}") from None
+
+
+def integer(row, key):
+    text = field(row, key)
+    try:
+        return int(text)
+    except ValueError:
+        raise TraceError(f"{row.where(key)}: not an integer: {text!r}") from None
 
 
 class Quantity:
@@ -81,7 +140,7 @@ class Comparison:
 
 
 def keyed(rows, keys):
-    return {tuple(int(r[k]) for k in keys): r for r in rows}
+    return {tuple(integer(r, k) for k in keys): r for r in rows}
 
 
 def compare_particles(cmp, a_rows, b_rows):
@@ -98,7 +157,7 @@ def compare_particles(cmp, a_rows, b_rows):
             cmp.number("prior mean", step, num(ra, c), num(rb, c), f"{where} {c}")
         for c in ("prior_pxx", "prior_pxy", "prior_pxt", "prior_pyy", "prior_pyt", "prior_ptt"):
             cmp.number("prior covariance", step, num(ra, c), num(rb, c), f"{where} {c}")
-        cmp.exact("proposal components", step, int(ra["components"]), int(rb["components"]), where)
+        cmp.exact("proposal components", step, integer(ra, "components"), integer(rb, "components"), where)
         for c in ("x", "y", "theta"):
             cmp.number("sampled pose", step, num(ra, c), num(rb, c), f"{where} {c}")
         cmp.number("log weight after sampling", step, num(ra, "log_weight_sampled"),
@@ -109,14 +168,14 @@ def normalised(rows):
     """Proposal rows keyed by (step, particle, component) with normalised log-weights."""
     groups = {}
     for r in rows:
-        groups.setdefault((int(r["step"]), int(r["particle"])), []).append(r)
+        groups.setdefault((integer(r, "step"), integer(r, "particle")), []).append(r)
     out = {}
     for (step, i), group in groups.items():
         w = [num(r, "log_weight") for r in group]
         top = max(w)
         total = top + math.log(sum(math.exp(x - top) for x in w))
         for r, x in zip(group, w):
-            out[(step, i, int(r["component"]))] = (x - total, r)
+            out[(step, i, integer(r, "component"))] = (x - total, r)
     return out
 
 
@@ -152,7 +211,7 @@ def compare_states(cmp, a_rows, b_rows):
         ra, rb = a[key], b[key]
         cmp.number("log weight", step, num(ra, "log_weight"), num(rb, "log_weight"), where)
         for c in ("active", "passive", "births"):
-            cmp.exact(f"map {c} count", step, int(ra[c]), int(rb[c]), where)
+            cmp.exact(f"map {c} count", step, integer(ra, c), integer(rb, c), where)
 
 
 def compare_maps(cmp, a_rows, b_rows):
@@ -181,10 +240,12 @@ def compare_estimates(cmp, a_rows, b_rows):
         ra, rb = a[key], b[key]
         for c in ("x", "y", "theta"):
             cmp.number("estimate", step, num(ra, c), num(rb, c), f"{where} {c}")
-        cmp.exact("estimate map size", step, int(ra["map_size"]), int(rb["map_size"]), where)
+        cmp.exact("estimate map size", step, integer(ra, "map_size"), integer(rb, "map_size"),
+                  where)
         cmp.number("ESS", step, num(ra, "ess"), num(rb, "ess"), where)
-        cmp.exact("resampled", step, int(ra["resampled"]), int(rb["resampled"]), where)
-        cmp.exact("resampling sources", step, ra["sources"].strip(), rb["sources"].strip(), where)
+        cmp.exact("resampled", step, integer(ra, "resampled"), integer(rb, "resampled"), where)
+        cmp.exact("resampling sources", step, field(ra, "sources").strip(),
+                  field(rb, "sources").strip(), where)
 
 
 def compare(a_dir, b_dir, rtol, atol, negligible_weight=0.0):
@@ -216,7 +277,7 @@ def main():
         if not 0.0 <= args.negligible_weight < 1.0:
             raise ValueError(f"--negligible-weight must be in [0, 1), got {args.negligible_weight}")
         result = compare(args.authors, args.phdslam, args.rtol, args.atol, args.negligible_weight)
-    except (OSError, KeyError, ValueError) as e:
+    except (OSError, ValueError) as e:
         print(f"compare_traces.py: {e}", file=sys.stderr)
         return 2
     for q in result["quantities"]:
@@ -230,8 +291,13 @@ def main():
                                   f"step {first['first_divergence_step']}, {first['quantity']}: "
                                   f"{first['first_divergence']}"))
     if args.json:
-        with open(args.json, "w", encoding="utf-8") as f:
-            json.dump(result, f, indent=1)
+        try:
+            with open(args.json, "w", encoding="utf-8") as f:
+                json.dump(result, f, indent=1)
+        except OSError as e:
+            print(f"compare_traces.py: --json {args.json}: cannot write ({e.strerror or e})",
+                  file=sys.stderr)
+            return 2
     return 0 if first is None else 1
 
 

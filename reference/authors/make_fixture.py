@@ -13,6 +13,7 @@ import gzip
 import json
 import os
 import shutil
+import sys
 
 FILES = ["draws.csv", "particles.csv", "proposals.csv", "states.csv", "maps.csv", "estimate.csv"]
 
@@ -32,7 +33,35 @@ def main():
     ap.add_argument("--provenance", required=True, help="release commit, Octave version, command")
     ap.add_argument("--out", required=True)
     args = ap.parse_args()
-    seeds = [int(s) for s in args.seeds.split(",")]
+    try:
+        seeds = [int(s) for s in args.seeds.split(",")]
+    except ValueError:
+        ap.error(f"--seeds: expected a comma list of integers, got {args.seeds!r}")
+    if any(s < 0 for s in seeds) or len(set(seeds)) != len(seeds):
+        ap.error(f"--seeds: expected distinct seeds >= 0, got {args.seeds!r}")
+    for name, value in (("--steps", args.steps), ("--particles", args.particles),
+                        ("--map-every", args.map_every)):
+        if value < 1:
+            ap.error(f"{name}: expected an integer >= 1, got {value}")
+    for name, value in (("--rtol", args.rtol), ("--atol", args.atol)):
+        if not 0.0 <= value < float("inf"):
+            ap.error(f"{name}: expected a number >= 0, got {value}")
+    # Every trace file is checked before the old fixture is removed.
+    missing = [os.path.join(args.traces, f"seed-{s}", name) for s in seeds for name in FILES
+               if not os.path.isfile(os.path.join(args.traces, f"seed-{s}", name))]
+    if missing:
+        print(f"make_fixture.py: no trace file {missing[0]} (run_authors.py --trace writes it)",
+              file=sys.stderr)
+        return 2
+    try:
+        write_fixture(args, seeds)
+    except OSError as e:
+        print(f"make_fixture.py: {e.filename or args.out}: {e.strerror or e}", file=sys.stderr)
+        return 2
+    return 0
+
+
+def write_fixture(args, seeds):
     shutil.rmtree(args.out, ignore_errors=True)
     os.makedirs(args.out)
     for s in seeds:
@@ -50,7 +79,6 @@ def main():
     with open(os.path.join(args.out, "fixture.json"), "w", encoding="utf-8") as f:
         json.dump(meta, f, indent=1)
         f.write("\n")
-    return 0
 
 
 if __name__ == "__main__":

@@ -54,7 +54,8 @@ const params::ParameterTable<MrptEkfSlamOptions>& MrptEkfSlamOptionsTable() {
       params::IntField<O>(
           "prune_min_associations", [](auto& o) -> auto& { return o.prune_min_associations; },
           AtLeast(1))
-          .Means("track deletion: associations a landmark needs by prune_after_steps to be kept"),
+          .Means("track deletion: associations a landmark needs by prune_after_steps to be kept")
+          .UsedOnlyWithout("prune_after_steps", 0),
       params::BoolField<O>(
           "symmetrize_covariance", [](auto& o) -> auto& { return o.symmetrize_covariance; })
           .Means("symmetrise the covariance after every step (not in MRPT, whose update lets it "

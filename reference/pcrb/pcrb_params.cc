@@ -14,10 +14,12 @@ const params::ParameterTable<PcrbParams>& PcrbParamsTable() {
       params::NumberField<P>(
           "gate_sigma", [](auto& p) -> auto& { return p.gate_sigma; }, params::Above(0.0))
           .Means("irf: radius of the clutter disc of the reduction factor, in measurement "
-                 "standard deviations"),
+                 "standard deviations")
+          .UsedOnlyWith("detection_model", {"irf"}),
       params::IntField<P>(
           "irf_samples", [](auto& p) -> auto& { return p.irf_samples; }, params::AtLeast(1000))
-          .Means("irf: Monte Carlo draws of the reduction factor's integral (with clutter only)"),
+          .Means("irf: Monte Carlo draws of the reduction factor's integral (with clutter only)")
+          .UsedOnlyWith("detection_model", {"irf"}),
   });
   return table;
 }

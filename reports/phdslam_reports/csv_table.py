@@ -16,9 +16,7 @@ from typing import Iterable, Sequence
 
 import numpy as np
 
-
-class ResultsFormatError(ValueError):
-    """A results file is missing, unreadable or malformed; the message names file and column."""
+from .results_format_error import ResultsFormatError  # noqa: F401  (re-exported)
 
 
 @dataclass

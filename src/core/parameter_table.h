@@ -125,11 +125,42 @@ inline bool ReadBool(const nlohmann::json& v, const std::string& key) {
   return v.get<bool>();
 }
 
+/// `v` as written after `key=` in a message: a string without its quotes, else compact JSON.
+inline std::string PlainValue(const nlohmann::json& v) {
+  return v.is_string() ? EscapeNonUtf8(v.get<std::string>()) : Shown(v);
+}
+
+/// The mode a parameter is used in: the parameter `key` holds one of `values` (with `except`:
+/// none of them). In any other mode the parameter has no effect.
+struct UseCondition {
+  std::string key;
+  std::vector<nlohmann::json> values;
+  bool except = false;
+
+  /// True when `all` (every parameter by key) is in this mode.
+  [[nodiscard]] bool Holds(const nlohmann::json& all) const {
+    const auto it = all.find(key);
+    if (it == all.end()) return true;  // a mode the table does not have restricts nothing
+    bool listed = false;
+    for (const nlohmann::json& v : values) listed = listed || v == *it;
+    return listed != except;
+  }
+  /// "initialisation=incremental", "birth_rule=thresholded or gates-best", "x other than 0".
+  [[nodiscard]] std::string Describe() const {
+    std::string text;
+    for (const nlohmann::json& v : values) {
+      text += (text.empty() ? "" : " or ") + PlainValue(v);
+    }
+    return except ? key + " other than " + text : key + "=" + text;
+  }
+};
+
 /// What a row says about its parameter to a reader (`phdslam list`).
 struct FieldDescription {
   std::string key;
-  std::string accepted;  ///< the accepted values (Field::help)
-  std::string meaning;   ///< one line: what the parameter does
+  std::string accepted;          ///< the accepted values (Field::help)
+  std::string meaning;           ///< one line: what the parameter does
+  std::string used_only_with{};  ///< the mode it is used in (UseCondition::Describe); empty: all
 };
 
 /// One row: a named parameter with its reader and writer.
@@ -140,11 +171,31 @@ struct Field {
   std::function<nlohmann::json(const T&)> write;
   std::function<void(const nlohmann::json&, T&)> read;  ///< throws naming the key
   std::string meaning{};                                ///< one line of what it does (Means)
+  std::vector<UseCondition> used_only_with{};  ///< the modes it has an effect in (all must hold)
 
   /// The row with its one line of meaning, for a table written as one expression per row.
   [[nodiscard]] Field Means(std::string text) && {
     meaning = std::move(text);
     return std::move(*this);
+  }
+  /// The row of a parameter used only when parameter `mode` holds one of `values`: a value
+  /// given in another mode is refused (ParameterTable::RequireUsed).
+  [[nodiscard]] Field UsedOnlyWith(std::string mode, std::vector<nlohmann::json> values) && {
+    used_only_with.push_back({std::move(mode), std::move(values)});
+    return std::move(*this);
+  }
+  /// The row of a parameter used only when parameter `mode` is not `value` (e.g. 0: off).
+  [[nodiscard]] Field UsedOnlyWithout(std::string mode, nlohmann::json value) && {
+    used_only_with.push_back({std::move(mode), {std::move(value)}, true});
+    return std::move(*this);
+  }
+  /// The modes of used_only_with, for a reader.
+  [[nodiscard]] std::string DescribeUse() const {
+    std::string text;
+    for (const UseCondition& c : used_only_with) {
+      text += (text.empty() ? "" : " and ") + c.Describe();
+    }
+    return text;
   }
 };
 
@@ -192,11 +243,32 @@ class ParameterTable {
 
   [[nodiscard]] const std::vector<Field<T>>& fields() const { return fields_; }
 
+  /// Throws std::invalid_argument naming the first key of `overrides` that has no effect in the
+  /// mode of `resolved` (its row's used_only_with does not hold), naming the mode that would use
+  /// it; a key whose value is that of `baseline` (the parameters before the overrides: e.g. a
+  /// recorded configuration read back) is accepted, as it changes nothing.
+  void RequireUsed(const nlohmann::json& overrides, const T& baseline, const T& resolved) const {
+    if (!overrides.is_object()) return;
+    const nlohmann::json now = ToJson(resolved);
+    const nlohmann::json before = ToJson(baseline);
+    for (const auto& [key, value] : overrides.items()) {
+      const Field<T>* field = Find(key);
+      if (field == nullptr || before.at(key) == now.at(key)) continue;
+      for (const UseCondition& c : field->used_only_with) {
+        if (c.Holds(now)) continue;
+        const std::string shown = EscapeNonUtf8(key);
+        throw std::invalid_argument("parameter '" + shown + "' has no effect with " + c.key + "=" +
+                                    PlainValue(now.at(c.key)) + "; it is used only with " +
+                                    c.Describe() + " (set that too, or drop '" + shown + "')");
+      }
+    }
+  }
+
   /// Every row's key, accepted values and meaning, in table order.
   [[nodiscard]] std::vector<FieldDescription> Descriptions() const {
     std::vector<FieldDescription> rows;
     rows.reserve(fields_.size());
-    for (const Field<T>& f : fields_) rows.push_back({f.key, f.help, f.meaning});
+    for (const Field<T>& f : fields_) rows.push_back({f.key, f.help, f.meaning, f.DescribeUse()});
     return rows;
   }
 
@@ -388,7 +460,7 @@ std::vector<Field<T>> Embed(const ParameterTable<Inner>& table, Access access) {
   for (const Field<Inner>& f : table.fields()) {
     rows.push_back({f.key, f.help, [access, w = f.write](const T& p) { return w(access(p)); },
                     [access, r = f.read](const nlohmann::json& v, T& p) { r(v, access(p)); },
-                    f.meaning});
+                    f.meaning, f.used_only_with});
   }
   return rows;
 }

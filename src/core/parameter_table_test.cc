@@ -5,6 +5,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace phdslam::params {
 namespace {
@@ -248,6 +249,86 @@ TEST(ParameterTable, StringRowRefusesTextThatIsNotUtf8) {
   EXPECT_EQ(e.loss, "gr\xc3\xbcn");
   EXPECT_EQ(ExtrasErrorOf({{"mode", "\xff"}}, e),
             R"(parameter 'mode': expected one of "fast", "exact", got "\xFF")");
+}
+
+// A table whose rows are used only in some modes: `depth` with mode "exact", `spare` unless
+// `count` is 0, `both` only when both hold.
+struct Moded {
+  std::string mode = "fast";
+  int count = 1;
+  int depth = 4;
+  int spare = 2;
+  int both = 0;
+};
+
+const ParameterTable<Moded>& ModedTable() {
+  using M = Moded;
+  static const ParameterTable<M> table({
+      StringField<M>(
+          "mode", [](auto& p) -> auto& { return p.mode; }),
+      IntField<M>(
+          "count", [](auto& p) -> auto& { return p.count; }),
+      IntField<M>(
+          "depth", [](auto& p) -> auto& { return p.depth; })
+          .Means("search depth")
+          .UsedOnlyWith("mode", {"exact", "deep"}),
+      IntField<M>(
+          "spare", [](auto& p) -> auto& { return p.spare; })
+          .UsedOnlyWithout("count", 0),
+      IntField<M>(
+          "both", [](auto& p) -> auto& { return p.both; })
+          .UsedOnlyWith("mode", {"exact"})
+          .UsedOnlyWithout("count", 0),
+  });
+  return table;
+}
+
+// The error of applying `overrides` to the defaults and checking their use ("" when none).
+std::string UseError(const nlohmann::json& overrides, Moded baseline = {}) {
+  Moded resolved = baseline;
+  try {
+    ModedTable().Apply(overrides, resolved);
+    ModedTable().RequireUsed(overrides, baseline, resolved);
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(ParameterTable, RefusesAParameterWithoutEffectInTheChosenMode) {
+  EXPECT_EQ(UseError({{"depth", 5}}),
+            "parameter 'depth' has no effect with mode=fast; it is used only with mode=exact or "
+            "deep (set that too, or drop 'depth')");
+  EXPECT_EQ(UseError({{"depth", 5}, {"mode", "deep"}}), "");
+  EXPECT_EQ(UseError({{"spare", 3}, {"count", 0}}),
+            "parameter 'spare' has no effect with count=0; it is used only with count other than "
+            "0 (set that too, or drop 'spare')");
+  EXPECT_EQ(UseError({{"spare", 3}}), "");
+  // Every condition of a row must hold.
+  EXPECT_NE(UseError({{"both", 1}, {"mode", "exact"}, {"count", 0}}).find("count other than 0"),
+            std::string::npos);
+  EXPECT_NE(UseError({{"both", 1}}).find("mode=exact"), std::string::npos);
+  EXPECT_EQ(UseError({{"both", 1}, {"mode", "exact"}}), "");
+}
+
+TEST(ParameterTable, AcceptsAParameterLeftAtItsValueInAnyMode) {
+  // The default (or the value before the overrides, e.g. a recorded configuration read back)
+  // changes nothing, so it is accepted in any mode.
+  EXPECT_EQ(UseError({{"depth", 4}}), "");
+  EXPECT_EQ(UseError(ModedTable().ToJson(Moded{})), "");
+  Moded baseline;
+  baseline.depth = 9;
+  EXPECT_EQ(UseError({{"depth", 9}}, baseline), "");
+  EXPECT_NE(UseError({{"depth", 4}}, baseline), "");
+}
+
+TEST(ParameterTable, DescribesTheModeARowIsUsedIn) {
+  const std::vector<FieldDescription> rows = ModedTable().Descriptions();
+  ASSERT_EQ(rows.size(), 5u);
+  EXPECT_EQ(rows[0].used_only_with, "");
+  EXPECT_EQ(rows[2].used_only_with, "mode=exact or deep");
+  EXPECT_EQ(rows[3].used_only_with, "count other than 0");
+  EXPECT_EQ(rows[4].used_only_with, "mode=exact and count other than 0");
 }
 
 }  // namespace

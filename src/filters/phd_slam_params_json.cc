@@ -46,10 +46,12 @@ const params::ParameterTable<PhdSlamParams>& PhdSlamParamsTable() {
               {{EssThresholdKind::kRelative, "relative"},
                {EssThresholdKind::kAbsolute, "absolute"}})
               .Means("ess_threshold as a fraction of the particle count (relative) or as a "
-                     "particle count (absolute)"),
+                     "particle count (absolute)")
+              .UsedOnlyWith("resampling", {true}),
           params::NumberField<P>(
               "ess_threshold", [](auto& p) -> auto& { return p.ess_threshold; }, AtLeast(0.0))
-              .Means("effective sample size below which the particles are resampled (0 disables)"),
+              .Means("effective sample size below which the particles are resampled (0 disables)")
+              .UsedOnlyWith("resampling", {true}),
           params::DiagonalField<P, 3>(
               "pose_regularisation", [](auto& p) -> auto& { return p.pose_regularisation; },
               AtLeast(0.0))

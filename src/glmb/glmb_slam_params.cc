@@ -60,7 +60,8 @@ const params::ParameterTable<GlmbSlamParams>& GlmbSlamParamsTable() {
            "birth_assigned_threshold", [](auto& p) -> auto& { return p.birth.assigned_threshold; },
            Probability())
            .Means("assignment probability at which a measurement counts as explained (birth_rule "
-                  "thresholded)"),
+                  "thresholded)")
+           .UsedOnlyWith("birth_rule", {"thresholded"}),
        params::EnumField<P, KernelWeight>("kernel_weight",
                                           [](auto& p) -> auto& { return p.kernel_weight; },
                                           {{KernelWeight::kMarginal, "marginal"},
@@ -106,10 +107,12 @@ const params::ParameterTable<GlmbSlamParams>& GlmbSlamParamsTable() {
            {{filters::EssThresholdKind::kRelative, "relative"},
             {filters::EssThresholdKind::kAbsolute, "absolute"}})
            .Means("ess_threshold as a fraction of the particle count (relative) or as a particle "
-                  "count (absolute)"),
+                  "count (absolute)")
+           .UsedOnlyWith("resampling", {"ess"}),
        params::NumberField<P>(
            "ess_threshold", [](auto& p) -> auto& { return p.ess_threshold; }, AtLeast(0.0))
-           .Means("effective sample size below which the particles are resampled (resampling ess)"),
+           .Means("effective sample size below which the particles are resampled (resampling ess)")
+           .UsedOnlyWith("resampling", {"ess"}),
        params::DiagonalField<P, 3>(
            "pose_regularisation", [](auto& p) -> auto& { return p.pose_regularisation; },
            AtLeast(0.0))

@@ -172,8 +172,10 @@ void EvaluateDiagnostics(const RunRecord& record, RunMetrics& m) {
     m.nis_count += static_cast<std::size_t>(d.nis_count);
   }
   const double steps = static_cast<double>(n);
-  m.ess_pct = 100.0 * ess / steps;
-  m.resampling_pct = 100.0 * resampled / steps;
+  if (record.particle_weights) {  // else left empty: no such quantity
+    m.ess_pct = 100.0 * ess / steps;
+    m.resampling_pct = 100.0 * resampled / steps;
+  }
   m.hypotheses_mean = hypotheses / steps;
   m.map_components_mean = components / steps;
 }

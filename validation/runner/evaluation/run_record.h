@@ -21,6 +21,9 @@ struct RunRecord {
   /// A posterior Cramer-Rao bound (EstimatorEntry::bound): poses are the truth and pose_covs the
   /// bound, which the evaluation reports where other runs report errors.
   bool bound = false;
+  /// False for a deterministic estimator (one that takes only --particles 1: the smoothers,
+  /// EKF-SLAM, dead reckoning): it has no particle weights, so no ESS and no resampling rate.
+  bool particle_weights = true;
 
   /// One entry per filter step k: the step's time stamp (its last one) and the estimate there.
   std::vector<double> step_times;

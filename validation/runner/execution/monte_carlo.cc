@@ -90,8 +90,22 @@ std::size_t PlannedSteps(const nlohmann::json& options) {
   return static_cast<std::size_t>(steps->get<std::int64_t>());
 }
 
+// The run's length for the parameters bounded by it: when an estimator has such parameters,
+// that of the first seed's scenario (which holds when the data fix the length, steps = 0, or
+// are shorter than --steps), else what the options fix (0: not known).
+std::size_t RunLengthForChecks(const MonteCarloPlan& plan) {
+  const bool needed =
+      std::any_of(plan.estimators.begin(), plan.estimators.end(),
+                  [](const EstimatorSelection& s) { return s.entry.bounded_by_run_length; });
+  if (!needed || plan.seeds.empty() || !plan.scenario.make) {
+    return PlannedSteps(plan.scenario.options);
+  }
+  return plan.scenario.make(plan.seeds.front()).steps.size();
+}
+
 std::map<ParameterKey, nlohmann::json> ResolveParameters(const MonteCarloPlan& plan) {
   std::map<ParameterKey, nlohmann::json> params;
+  const std::size_t run_steps = RunLengthForChecks(plan);
   for (const EstimatorSelection& s : plan.estimators) {
     for (int n : ParticlesOf(plan, s)) {
       EstimatorRequest request;
@@ -100,7 +114,7 @@ std::map<ParameterKey, nlohmann::json> ResolveParameters(const MonteCarloPlan& p
       request.overrides = s.overrides;
       request.scenario_name = plan.scenario.name;
       request.detection_probability = NominalDetectionProbability(plan.scenario.options);
-      request.steps = PlannedSteps(plan.scenario.options);
+      request.steps = run_steps;
       params[{s.entry.name, n}] = s.entry.resolved_parameters
                                       ? s.entry.resolved_parameters(request)
                                       : ApplyOverrides(nlohmann::json::object(), s.overrides,

@@ -26,6 +26,9 @@ struct EstimatorSelection {
   nlohmann::json overrides = nlohmann::json::object();
   /// Particle counts of this estimator; empty: the plan's.
   std::vector<int> particles = {};
+  /// Set when the plan runs this deterministic estimator at N = 1 although the experiment lists
+  /// other particle counts (for its other estimators), so that the run can say so.
+  bool held_at_one_particle = false;
 };
 
 struct MonteCarloPlan {

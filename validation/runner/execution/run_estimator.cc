@@ -112,6 +112,8 @@ RunRecord RunEstimator(const EstimatorEntry& entry, const EstimatorRequest& requ
   record.seed = scenario.seed;
   record.stream_seed = request.stream_seed;
   record.bound = entry.bound;
+  record.particle_weights =
+      !IsSingleParticleEstimator(entry, request.scenario_name, request.overrides);
   record.step_times.reserve(scenario.steps.size());
   for (std::size_t k = 0; k < scenario.steps.size(); ++k) {
     if (scenario.steps[k].data.times.empty()) {

@@ -69,6 +69,17 @@ RunRecord HandRecord() {
   return r;
 }
 
+// A deterministic estimator has no particle weights: its ESS and resampling rate are left
+// empty (as a bound's are), while its other step diagnostics are still averaged.
+TEST(EvaluateRun, LeavesEssAndResamplingEmptyWithoutParticleWeights) {
+  RunRecord record = HandRecord();
+  record.particle_weights = false;
+  const RunMetrics m = EvaluateRun(record, TruthScenario()).metrics;
+  EXPECT_FALSE(m.ess_pct);
+  EXPECT_FALSE(m.resampling_pct);
+  EXPECT_DOUBLE_EQ(*m.hypotheses_mean, 2.0);
+}
+
 TEST(EvaluateRun, ComputesEveryMetricAsByHand) {
   const RunEvaluation ev = EvaluateRun(HandRecord(), TruthScenario());
   const RunMetrics& m = ev.metrics;
@@ -544,6 +555,24 @@ TEST(RunEstimator, RecordsParticlesOnlyWhenAsked) {
   EXPECT_TRUE(RunEstimator(FindEstimator("odometry"),
                            EstimatorRequest{"odometry", 1, 0, s.name, {}, &context}, s, {}, true)
                   .particle_states.empty());
+}
+
+// The run of a deterministic estimator (dead reckoning: --particles 1 only) records no particle
+// weights, so its ESS and resampling rate stay empty; that of a particle filter records them.
+TEST(RunEstimator, RecordsParticleWeightsOnlyForParticleFilters) {
+  const datasets::Scenario s = TruthScenario();
+  const filters::EstimatorContext context = s.PublicContext();
+  const RunRecord odometry = RunEstimator(
+      FindEstimator("odometry"), EstimatorRequest{"odometry", 1, 0, s.name, {}, &context}, s);
+  EXPECT_FALSE(odometry.particle_weights);
+  EXPECT_FALSE(EvaluateRun(odometry, s).metrics.ess_pct);
+  EXPECT_FALSE(EvaluateRun(odometry, s).metrics.resampling_pct);
+  EstimatorEntry entry;
+  entry.name = "two";
+  entry.make_online = [](const EstimatorRequest&) { return std::make_unique<TwoParticles>(); };
+  const RunRecord two = RunEstimator(entry, EstimatorRequest{"two", 2, 0, s.name, {}, nullptr}, s);
+  EXPECT_TRUE(two.particle_weights);
+  EXPECT_TRUE(EvaluateRun(two, s).metrics.ess_pct);
 }
 
 TEST(RunEstimator, StepsAnOnlineEstimatorAndTimesEachStep) {

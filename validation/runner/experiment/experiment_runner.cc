@@ -55,8 +55,16 @@ void RunDeterministicAtOneParticle(const std::string& scenario, MonteCarloPlan& 
     any_particle_estimator = any_particle_estimator || !single.back();
   }
   if (!any_particle_estimator) return;
+  bool other_counts = false;  // a particle estimator runs with N != 1
   for (std::size_t i = 0; i < plan.estimators.size(); ++i) {
-    if (single[i]) plan.estimators[i].particles = {1};
+    const std::vector<int>& counts =
+        plan.estimators[i].particles.empty() ? plan.particles : plan.estimators[i].particles;
+    other_counts = other_counts || (!single[i] && counts != std::vector<int>{1});
+  }
+  for (std::size_t i = 0; i < plan.estimators.size(); ++i) {
+    if (!single[i]) continue;
+    plan.estimators[i].particles = {1};
+    plan.estimators[i].held_at_one_particle = other_counts;
   }
 }
 

@@ -56,6 +56,13 @@ TEST(PlanExperiment, DeterministicEstimatorsRunOnceAtOneParticleBesideParticleFi
   EXPECT_TRUE(parts[0].plan.estimators[0].particles.empty());  // phd3: the experiment's 1, 10
   EXPECT_EQ(parts[0].plan.estimators[1].particles, std::vector<int>{1});  // odometry
   EXPECT_EQ(PlanJobs(parts[0].plan).size(), 2u * 3u);
+  // The run says that odometry was held at N = 1 (its row's N is not a lost setting) ...
+  EXPECT_FALSE(parts[0].plan.estimators[0].held_at_one_particle);
+  EXPECT_TRUE(parts[0].plan.estimators[1].held_at_one_particle);
+  // ... but not when every estimator runs at N = 1 anyway.
+  x.particles = {1};
+  EXPECT_FALSE(
+      PlanExperiment(x, "/r", EstimatorTable())[0].plan.estimators[1].held_at_one_particle);
   // Alone, a deterministic estimator with another particle count is still refused.
   Experiment alone = OdometryExperiment();
   alone.particles = {5};
@@ -63,6 +70,33 @@ TEST(PlanExperiment, DeterministicEstimatorsRunOnceAtOneParticleBesideParticleFi
   MonteCarloSettings settings;
   settings.out = datasets::testing::FreshTestDir() / "alone";
   EXPECT_THROW(CheckMonteCarlo(planned[0].plan, settings), std::invalid_argument);
+}
+
+// A parameter bounded by the run's length is checked with the plan also when the data fix the
+// length (steps = 0: the synthetic scenario's 4000 steps), before any run starts.
+TEST(PlanExperiment, RunLengthBoundsAreCheckedWhenTheDataFixTheLength) {
+  bool have_window = false;
+  for (const EstimatorEntry& e : EstimatorTable()) have_window = have_window || e.name == "window";
+  if (!have_window) GTEST_SKIP() << "built without Ceres";
+  Experiment x = OdometryExperiment();
+  x.scenario = "paper-synthetic";
+  x.steps = 0;
+  x.seeds = {1};
+  x.estimators = {{"window", {{"window_length", 4001}}, {}}};
+  const std::vector<ExperimentPart> parts = PlanExperiment(x, "/r", EstimatorTable());
+  MonteCarloSettings settings;
+  settings.out = datasets::testing::FreshTestDir() / "full";
+  try {
+    CheckMonteCarlo(parts[0].plan, settings);
+    ADD_FAILURE() << "no error";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("window_length: 4001 is longer than the run (4000 steps)"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_FALSE(fs::exists(settings.out / kSummaryFile));
+  x.estimators = {{"window", {{"window_length", 4000}}, {}}};
+  EXPECT_NO_THROW(CheckMonteCarlo(PlanExperiment(x, "/r", EstimatorTable())[0].plan, settings));
 }
 
 TEST(PlanExperiment, GridsAndRunCountsBeyondTheirCapsAreRefused) {

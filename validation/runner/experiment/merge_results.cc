@@ -123,6 +123,62 @@ void CopyTruthFiles(const fs::path& input, const fs::path& out) {
   }
 }
 
+// `folder` as the real folder it names (a link to a folder resolved), without a trailing
+// separator, so that its filename names it.
+fs::path Named(const fs::path& folder) {
+  const fs::path normal = fs::weakly_canonical(fs::absolute(folder));
+  return normal.has_filename() ? normal : normal.parent_path();
+}
+
+// A folder beside `out` (on its file system, so that moving it is a rename): where the merge
+// is staged, or where `out` is moved while the staged folder takes its place.
+fs::path Beside(const fs::path& out, const std::string& role) {
+  const fs::path named = Named(out);
+  return named.parent_path() / ("." + named.filename().string() + "." + role);
+}
+
+// `to` becomes a copy of `from` made of hard links where the file system allows them (results
+// files are only ever replaced by rename, never changed in place, so the links leave `from`
+// as it was). The lock file is linked too, so that the staged folder is locked as soon as it
+// takes `from`'s place; temporary files of interrupted writes are left out.
+void MirrorFolder(const fs::path& from, const fs::path& to) {
+  fs::create_directories(to);
+  for (auto it = fs::recursive_directory_iterator(from); it != fs::recursive_directory_iterator();
+       ++it) {
+    const fs::path target = to / fs::relative(it->path(), from);
+    if (it->is_directory()) {
+      fs::create_directories(target);
+    } else if (it->path().filename() == kLockFile) {
+      std::error_code unlinked;  // without hard links the swap is only briefly unlocked
+      fs::create_hard_link(it->path(), target, unlinked);
+    } else if (it->is_regular_file() && !IsTemporary(it->path())) {
+      LinkOrCopy(it->path(), target);
+    }
+  }
+}
+
+// Puts the complete `staged` folder in the place of `out` (two renames); on failure `out` is
+// put back as it was.
+void ReplaceFolder(const fs::path& staged, const fs::path& out) {
+  const fs::path previous = Beside(out, "merge-previous");
+  fs::remove_all(previous);
+  fs::rename(Named(out), previous);
+  std::error_code ec;
+  fs::rename(staged, Named(out), ec);
+  if (ec) {
+    std::error_code restored;
+    fs::rename(previous, Named(out), restored);
+    throw std::runtime_error("merge: cannot move " + staged.string() + " to " + out.string() +
+                             ": " + ec.message());
+  }
+  fs::remove_all(previous, ec);
+}
+
+// `root`, or its sweep folder `name` (empty: the root itself).
+fs::path Under(const fs::path& root, const fs::path& name) {
+  return name.empty() ? root : root / name;
+}
+
 void RequireDistinct(const fs::path& out, const fs::path& input) {
   if (!fs::exists(input)) throw std::invalid_argument("merge: " + input.string() + " not found");
   std::error_code ec;
@@ -239,6 +295,32 @@ void CheckEveryFile(const fs::path& out, const std::vector<fs::path>& inputs) {
   if (fs::exists(out)) CheckResultsFolder(out);
 }
 
+nlohmann::json TimingJson(const std::string& started_utc,
+                          std::chrono::steady_clock::time_point start,
+                          const std::vector<fs::path>& inputs, const MergeReport& report) {
+  std::vector<std::string> sources;
+  sources.reserve(inputs.size());
+  for (const fs::path& input : inputs) sources.push_back(input.string());
+  char host[256] = {};
+  if (gethostname(host, sizeof(host) - 1) != 0) host[0] = '\0';
+  return {{"started_utc", started_utc},
+          {"wall_seconds",
+           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()},
+          {"host", std::string(host)},
+          {"merged_from", sources},
+          {"runs_copied", report.runs_copied},
+          {"runs_already_present", report.runs_already_present},
+          {"failed_runs_copied", report.failed_runs_copied}};
+}
+
+void WriteTimingFiles(const fs::path& root,
+                      const std::vector<std::pair<fs::path, std::vector<fs::path>>>& folders,
+                      const nlohmann::json& timing) {
+  for (const auto& [name, unused] : folders) {
+    WriteFileAtomically(Under(root, name) / kTimingFile, JsonFileText(timing));
+  }
+}
+
 MergeReport MergeInto(const fs::path& out, const std::vector<fs::path>& inputs) {
   const auto start = std::chrono::steady_clock::now();
   const std::string started_utc = UtcNow();
@@ -248,7 +330,8 @@ MergeReport MergeInto(const fs::path& out, const std::vector<fs::path>& inputs) 
   MergeReport report;
 
   const std::vector<ExperimentSweep> first_sweep = ReadSweepFile(inputs.front());
-  std::vector<std::pair<fs::path, std::vector<fs::path>>> folders;  // (output, inputs)
+  // (sweep folder name, empty for the root; its inputs)
+  std::vector<std::pair<fs::path, std::vector<fs::path>>> folders;
   if (!first_sweep.empty()) {
     for (const fs::path& input : inputs) {
       const std::vector<ExperimentSweep> sweep = ReadSweepFile(input);
@@ -271,7 +354,7 @@ MergeReport MergeInto(const fs::path& out, const std::vector<fs::path>& inputs) 
       for (const fs::path& input : inputs) {
         if (fs::exists(input / name / kConfigFile)) sub.push_back(input / name);
       }
-      if (!sub.empty()) folders.emplace_back(out / name, std::move(sub));
+      if (!sub.empty()) folders.emplace_back(name, std::move(sub));
     }
   } else {
     for (const fs::path& input : inputs) {
@@ -280,35 +363,32 @@ MergeReport MergeInto(const fs::path& out, const std::vector<fs::path>& inputs) 
                                     inputs.front().string() + " is not");
       }
     }
-    folders.emplace_back(out, inputs);
+    folders.emplace_back(fs::path(), inputs);
   }
 
   std::vector<FolderMerge> plans;
   plans.reserve(folders.size());
-  for (const auto& [folder, sources] : folders) plans.push_back(PlanFolderMerge(folder, sources));
-  for (const auto& [folder, sources] : folders) CheckEveryFile(folder, sources);
-  for (std::size_t i = 0; i < folders.size(); ++i) {
-    ExecuteFolderMerge(folders[i].first, folders[i].second, plans[i], report);
+  for (const auto& [name, sources] : folders) {
+    plans.push_back(PlanFolderMerge(Under(out, name), sources));
   }
-  if (!first_sweep.empty()) WriteSweepFiles(out, first_sweep);
+  for (const auto& [name, sources] : folders) CheckEveryFile(Under(out, name), sources);
 
-  std::vector<std::string> sources;
-  sources.reserve(inputs.size());
-  for (const fs::path& input : inputs) sources.push_back(input.string());
-  char host[256] = {};
-  if (gethostname(host, sizeof(host) - 1) != 0) host[0] = '\0';
-  const nlohmann::json timing = {
-      {"started_utc", started_utc},
-      {"wall_seconds",
-       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()},
-      {"host", std::string(host)},
-      {"merged_from", sources},
-      {"runs_copied", report.runs_copied},
-      {"runs_already_present", report.runs_already_present},
-      {"failed_runs_copied", report.failed_runs_copied}};
-  fs::create_directories(out);
-  for (const auto& [folder, unused] : folders) {
-    WriteFileAtomically(folder / kTimingFile, JsonFileText(timing));
+  // All or nothing: the merged folder is built beside `out` (its own files linked in, the
+  // inputs' runs added, the summaries written) and only then takes its place.
+  const fs::path staged = Beside(out, "merge-staging");
+  fs::remove_all(staged);  // left by a merge that was killed; `out` is locked, so none is running
+  try {
+    MirrorFolder(out, staged);
+    for (std::size_t i = 0; i < folders.size(); ++i) {
+      ExecuteFolderMerge(Under(staged, folders[i].first), folders[i].second, plans[i], report);
+    }
+    if (!first_sweep.empty()) WriteSweepFiles(staged, first_sweep);
+    WriteTimingFiles(staged, folders, TimingJson(started_utc, start, inputs, report));
+    ReplaceFolder(staged, out);
+  } catch (...) {
+    std::error_code ignored;
+    fs::remove_all(staged, ignored);
+    throw;
   }
   return report;
 }
@@ -321,8 +401,8 @@ MergeReport MergeResults(const fs::path& out, const std::vector<fs::path>& input
   try {
     return MergeInto(out, inputs);
   } catch (...) {
-    // A folder this merge created holds nothing but what the failed merge began: remove it, so
-    // that no half-merged folder is left behind.
+    // A folder this merge created holds nothing but its lock file (the merge was staged beside
+    // it): remove it, so that a failed merge into a new folder leaves none.
     if (new_folder) fs::remove_all(out, ec);
     throw;
   }

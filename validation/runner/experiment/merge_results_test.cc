@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <map>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -267,6 +268,56 @@ TEST(MergeResults, RefusesADamagedInputFileBeforeCopyingNamingIt) {
   WriteFileAtomically(run / kStepsFile, steps);
   EXPECT_EQ(MergeResults(base / "m5", {base / "a"}).runs_copied, 2u);
   ExpectSameResults(base / "a", base / "m5");
+}
+
+// Every file under `root` with its content, for checking that a folder was left as it was.
+std::map<fs::path, std::string> Contents(const fs::path& root) {
+  std::map<fs::path, std::string> files;
+  for (const auto& entry : fs::recursive_directory_iterator(root)) {
+    if (entry.is_regular_file())
+      files[fs::relative(entry.path(), root)] = ReadTextFile(entry.path());
+  }
+  return files;
+}
+
+// The merge is staged beside the output: nothing of it is left there, whether it succeeds or
+// fails, and a failure after every input file was checked (here: copying a truth file that is
+// a folder) leaves an existing output as it was and no new one.
+TEST(MergeResults, IsAllOrNothingStagedBesideTheOutput) {
+  const fs::path base = datasets::testing::FreshTestDir();
+  Experiment x = SmallExperiment();
+  x.estimators = {{"odometry", nlohmann::json::object(), {}}};
+  x.seeds = {1};
+  RunExperiment(x, Quiet(base / "a"));
+  x.seeds = {2};
+  RunExperiment(x, Quiet(base / "b"));
+  const fs::path truth_map = base / "b" / kTruthFolder / "seed-2" / kTruthMapFile;
+  ASSERT_TRUE(fs::is_regular_file(truth_map));
+
+  MergeResults(base / "out" / "merged", {base / "a"});
+  const std::map<fs::path, std::string> before = Contents(base / "out" / "merged");
+  fs::remove(truth_map);
+  fs::create_directories(truth_map);
+  EXPECT_THROW(MergeResults(base / "out" / "merged", {base / "b"}), std::runtime_error);
+  EXPECT_EQ(Contents(base / "out" / "merged"), before);
+  EXPECT_THROW(MergeResults(base / "out" / "new", {base / "b"}), std::runtime_error);
+  EXPECT_FALSE(fs::exists(base / "out" / "new"));
+  std::vector<fs::path> beside;
+  for (const auto& entry : fs::directory_iterator(base / "out")) beside.push_back(entry.path());
+  EXPECT_EQ(beside, std::vector<fs::path>{base / "out" / "merged"});
+
+  fs::remove(truth_map);
+  fs::copy_file(base / "a" / kTruthFolder / "seed-1" / kTruthMapFile, truth_map);
+  const MergeReport report = MergeResults(base / "out" / "merged/", {base / "b"});
+  EXPECT_EQ(report.runs_copied, 1u);
+  EXPECT_EQ(report.runs_already_present, 0u);
+  EXPECT_TRUE(fs::exists(RunFolder(base / "out" / "merged", "odometry", 1, 1) / kMetricsFile));
+  EXPECT_TRUE(fs::exists(RunFolder(base / "out" / "merged", "odometry", 1, 2) / kMetricsFile));
+  EXPECT_NE(ReadTextFile(base / "out" / "merged" / kSummaryFile).find("odometry,1,2,"),
+            std::string::npos);
+  beside.clear();
+  for (const auto& entry : fs::directory_iterator(base / "out")) beside.push_back(entry.path());
+  EXPECT_EQ(beside, std::vector<fs::path>{base / "out" / "merged"});
 }
 
 TEST(MergeResults, AFinishedRunReplacesAFailedOne) {

@@ -147,6 +147,9 @@ std::optional<std::size_t> CsvTable::FindColumn(std::string_view name) const {
 
 CsvTable ParseCsv(std::string_view text, const std::string& source) {
   CsvTable table;
+  // A byte-order mark (some editors write one) is not part of the first column's name, as the
+  // experiment files and the report's reader take it.
+  if (text.starts_with("\xEF\xBB\xBF")) text.remove_prefix(3);
   std::size_t line_number = 0;
   std::size_t start = 0;
   while (start < text.size()) {

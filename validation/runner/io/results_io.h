@@ -62,8 +62,9 @@ struct CsvTable {
   [[nodiscard]] std::optional<std::size_t> FindColumn(std::string_view name) const;
 };
 
-/// Parses CsvRow text (no quoting). Throws std::runtime_error naming `source` and the line when
-/// the text has no header or a row has another number of cells than the header.
+/// Parses CsvRow text (no quoting; a leading UTF-8 byte-order mark is skipped). Throws
+/// std::runtime_error naming `source` and the line when the text has no header or a row has
+/// another number of cells than the header.
 CsvTable ParseCsv(std::string_view text, const std::string& source);
 
 /// ParseCsv of a file's content.

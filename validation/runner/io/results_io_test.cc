@@ -98,6 +98,16 @@ TEST(WriteFileAtomically, ReportsAMissingFolder) {
   EXPECT_THROW(ReadTextFile(dir / "missing.txt"), std::runtime_error);
 }
 
+// A byte-order mark before the header is skipped: the first column keeps its name.
+TEST(ParseCsv, SkipsAByteOrderMark) {
+  const CsvTable t = ParseCsv(
+      "\xEF\xBB\xBF"
+      "estimator,seed\nphd3,1\n",
+      "t.csv");
+  EXPECT_EQ(t.FindColumn("estimator"), std::optional<std::size_t>(0));
+  EXPECT_EQ(t.rows.size(), 1u);
+}
+
 TEST(ParseCsv, ReadsHeaderAndRowsAndFindsColumns) {
   const CsvTable t = ParseCsv("a,b,c\n1,,3\r\n4,5,6\n\n", "t.csv");
   EXPECT_EQ(t.header, std::vector<std::string>({"a", "b", "c"}));

@@ -12,8 +12,10 @@ nlohmann::json DefaultParameters(const EstimatorEntry& entry) {
 }
 
 std::string ParameterLine(const EstimatorParameter& p, const std::string& indent) {
+  const std::string use =
+      p.used_only_with.empty() ? "" : " [used only with " + p.used_only_with + "]";
   return indent + p.key + " = " + p.default_value.dump() + " (" + p.accepted + "): " + p.meaning +
-         "\n";
+         use + "\n";
 }
 
 }  // namespace
@@ -24,8 +26,8 @@ std::vector<EstimatorParameter> EstimatorParameters(const EstimatorEntry& entry)
   out.reserve(entry.parameters.size());
   for (const params::FieldDescription& row : entry.parameters) {
     const auto it = defaults.find(row.key);
-    out.push_back(
-        {row.key, it == defaults.end() ? nlohmann::json(nullptr) : *it, row.accepted, row.meaning});
+    out.push_back({row.key, it == defaults.end() ? nlohmann::json(nullptr) : *it, row.accepted,
+                   row.meaning, row.used_only_with});
   }
   return out;
 }

@@ -37,8 +37,9 @@ struct EstimatorRequest {
   /// The public part of the run's scenario; null while parameters are resolved (before any
   /// scenario is built).
   const filters::EstimatorContext* context = nullptr;
-  /// Number of filter steps of the run's scenario; 0 while parameters are resolved (estimators
-  /// whose parameters are bounded by the run's length check them when they are built).
+  /// Number of filter steps of the run's scenario; 0 when not known (`phdslam list`). The plan
+  /// sets it for the entries bounded_by_run_length, which check those bounds then, and when
+  /// they are built.
   std::size_t steps = 0;
   /// The scenario's nominal detection probability (NominalDetectionProbability of its resolved
   /// options); scenario defaults derive from it (scenario_defaults.h). Unset: none derived.
@@ -69,6 +70,11 @@ struct EstimatorEntry {
   /// parameter, a wrongly typed value or an unsupported particle count. Called when a run is
   /// planned, so bad requests fail before any run starts.
   std::function<nlohmann::json(const EstimatorRequest&)> resolved_parameters;
+  /// Set when a parameter is bounded by the run's length (window_length, solve_every,
+  /// incremental_chunk_steps): the plan then gives resolved_parameters the length of the run,
+  /// taken from the scenario when the data fix it (steps = 0), so that a bound is checked before
+  /// any run or sweep point starts.
+  bool bounded_by_run_length = false;
   /// The rows of the table that resolved_parameters reads `--set` with (key, accepted values,
   /// meaning), for `phdslam list` (estimator_parameter_list.h); empty: no parameters.
   std::vector<params::FieldDescription> parameters;
@@ -139,7 +145,9 @@ Params ResolveParameters(const EstimatorRequest& request,
     table.Apply(ScenarioParameterDefaults(request.scenario_name, request.name,
                                           request.detection_probability),
                 defaults);
+    const Params baseline = defaults;
     table.Apply(request.overrides, defaults);
+    table.RequireUsed(request.overrides, baseline, defaults);
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument("estimator '" + request.name + "': " + e.what());
   }

@@ -318,6 +318,68 @@ TEST(ReferenceEstimators, IncrementalSettingsNeedTheIncrementalInitialisation) {
   EXPECT_EQ(ResolveError("smoother-known", {{"start_particles", 10}, {"start_from", "phd3"}}), "");
 }
 
+// One rule for every estimator: a parameter that has no effect in the chosen mode is refused,
+// naming the mode that would use it; at its default, or with that mode, it is accepted.
+TEST(EstimatorRegistry, ParametersWithoutEffectInTheChosenModeAreRefused) {
+  struct Case {
+    std::string estimator;
+    nlohmann::json overrides;
+    std::string mode;  // the mode the error names
+    nlohmann::json with_mode;
+  };
+  const std::vector<Case> cases = {
+      {"phd3",
+       {{"resampling", false}, {"ess_threshold", 0.5}},
+       "resampling=true",
+       {{"resampling", true}, {"ess_threshold", 0.5}}},
+      {"phd1",
+       {{"resampling", false}, {"ess_threshold_kind", "absolute"}},
+       "resampling=true",
+       {{"ess_threshold_kind", "absolute"}}},
+      {"oracle",
+       {{"resampling", false}, {"ess_threshold", 0.9}},
+       "resampling=true",
+       {{"ess_threshold", 0.9}}},
+      {"glmb2",
+       {{"resampling", "every-step"}, {"ess_threshold", 0.4}},
+       "resampling=ess",
+       {{"resampling", "ess"}, {"ess_threshold", 0.4}}},
+      {"glmb2",
+       {{"birth_rule", "continuous"}, {"birth_assigned_threshold", 0.6}},
+       "birth_rule=thresholded",
+       {{"birth_rule", "thresholded"}, {"birth_assigned_threshold", 0.6}}},
+      {"pcrb",
+       {{"gate_sigma", 4.0}},
+       "detection_model=irf",
+       {{"detection_model", "irf"}, {"gate_sigma", 4.0}}},
+      {"pcrb-smoother",
+       {{"irf_samples", 5000}},
+       "detection_model=irf",
+       {{"detection_model", "irf"}, {"irf_samples", 5000}}},
+  };
+  for (const Case& c : cases) {
+    const std::string error = ResolveError(c.estimator, c.overrides);
+    EXPECT_NE(error.find("has no effect with"), std::string::npos) << c.estimator << ": " << error;
+    EXPECT_NE(error.find("it is used only with " + c.mode), std::string::npos)
+        << c.estimator << ": " << error;
+    EXPECT_EQ(ResolveError(c.estimator, c.with_mode), "") << c.estimator;
+  }
+  // The resolved parameters read back as overrides change nothing, so they are accepted.
+  EstimatorRequest request;
+  request.name = "phd3";
+  request.scenario_name = "generated";
+  request.overrides = {{"resampling", false}};
+  request.overrides = FindEstimator("phd3").resolved_parameters(request);
+  request.overrides.erase("particles");
+  EXPECT_NO_THROW(FindEstimator("phd3").resolved_parameters(request));
+  if (Registered("mrpt-ekf")) {
+    EXPECT_NE(ResolveError("mrpt-ekf", {{"prune_after_steps", 0}, {"prune_min_associations", 3}})
+                  .find("used only with prune_after_steps other than 0"),
+              std::string::npos);
+    EXPECT_EQ(ResolveError("mrpt-ekf", {{"prune_min_associations", 3}}), "");
+  }
+}
+
 // The fixed-lag smoother's run-length bounds are checked when the plan knows the run's length.
 TEST(ReferenceEstimators, WindowBoundsAreCheckedWithThePlannedSteps) {
   if (!Registered("window")) GTEST_SKIP() << "built without Ceres";

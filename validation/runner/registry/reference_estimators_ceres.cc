@@ -1,6 +1,7 @@
 // Registry entries of the Ceres batch smoother (built only when phdslam_reference_ceres exists).
 #include <memory>
 #include <stdexcept>
+#include <string>
 #include <utility>
 
 #include "oracle/oracle_rbpf.h"
@@ -17,30 +18,19 @@
 namespace phdslam::validation {
 namespace {
 
-// The incremental solve's settings (incremental_*: chunk length, re-localisation, static-point
-// check, ...) change nothing with initialisation=batch, nor start_particles without
-// start_from=phd3: one given a value other than its default is refused, naming the mode that
-// would use it, rather than recorded in config.json as if used.
-void RequireUsedInMode(const EstimatorRequest& r, const reference::SmootherOptions& o) {
-  const nlohmann::json defaults = reference::ToJson(reference::SmootherOptions{});
-  // start_particles sizes the PHD-SLAM 3.0 run of start_from=phd3, which no other start makes.
-  if (o.start_from != reference::StartTrajectory::kPhd3 &&
-      r.overrides.contains("start_particles") &&
-      r.overrides.at("start_particles") != defaults.at("start_particles")) {
-    throw std::invalid_argument("estimator '" + r.name +
-                                "': parameter 'start_particles' has no effect with "
-                                "start_from=dead-reckoning; it is used only with start_from=phd3");
+// `run_steps` (r.steps, 0 when not known) bounds incremental_chunk_steps given as an override:
+// a chunk longer than the run would leave a single solve at its end (the default chunk is
+// simply the whole of a shorter run).
+void RequireChunkWithinRun(const EstimatorRequest& r, const reference::SmootherOptions& o) {
+  if (r.steps == 0 || o.initialisation != reference::SmootherInitialisation::kIncremental ||
+      !r.overrides.contains("incremental_chunk_steps") ||
+      static_cast<std::size_t>(o.incremental_chunk_steps) <= r.steps) {
+    return;
   }
-  if (o.initialisation == reference::SmootherInitialisation::kIncremental) return;
-  for (const auto& [key, value] : r.overrides.items()) {
-    if (key.rfind("incremental_", 0) != 0 || (defaults.contains(key) && defaults[key] == value)) {
-      continue;
-    }
-    throw std::invalid_argument("estimator '" + r.name + "': parameter '" + key +
-                                "' has no effect with initialisation=batch; it is used only with "
-                                "initialisation=incremental (set that too, or drop '" +
-                                key + "')");
-  }
+  throw std::invalid_argument("estimator '" + r.name + "': parameter 'incremental_chunk_steps': " +
+                              std::to_string(o.incremental_chunk_steps) +
+                              " is longer than the run (" + std::to_string(r.steps) +
+                              " steps): the graph would be solved only once, at its end");
 }
 
 // The association mode is fixed by the name: the table accepts an `association` override only
@@ -65,7 +55,7 @@ reference::SmootherOptions ResolveSmoother(const EstimatorRequest& r,
     throw std::invalid_argument("estimator '" + r.name + "': " + e.what());
   }
   if (mode == reference::AssociationMode::kKnown) RequireKnownOrigins(r);
-  RequireUsedInMode(r, o);
+  RequireChunkWithinRun(r, o);
   return o;
 }
 
@@ -75,6 +65,7 @@ EstimatorEntry SmootherEntry(const std::string& name, reference::AssociationMode
   e.name = name;
   e.description = description;
   e.batch = true;
+  e.bounded_by_run_length = true;  // incremental_chunk_steps
   e.reads_truth = mode == reference::AssociationMode::kKnown;
   e.parameters = reference::SmootherOptionsTable().Descriptions();
   e.resolved_parameters = [mode](const EstimatorRequest& r) {
@@ -130,6 +121,7 @@ EstimatorEntry WindowEntry(const std::string& name, bool known, const std::strin
   e.name = name;
   e.description = description;
   e.reads_truth = known;
+  e.bounded_by_run_length = true;  // window_length, solve_every
   e.parameters = reference::WindowParamsTable().Descriptions();
   // The run's length, when the plan knows it (--steps), checks the overrides now, before any
   // run starts; the recorded parameters are those without it (the default window is shortened
