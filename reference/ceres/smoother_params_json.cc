@@ -65,6 +65,17 @@ const params::ParameterTable<SmootherOptions>& SmootherOptionsTable() {
           [](auto& o) -> auto& { return o.incremental_marginals_without_collapsed; })
           .Means("incremental, own association: when the marginal covariances fail, compute them "
                  "again without collapsed landmarks"),
+      params::EnumField<O, ScanAssignment>(
+          "incremental_assignment", [](auto& o) -> auto& { return o.incremental_assignment; },
+          {{ScanAssignment::kNearestNeighbour, "nearest_neighbour"},
+           {ScanAssignment::kJointCompatibility, "jcbb"}})
+          .Means("incremental, own association: each scan's gated pairs by greedy nearest "
+                 "neighbour or by joint compatibility branch and bound (jcbb)"),
+      params::IntField<O>(
+          "incremental_jcbb_max_nodes",
+          [](auto& o) -> auto& { return o.incremental_jcbb_max_nodes; }, AtLeast(1))
+          .Means("incremental, jcbb: joint compatibility tests per scan before the search keeps "
+                 "its best"),
       params::BoolField<O>(
           "incremental_skip_ambiguous",
           [](auto& o) -> auto& { return o.incremental_skip_ambiguous; })
@@ -217,6 +228,16 @@ const params::ParameterTable<SmootherOptions>& SmootherOptionsTable() {
                                        {StartPath::kBestParticlePath, "best-particle-path"}})
           .Means("with start_from phd3: that run's per-step estimates or its best final particle's "
                  "path"),
+      params::EnumField<O, PosteriorMapPrior>(
+          "posterior_map_prior", [](auto& o) -> auto& { return o.posterior.map_prior; },
+          {{PosteriorMapPrior::kPoissonBirth, "poisson_birth"}, {PosteriorMapPrior::kFlat, "flat"}})
+          .Means("map prior of the reported neg_log_posterior: a Poisson birth term per landmark "
+                 "(poisson_birth) or none (flat, the score of earlier versions)"),
+      params::NumberField<O>(
+          "posterior_birth_log_weight",
+          [](auto& o) -> auto& { return o.posterior.birth_log_weight; })
+          .Means("poisson_birth: log of the birth intensity each landmark pays in "
+                 "neg_log_posterior (the RFS filters' birth log-weight, ln 1e-6)"),
   });
   return table;
 }
