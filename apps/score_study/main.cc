@@ -7,6 +7,7 @@
 // prior (docs/algorithms/ceres-smoother.md, "The score of a solution").
 //
 //   phdslam_score_study SCENARIO FIRST_SEED LAST_SEED [steps=N] [key=value ...]  (scenario options)
+#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -15,6 +16,7 @@
 #include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <numbers>
 #include <random>
 #include <set>
 #include <string>
@@ -31,11 +33,25 @@ using phdslam::Landmark;
 using phdslam::datasets::Scenario;
 using Labels = std::vector<std::vector<int>>;
 
-// The hidden origins as labels, every unknown origin as clutter (-1).
+// The hidden origins as labels, every unknown origin as clutter (-1). A label whose squared
+// whitened residual at the true pose and landmark exceeds the known mode's known_outlier_chi2
+// (a misread barcode on real data) is clutter too, as smoother-known screens it.
 Labels TrueLabels(const Scenario& s) {
+  const double chi2 = phdslam::reference::SmootherOptions{}.known_outlier_chi2;
+  const Eigen::Matrix2d r_inv = s.sensor.noise_cov.inverse();
   Labels labels(s.steps.size());
   for (std::size_t k = 0; k < s.steps.size(); ++k) {
-    for (int origin : s.steps[k].origin) labels[k].push_back(std::max(origin, -1));
+    for (std::size_t j = 0; j < s.steps[k].origin.size(); ++j) {
+      int l = std::max(s.steps[k].origin[j], -1);
+      if (l >= 0 && static_cast<std::size_t>(l) < s.truth.landmarks.size()) {
+        Eigen::Vector2d v = s.steps[k].data.measurements[j] -
+                            phdslam::models::PredictMeasurement(
+                                s.truth.poses[k], s.truth.landmarks[static_cast<std::size_t>(l)]);
+        v(1) = std::remainder(v(1), 2.0 * std::numbers::pi);
+        if (v.dot(r_inv * v) > chi2) l = -1;
+      }
+      labels[k].push_back(l);
+    }
   }
   return labels;
 }

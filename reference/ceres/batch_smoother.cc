@@ -179,6 +179,8 @@ void SmootherOptions::Validate() const {
   require(incremental_active_steps >= 0, "incremental_active_steps: expected >= 0");
   require(gate_chi2 > 0.0, "gate_chi2: expected > 0");
   require(incremental_jcbb_max_nodes >= 1, "incremental_jcbb_max_nodes: expected >= 1");
+  require(incremental_jcbb_null_intensity >= 0.0,
+          "incremental_jcbb_null_intensity: expected >= 0 (0: the most pairs)");
   require(incremental_new_landmark_intensity >= 0.0,
           "incremental_new_landmark_intensity: expected >= 0");
   require(incremental_static_point_chi2 >= 0.0,
@@ -386,6 +388,7 @@ datasets::BatchResult BatchSmoother::Solve(const datasets::Scenario& scenario) {
         io.gate.new_landmark_intensity = options_.incremental_new_landmark_intensity;
         io.gate.assignment = options_.incremental_assignment;
         io.gate.jcbb_max_nodes = options_.incremental_jcbb_max_nodes;
+        io.gate.jcbb_null_intensity = options_.incremental_jcbb_null_intensity;
         io.static_point_chi2 = options_.incremental_static_point_chi2;
         io.static_point_heading_std = options_.incremental_static_point_heading_std;
         io.static_point_failures = options_.incremental_static_point_failures;

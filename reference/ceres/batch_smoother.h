@@ -102,6 +102,9 @@ struct SmootherOptions {
   /// (joint_compatibility.h).
   ScanAssignment incremental_assignment = ScanAssignment::kNearestNeighbour;
   int incremental_jcbb_max_nodes = 20000;  ///< joint compatibility tests per scan (>= 1)
+  /// jcbb: 0 takes the most jointly compatible pairs; > 0 the assignment of the highest
+  /// likelihood, each measurement left out weighed by this intensity (per m per rad).
+  double incremental_jcbb_null_intensity = 0.0;
   /// Incremental solve, own association: a landmark whose detection, carried to its first one by
   /// the odometry between them, is farther from it than this chi-square (2 dof) is deleted as a
   /// moving object (README.md, "Moving objects"); 0 turns the test off.

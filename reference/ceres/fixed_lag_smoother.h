@@ -49,6 +49,9 @@ struct WindowParams {
   /// first, then the rest against tentative ones.
   ScanAssignment assignment = ScanAssignment::kNearestNeighbour;
   int jcbb_max_nodes = 20000;  ///< joint compatibility tests per scan and landmark set (>= 1)
+  /// jcbb: 0 takes the most jointly compatible pairs; > 0 the most likely assignment, a
+  /// measurement left out weighed by this intensity (per m per rad).
+  double jcbb_null_intensity = 0.0;
   /// A tentative landmark is confirmed once this many scans have associated with it (its first
   /// detection included) ...
   int confirm_detections = 5;

@@ -2,9 +2,11 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
+#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <stdexcept>
 #include <string>
 
@@ -16,6 +18,16 @@ namespace {
 
 using Mat23 = Eigen::Matrix<double, 2, 3>;
 
+// pD is held above this in the likelihood objective, so that a landmark estimated just outside
+// the field of view stays a finite alternative.
+constexpr double kMinDetectionProbability = 1e-3;
+
+// 1/2 nu^T S^-1 nu and 1/2 log det(2 pi S) of a joint innovation.
+struct JointEval {
+  double d2 = std::numeric_limits<double>::infinity();
+  double half_log_det = 0.0;
+};
+
 // One candidate pair, linearised at the pose and the landmark's mean.
 struct LinearPair {
   int measurement = 0;
@@ -25,6 +37,7 @@ struct LinearPair {
   Mat23 hx = Mat23::Zero();
   Mat2 own = Mat2::Zero();         ///< Hm Pm Hm^T + R
   Mat23 hm_cross = Mat23::Zero();  ///< Hm C: the landmark's correlation with the pose
+  double log_pd = 0.0;             ///< log pD of the landmark at the pose
 };
 
 LinearPair Linearise(const Pose& pose, const MapLandmark& m, const Measurement& z, const Mat2& r,
@@ -38,23 +51,32 @@ LinearPair Linearise(const Pose& pose, const MapLandmark& m, const Measurement& 
   out.hx = p.j.hx;
   out.own = p.j.hm * m.cov * p.j.hm.transpose() + r;
   out.hm_cross = p.j.hm * m.pose_cross;
+  out.log_pd = std::log(std::clamp(m.detection_probability, kMinDetectionProbability, 1.0));
   return out;
 }
 
 class JcbbSearch {
  public:
   JcbbSearch(std::vector<std::vector<LinearPair>> candidates, const Mat3& pose_cov,
-             std::size_t landmarks, const JointCompatibilityOptions& options)
+             std::size_t landmarks, const Mat2& r, const JointCompatibilityOptions& options)
       : candidates_(std::move(candidates)),
         pose_cov_(pose_cov),
         used_(landmarks, false),
         max_nodes_(options.max_nodes),
-        tail_(std::exp(-0.5 * options.gate_chi2)) {
+        tail_(std::exp(-0.5 * options.gate_chi2)),
+        likelihood_(options.null_intensity > 0.0),
+        null_cost_(likelihood_ ? -std::log(options.null_intensity) : 0.0) {
+    // The cheapest a measurement can cost: a pair costs at least 1/2 log det(2 pi R) (its
+    // conditional innovation covariance is at least R, the squared distance at least 0, pD at
+    // most 1).
+    const double pair_floor = 0.5 * std::log((2.0 * std::numbers::pi * r).determinant());
+    reachable_.assign(candidates_.size() + 1, 0);
+    cost_floor_.assign(candidates_.size() + 1, 0.0);
     for (std::size_t j = candidates_.size(); j-- > 0;) {
-      reachable_.insert(reachable_.begin(), (reachable_.empty() ? 0 : reachable_.front()) +
-                                                (candidates_[j].empty() ? 0 : 1));
+      const bool has = !candidates_[j].empty();
+      reachable_[j] = reachable_[j + 1] + (has ? 1 : 0);
+      cost_floor_[j] = cost_floor_[j + 1] + (has ? std::min(null_cost_, pair_floor) : null_cost_);
     }
-    reachable_.push_back(0);
   }
 
   // The best assignment: per entry of `candidates`, the chosen pair's index or -1.
@@ -69,18 +91,21 @@ class JcbbSearch {
   void Visit(std::size_t j) {
     const int pairs = static_cast<int>(stack_.size());
     if (j == candidates_.size()) {
-      if (pairs > best_pairs_ || (pairs == best_pairs_ && joint_d2_ < best_d2_)) {
+      if (Better(pairs)) {
         best_pairs_ = pairs;
         best_d2_ = joint_d2_;
+        best_cost_ = Cost();
         best_choice_ = choice_;
       }
       return;
     }
-    if (pairs + reachable_[j] < best_pairs_) return;
+    if (CutAt(j, pairs)) return;
     for (std::size_t c = 0; c < candidates_[j].size(); ++c) {
       const LinearPair& p = candidates_[j][c];
       if (used_[static_cast<std::size_t>(p.landmark)]) continue;
       const double before = joint_d2_;
+      const double before_pair_cost = pair_cost_;
+      const double before_log_pd = log_pd_sum_;
       if (!TryPush(&p)) continue;
       used_[static_cast<std::size_t>(p.landmark)] = true;
       choice_[j] = static_cast<int>(c);
@@ -89,8 +114,27 @@ class JcbbSearch {
       used_[static_cast<std::size_t>(p.landmark)] = false;
       stack_.pop_back();
       joint_d2_ = before;
+      pair_cost_ = before_pair_cost;
+      log_pd_sum_ = before_log_pd;
     }
-    if (pairs + reachable_[j + 1] >= best_pairs_) Visit(j + 1);  // clutter or a new landmark
+    ++nulls_;  // clutter or a new landmark
+    if (!CutAt(j + 1, pairs)) Visit(j + 1);
+    --nulls_;
+  }
+
+  // The likelihood objective: -log of the pairs' joint likelihood, pD included, and of the null
+  // intensity of each measurement left out.
+  [[nodiscard]] double Cost() const { return pair_cost_ + nulls_ * null_cost_; }
+
+  [[nodiscard]] bool Better(int pairs) const {
+    if (likelihood_) return Cost() < best_cost_;
+    return pairs > best_pairs_ || (pairs == best_pairs_ && joint_d2_ < best_d2_);
+  }
+
+  // Whether no completion of the branch from measurement j on can beat the best.
+  [[nodiscard]] bool CutAt(std::size_t j, int pairs) const {
+    if (likelihood_) return Cost() + cost_floor_[j] >= best_cost_;
+    return pairs + reachable_[j] < best_pairs_;
   }
 
   // Adds `p` to the stack when the pairs stay jointly compatible.
@@ -98,16 +142,18 @@ class JcbbSearch {
     if (nodes_ >= max_nodes_) return false;
     ++nodes_;
     stack_.push_back(p);
-    const double d2 = JointD2();
-    if (std::isfinite(d2) && d2 < Threshold(stack_.size())) {
-      joint_d2_ = d2;
+    const JointEval e = Evaluate();
+    if (std::isfinite(e.d2) && e.d2 < Threshold(stack_.size())) {
+      joint_d2_ = e.d2;
+      log_pd_sum_ += p->log_pd;
+      pair_cost_ = 0.5 * e.d2 + e.half_log_det - log_pd_sum_;
       return true;
     }
     stack_.pop_back();
     return false;
   }
 
-  double JointD2() const {
+  JointEval Evaluate() const {
     const auto n = static_cast<Eigen::Index>(2 * stack_.size());
     Eigen::MatrixXd s(n, n);
     Eigen::VectorXd nu(n);
@@ -129,8 +175,13 @@ class JcbbSearch {
       }
     }
     const Eigen::LLT<Eigen::MatrixXd> llt(s);
-    if (llt.info() != Eigen::Success) return std::numeric_limits<double>::infinity();
-    return nu.dot(llt.solve(nu));
+    JointEval e;
+    if (llt.info() != Eigen::Success) return e;
+    e.d2 = nu.dot(llt.solve(nu));
+    const Eigen::VectorXd diagonal = llt.matrixL().toDenseMatrix().diagonal();
+    e.half_log_det = diagonal.array().log().sum() +
+                     0.5 * static_cast<double>(n) * std::log(2.0 * std::numbers::pi);
+    return e;
   }
 
   double Threshold(std::size_t pairs) {
@@ -146,12 +197,19 @@ class JcbbSearch {
   std::vector<bool> used_;
   int max_nodes_;
   double tail_;
-  std::vector<int> reachable_;  ///< measurements from j on that have a candidate
+  bool likelihood_;
+  double null_cost_;                ///< -log of the null intensity (likelihood objective)
+  std::vector<int> reachable_;      ///< measurements from j on that have a candidate
+  std::vector<double> cost_floor_;  ///< the least cost of measurements j on
   std::vector<double> thresholds_;
   std::vector<const LinearPair*> stack_;
   std::vector<int> choice_;
   std::vector<int> best_choice_;
   double joint_d2_ = 0.0;
+  double pair_cost_ = 0.0;
+  double log_pd_sum_ = 0.0;
+  int nulls_ = 0;
+  double best_cost_ = std::numeric_limits<double>::infinity();
   int best_pairs_ = 0;
   double best_d2_ = std::numeric_limits<double>::infinity();
   int nodes_ = 0;
@@ -202,6 +260,9 @@ ScanAssociation JointCompatibleAssociation(const Pose& pose, const Mat3& pose_co
   if (options.max_nodes < 1) {
     throw std::invalid_argument("JointCompatibilityOptions.max_nodes: expected >= 1");
   }
+  if (!(options.null_intensity >= 0.0)) {
+    throw std::invalid_argument("JointCompatibilityOptions.null_intensity: expected >= 0");
+  }
   std::vector<std::vector<LinearPair>> candidates(scan.size());
   for (const GatedPair& g : pairs) {
     const auto j = static_cast<std::size_t>(g.measurement);
@@ -219,7 +280,7 @@ ScanAssociation JointCompatibleAssociation(const Pose& pose, const Mat3& pose_co
   out.gated.assign(scan.size(), 0);
   for (std::size_t j = 0; j < scan.size(); ++j)
     out.gated[j] = static_cast<int>(candidates[j].size());
-  const std::vector<int> choice = JcbbSearch(candidates, pose_cov, map.size(), options).Run();
+  const std::vector<int> choice = JcbbSearch(candidates, pose_cov, map.size(), r, options).Run();
   for (std::size_t j = 0; j < scan.size(); ++j) {
     if (choice[j] < 0) continue;
     const LinearPair& p = candidates[j][static_cast<std::size_t>(choice[j])];

@@ -14,6 +14,11 @@
 //   increasing individual distance, then the null alternative; a branch that cannot reach the best
 //   pair count is cut. At most max_nodes joint tests; past the limit every open branch takes the
 //   null alternative, and the best complete assignment found is returned.
+// * Likelihood objective (null_intensity > 0): instead of the most pairs, the least
+//   -log [N(nu; 0, S) prod_pairs pD] - (measurements left out) log null_intensity, the same
+//   likelihood the RFS filters weigh an association by (a pair against clutter or a new landmark
+//   of that intensity); a branch is cut when its cost plus the least each remaining measurement
+//   can add (the null cost, or 1/2 log det(2 pi R) for a pair) reaches the best.
 #pragma once
 
 #include <vector>
@@ -33,10 +38,15 @@ struct GatedPair {
 struct JointCompatibilityOptions {
   double gate_chi2 = 13.8;  ///< the individual gate (2 dof); sets the joint test's tail probability
   int max_nodes = 20000;    ///< joint compatibility tests per scan before the search stops
+  /// 0: the most pairs (classic JCBB). > 0: the jointly compatible assignment of the least cost
+  /// -log L, L = N(nu; 0, S) prod pD over the pairs times this intensity (per m per rad of
+  /// measurement space: clutter or a new landmark) for each measurement left out.
+  double null_intensity = 0.0;
 };
 
 /// The JCBB assignment of `scan` over the candidate `pairs`. ScanAssociation::gated counts each
-/// measurement's candidates. Throws std::invalid_argument when gate_chi2 <= 0 or max_nodes < 1.
+/// measurement's candidates. Throws std::invalid_argument when gate_chi2 <= 0, max_nodes < 1 or
+/// null_intensity < 0.
 ScanAssociation JointCompatibleAssociation(const Pose& pose, const Mat3& pose_cov,
                                            const std::vector<MapLandmark>& map,
                                            const std::vector<Measurement>& scan, const Mat2& r,

@@ -78,6 +78,24 @@ TEST(JointCompatibility, AtTheNodeLimitTheBestCompleteAssignmentFoundIsReturned)
                std::invalid_argument);
 }
 
+TEST(JointCompatibility, TheLikelihoodObjectiveWeighsEachPairAgainstTheNullIntensity) {
+  const CloseLandmarksInClutter s;
+  ScanAssociationOptions o;
+  o.assignment = ScanAssignment::kJointCompatibility;
+  // A low null intensity: the two jointly compatible pairs are likelier than clutter.
+  o.jcbb_null_intensity = 1e-3;
+  EXPECT_EQ(AssociateScan(s.estimate, s.pose_cov, s.map, s.scan, SensorNoise(), o).landmark,
+            (std::vector<int>{0, 1, kUnassociated}));
+  // A null intensity above the pairs' likelihood (its density is at most 1 / (2 pi sqrt det S),
+  // about 16 per m per rad under this pose covariance): every measurement is left out.
+  o.jcbb_null_intensity = 1e3;
+  EXPECT_EQ(AssociateScan(s.estimate, s.pose_cov, s.map, s.scan, SensorNoise(), o).landmark,
+            (std::vector<int>{kUnassociated, kUnassociated, kUnassociated}));
+  o.jcbb_null_intensity = -1.0;
+  EXPECT_THROW(AssociateScan(s.estimate, s.pose_cov, s.map, s.scan, SensorNoise(), o),
+               std::invalid_argument);
+}
+
 TEST(JointCompatibility, ChiSquareQuantilesOfEvenDegreesOfFreedom) {
   // 2 dof: exp(-x/2) = tail exactly; 4 and 10 dof at 0.999 against tables.
   EXPECT_NEAR(ChiSquareQuantileEvenDof(2, std::exp(-0.5 * 13.8)), 13.8, 1e-9);

@@ -72,8 +72,9 @@ ScanAssociation AssociateScan(const Pose& pose, const Mat3& pose_cov,
     std::vector<GatedPair> gated;
     gated.reserve(pairs.size());
     for (const Pair& p : pairs) gated.push_back({p.measurement, p.landmark, p.d2});
-    return JointCompatibleAssociation(pose, pose_cov, map, scan, measurement_cov, gated,
-                                      {options.gate_chi2, options.jcbb_max_nodes});
+    return JointCompatibleAssociation(
+        pose, pose_cov, map, scan, measurement_cov, gated,
+        {options.gate_chi2, options.jcbb_max_nodes, options.jcbb_null_intensity});
   }
   std::sort(pairs.begin(), pairs.end(), [](const Pair& a, const Pair& b) {
     if (a.d2 != b.d2) return a.d2 < b.d2;

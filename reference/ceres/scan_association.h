@@ -59,6 +59,9 @@ struct ScanAssociationOptions {
   double new_landmark_intensity = 0.0;
   ScanAssignment assignment = ScanAssignment::kNearestNeighbour;
   int jcbb_max_nodes = 20000;  ///< kJointCompatibility: joint tests per scan (>= 1)
+  /// kJointCompatibility: 0 takes the most pairs; > 0 the least -log likelihood with this
+  /// intensity (per m per rad) for a measurement left out (joint_compatibility.h).
+  double jcbb_null_intensity = 0.0;
 };
 
 /// Per measurement of the scan: the map index (kUnassociated when no landmark passed the gate or

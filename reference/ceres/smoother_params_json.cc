@@ -76,6 +76,12 @@ const params::ParameterTable<SmootherOptions>& SmootherOptionsTable() {
           [](auto& o) -> auto& { return o.incremental_jcbb_max_nodes; }, AtLeast(1))
           .Means("incremental, jcbb: joint compatibility tests per scan before the search keeps "
                  "its best"),
+      params::NumberField<O>(
+          "incremental_jcbb_null_intensity",
+          [](auto& o) -> auto& { return o.incremental_jcbb_null_intensity; }, AtLeast(0.0))
+          .Means("incremental, jcbb: 0 takes the most jointly compatible pairs; > 0 the most "
+                 "likely assignment, a measurement left out weighed by this intensity (per m per "
+                 "rad)"),
       params::BoolField<O>(
           "incremental_skip_ambiguous",
           [](auto& o) -> auto& { return o.incremental_skip_ambiguous; })

@@ -56,6 +56,7 @@ TEST(SmootherParamsJson, WritesEveryOptionWithItsType) {
       "filter_label_distance": 2.0, "function_tolerance": 1e-09, "gate_chi2": 13.8,
       "incremental_active_steps": 500, "incremental_chunk_steps": 25,
       "incremental_assignment": "nearest_neighbour", "incremental_jcbb_max_nodes": 20000,
+      "incremental_jcbb_null_intensity": 0.0,
       "incremental_birth_outside_gates": false, "incremental_delete_collapsed": false,
       "incremental_held_prior": true, "incremental_marginals_without_collapsed": true,
       "incremental_new_landmark_intensity": 0.0, "incremental_pose_landmark_cross": false,

@@ -56,6 +56,11 @@ const params::ParameterTable<WindowParams>& WindowParamsTable() {
       params::IntField<P>(
           "jcbb_max_nodes", [](auto& p) -> auto& { return p.jcbb_max_nodes; }, AtLeast(1))
           .Means("jcbb: joint compatibility tests per scan before the search keeps its best"),
+      params::NumberField<P>(
+          "jcbb_null_intensity", [](auto& p) -> auto& { return p.jcbb_null_intensity; },
+          AtLeast(0.0))
+          .Means("jcbb: 0 takes the most jointly compatible pairs; > 0 the most likely "
+                 "assignment, a measurement left out weighed by this intensity (per m per rad)"),
       params::IntField<P>(
           "confirm_detections", [](auto& p) -> auto& { return p.confirm_detections; }, AtLeast(1))
           .Means("scans that must associate with a tentative landmark (its first included) before "
