@@ -69,12 +69,23 @@ void CheckPosteriorInputs(const datasets::Scenario& scenario, const std::vector<
 
 }  // namespace
 
+void PosteriorOptions::Validate() const {
+  if (!std::isfinite(birth_log_weight)) {
+    throw std::invalid_argument("posterior_birth_log_weight must be finite");
+  }
+}
+
 PosteriorTerms NegativeLogPosterior(const datasets::Scenario& scenario,
                                     const OdometrySpec& odometry, const std::vector<Pose>& poses,
                                     const std::vector<Landmark>& landmarks,
-                                    const Association& association) {
+                                    const Association& association,
+                                    const PosteriorOptions& options) {
+  options.Validate();
   CheckPosteriorInputs(scenario, poses, landmarks, association);
   PosteriorTerms terms;
+  if (options.map_prior == PosteriorMapPrior::kPoissonBirth) {
+    terms.births = -static_cast<double>(landmarks.size()) * options.birth_log_weight;
+  }
   if (poses.empty()) return terms;
   terms.odometry = OdometryTerm(scenario, odometry, poses);
 

@@ -2,9 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "reference/ceres/batch_smoother.h"
@@ -69,7 +72,92 @@ TEST(AssociationPosterior, TermsAtTheNoiseFreeTruthMatchACountOfItsEvents) {
   EXPECT_NEAR(t.detections, -n * std::log(0.8), 1e-9 * n);
   EXPECT_NEAR(t.missed, -static_cast<double>(misses) * std::log(0.2), 1e-9 * n);
   EXPECT_EQ(t.clutter, 0.0);
-  EXPECT_DOUBLE_EQ(t.Total(), t.odometry + t.measurements + t.detections + t.missed + t.clutter);
+  EXPECT_NEAR(t.births, static_cast<double>(s.truth.landmarks.size()) * std::log(1e6), 1e-9);
+  EXPECT_DOUBLE_EQ(t.Total(),
+                   t.odometry + t.measurements + t.detections + t.missed + t.clutter + t.births);
+}
+
+TEST(AssociationPosterior, EachLandmarkPaysTheBirthIntensityUnlessTheMapPriorIsFlat) {
+  CircleScenarioOptions o;
+  o.clutter_rate = 1.0;
+  const datasets::Scenario s = MakeCircleScenario(o);
+  const Odometry odometry(s);
+  const Association truth = TrueAssociation(s);
+  PosteriorOptions birth;
+  birth.birth_log_weight = std::log(0.01);
+  PosteriorOptions flat;
+  flat.map_prior = PosteriorMapPrior::kFlat;
+  const PosteriorTerms with_birth =
+      NegativeLogPosterior(s, odometry.spec, s.truth.poses, s.truth.landmarks, truth, birth);
+  const PosteriorTerms without =
+      NegativeLogPosterior(s, odometry.spec, s.truth.poses, s.truth.landmarks, truth, flat);
+  const double n = static_cast<double>(s.truth.landmarks.size());
+  ASSERT_GT(n, 2.0);
+  EXPECT_NEAR(with_birth.births, -n * std::log(0.01), 1e-12);
+  EXPECT_EQ(without.births, 0.0);
+  EXPECT_NEAR(with_birth.Total() - without.Total(), with_birth.births, 1e-9);
+  // The default is the Poisson birth term with the RFS filters' birth weight.
+  const PosteriorTerms by_default =
+      NegativeLogPosterior(s, odometry.spec, s.truth.poses, s.truth.landmarks, truth);
+  EXPECT_NEAR(by_default.births, n * std::log(1e6), 1e-9);
+}
+
+// Landmark 0's second half of detections as a landmark of its own at the same true position.
+struct SplitSolution {
+  std::vector<Landmark> landmarks;
+  Association association;
+};
+SplitSolution SplitLandmarkZero(const datasets::Scenario& s, const Association& truth) {
+  SplitSolution split{s.truth.landmarks, truth};
+  split.landmarks.push_back(s.truth.landmarks[0]);
+  const int copy = static_cast<int>(s.truth.landmarks.size());
+  std::size_t seen = 0;
+  std::size_t total = 0;
+  for (const auto& step : truth)
+    total += static_cast<std::size_t>(std::count(step.begin(), step.end(), 0));
+  for (auto& step : split.association) {
+    for (int& a : step) {
+      if (a == 0 && ++seen > total / 2) a = copy;
+    }
+  }
+  return split;
+}
+
+TEST(AssociationPosterior, SplittingALandmarkCostsOneBirthMoreThanUnderTheFlatPrior) {
+  CircleScenarioOptions o;
+  o.clutter_rate = 1.0;
+  const datasets::Scenario s = MakeCircleScenario(o);
+  const Odometry odometry(s);
+  const Association truth = TrueAssociation(s);
+  const SplitSolution split = SplitLandmarkZero(s, truth);
+  PosteriorOptions flat;
+  flat.map_prior = PosteriorMapPrior::kFlat;
+  const auto margin = [&](const PosteriorOptions& options) {
+    return NegativeLogPosterior(s, odometry.spec, s.truth.poses, split.landmarks, split.association,
+                                options)
+               .Total() -
+           NegativeLogPosterior(s, odometry.spec, s.truth.poses, s.truth.landmarks, truth, options)
+               .Total();
+  };
+  const double with_birth = margin(PosteriorOptions{});
+  EXPECT_GT(with_birth, 0.0);
+  EXPECT_NEAR(with_birth - margin(flat), std::log(1e6), 1e-6);
+}
+
+TEST(AssociationPosterior, RejectsABirthWeightThatIsNotFinite) {
+  CircleScenarioOptions o;
+  o.steps = 10;
+  const datasets::Scenario s = MakeCircleScenario(o);
+  const Odometry odometry(s);
+  PosteriorOptions bad;
+  bad.birth_log_weight = std::numeric_limits<double>::quiet_NaN();
+  try {
+    NegativeLogPosterior(s, odometry.spec, s.truth.poses, s.truth.landmarks, TrueAssociation(s),
+                         bad);
+    FAIL() << "expected std::invalid_argument";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("posterior_birth_log_weight"), std::string::npos);
+  }
 }
 
 TEST(AssociationPosterior, TheTrueAssociationScoresBelowCorruptedOnes) {

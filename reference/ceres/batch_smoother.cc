@@ -4,6 +4,7 @@
 
 #include <Eigen/LU>
 #include <chrono>
+#include <cmath>
 #include <map>
 #include <memory>
 #include <optional>
@@ -167,6 +168,8 @@ void SmootherOptions::Validate() const {
   };
   require(known_outlier_chi2 >= 0.0, "known_outlier_chi2: expected >= 0 (0: off)");
   require(max_iterations > 0, "max_iterations: expected > 0");
+  require(std::isfinite(posterior.birth_log_weight),
+          "posterior_birth_log_weight: expected a finite number");
   require(function_tolerance > 0.0, "function_tolerance: expected > 0");
   require(intermediate_function_tolerance > 0.0, "intermediate_function_tolerance: expected > 0");
   require(num_threads > 0, "num_threads: expected > 0");
@@ -175,6 +178,9 @@ void SmootherOptions::Validate() const {
   require(incremental_chunk_steps >= 1, "incremental_chunk_steps: expected >= 1");
   require(incremental_active_steps >= 0, "incremental_active_steps: expected >= 0");
   require(gate_chi2 > 0.0, "gate_chi2: expected > 0");
+  require(incremental_jcbb_max_nodes >= 1, "incremental_jcbb_max_nodes: expected >= 1");
+  require(incremental_jcbb_null_intensity >= 0.0,
+          "incremental_jcbb_null_intensity: expected >= 0 (0: the most pairs)");
   require(incremental_new_landmark_intensity >= 0.0,
           "incremental_new_landmark_intensity: expected >= 0");
   require(incremental_static_point_chi2 >= 0.0,
@@ -380,6 +386,9 @@ datasets::BatchResult BatchSmoother::Solve(const datasets::Scenario& scenario) {
         io.birth_outside_gates = options_.incremental_birth_outside_gates;
         io.pose_landmark_cross = options_.incremental_pose_landmark_cross;
         io.gate.new_landmark_intensity = options_.incremental_new_landmark_intensity;
+        io.gate.assignment = options_.incremental_assignment;
+        io.gate.jcbb_max_nodes = options_.incremental_jcbb_max_nodes;
+        io.gate.jcbb_null_intensity = options_.incremental_jcbb_null_intensity;
         io.static_point_chi2 = options_.incremental_static_point_chi2;
         io.static_point_heading_std = options_.incremental_static_point_heading_std;
         io.static_point_failures = options_.incremental_static_point_failures;
@@ -501,8 +510,8 @@ datasets::BatchResult BatchSmoother::Solve(const datasets::Scenario& scenario) {
     landmark_covs = PoseKnownLandmarkCovariances(scenario, poses, landmarks, association_);
   }
 
-  report_.posterior =
-      NegativeLogPosterior(scenario, final_odometry, poses, landmarks, association_);
+  report_.posterior = NegativeLogPosterior(scenario, final_odometry, poses, landmarks, association_,
+                                           options_.posterior);
   report_.landmarks = landmarks.size();
   report_.associated_measurements = graph->residuals();
   result.poses = poses;

@@ -16,6 +16,7 @@
 #include "reference/ceres/factor_graph.h"
 #include "reference/ceres/landmark_association.h"
 #include "reference/ceres/odometry_increment.h"
+#include "reference/ceres/scan_association.h"
 #include "src/filters/estimator.h"
 
 namespace phdslam::reference {
@@ -96,6 +97,14 @@ struct SmootherOptions {
   /// pD N(nu; 0, S) reaches this intensity (per m per rad of range-bearing space), the
   /// likelihood of a new landmark or clutter; 0 turns the test off.
   double incremental_new_landmark_intensity = 0.0;
+  /// Incremental solve, own association: each scan's gated pairs by greedy nearest neighbour or
+  /// by joint compatibility branch and bound against the chunk solution's marginals
+  /// (joint_compatibility.h).
+  ScanAssignment incremental_assignment = ScanAssignment::kNearestNeighbour;
+  int incremental_jcbb_max_nodes = 20000;  ///< joint compatibility tests per scan (>= 1)
+  /// jcbb: 0 takes the most jointly compatible pairs; > 0 the assignment of the highest
+  /// likelihood, each measurement left out weighed by this intensity (per m per rad).
+  double incremental_jcbb_null_intensity = 0.0;
   /// Incremental solve, own association: a landmark whose detection, carried to its first one by
   /// the odometry between them, is farther from it than this chi-square (2 dof) is deleted as a
   /// moving object (README.md, "Moving objects"); 0 turns the test off.
@@ -193,6 +202,10 @@ struct SmootherOptions {
   /// FilterThenSmooth (filter_association.h): associated landmark means of consecutive scans
   /// closer than this (m) are the same landmark.
   double filter_label_distance = 2.0;
+
+  /// How the final solution is scored (association_posterior.h): the Poisson birth term per
+  /// landmark by default, the flat map prior of earlier versions as posterior_map_prior = flat.
+  PosteriorOptions posterior;
 
   /// Throws std::invalid_argument naming the field when an option is out of range.
   void Validate() const;

@@ -60,6 +60,8 @@ void WindowParams::Validate(std::size_t run_steps) const {
   require(odometry_floor.position_std > 0.0 && odometry_floor.heading_std > 0.0,
           "odometry_floor: expected positive standard deviations");
   require(gate_chi2 > 0.0, "gate_chi2: expected > 0");
+  require(jcbb_max_nodes >= 1, "jcbb_max_nodes: expected >= 1");
+  require(jcbb_null_intensity >= 0.0, "jcbb_null_intensity: expected >= 0 (0: the most pairs)");
   require(confirm_detections >= 1, "confirm_detections: expected >= 1");
   require(confirm_ratio >= 0.0 && confirm_ratio <= 1.0, "confirm_ratio: expected in [0, 1]");
   require(robust_loss == "cauchy" || robust_loss == "huber" || robust_loss == "none",
@@ -168,6 +170,9 @@ std::vector<int> FixedLagSmoother::OwnAssociation(const StepData& step) {
   std::size_t next = 0;
   for (const auto& [label, lm] : landmarks_) {
     MapLandmark m{lm.mean, lm.cov};
+    if (params_.jcbb_null_intensity > 0.0) {
+      m.detection_probability = context_.sensor.DetectionProbability(newest.x, lm.mean);
+    }
     if (lm.active) {
       if (have_covs) {
         m.cov = covs.marginal[next];
@@ -181,7 +186,11 @@ std::vector<int> FixedLagSmoother::OwnAssociation(const StepData& step) {
     (is_confirmed ? confirmed : tentative).push_back(m);
     (is_confirmed ? confirmed_labels : tentative_labels).push_back(label);
   }
-  const ScanAssociationOptions gate{params_.gate_chi2, 0.0};
+  ScanAssociationOptions gate;
+  gate.gate_chi2 = params_.gate_chi2;
+  gate.assignment = params_.assignment;
+  gate.jcbb_max_nodes = params_.jcbb_max_nodes;
+  gate.jcbb_null_intensity = params_.jcbb_null_intensity;
   const Mat2& r = context_.sensor.noise_cov;
   std::vector<int> labels(step.measurements.size(), -1);
   const ScanAssociation first =

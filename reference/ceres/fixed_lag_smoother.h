@@ -44,6 +44,14 @@ struct WindowParams {
   // Own association (window, docs/algorithms/ceres-smoother.md section 8.3): gated nearest
   // neighbour, confirmed landmarks first; confirmation and deletion of tentative ones.
   double gate_chi2 = 13.8;  ///< chi2 with 2 dof at 0.999 on the marginal innovation covariance
+  /// The assignment of each scan's gated pairs: greedy nearest neighbour or joint compatibility
+  /// branch and bound over the scan (joint_compatibility.h), both against confirmed landmarks
+  /// first, then the rest against tentative ones.
+  ScanAssignment assignment = ScanAssignment::kNearestNeighbour;
+  int jcbb_max_nodes = 20000;  ///< joint compatibility tests per scan and landmark set (>= 1)
+  /// jcbb: 0 takes the most jointly compatible pairs; > 0 the most likely assignment, a
+  /// measurement left out weighed by this intensity (per m per rad).
+  double jcbb_null_intensity = 0.0;
   /// A tentative landmark is confirmed once this many scans have associated with it (its first
   /// detection included) ...
   int confirm_detections = 5;

@@ -131,7 +131,8 @@ class AssociationPass {
                 ids.end());
     }
     view.reserve(ids.size());
-    const bool with_pd = options_.gate.new_landmark_intensity > 0.0;
+    const bool with_pd =
+        options_.gate.new_landmark_intensity > 0.0 || options_.gate.jcbb_null_intensity > 0.0;
     for (int i : ids) {
       const auto li = static_cast<std::size_t>(i);
       MapLandmark v{landmarks_[li], state_[li].cov};

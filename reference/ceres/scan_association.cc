@@ -5,6 +5,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "reference/ceres/joint_compatibility.h"
 #include "src/core/angles.h"
 #include "src/core/gaussian.h"
 #include "src/models/range_bearing_model.h"
@@ -63,7 +64,18 @@ ScanAssociation AssociateScan(const Pose& pose, const Mat3& pose_cov,
   if (!(options.new_landmark_intensity >= 0.0)) {
     throw std::invalid_argument("ScanAssociationOptions.new_landmark_intensity: expected >= 0");
   }
+  if (options.jcbb_max_nodes < 1) {
+    throw std::invalid_argument("ScanAssociationOptions.jcbb_max_nodes: expected >= 1");
+  }
   std::vector<Pair> pairs = GatedPairs(pose, pose_cov, map, scan, measurement_cov, options);
+  if (options.assignment == ScanAssignment::kJointCompatibility) {
+    std::vector<GatedPair> gated;
+    gated.reserve(pairs.size());
+    for (const Pair& p : pairs) gated.push_back({p.measurement, p.landmark, p.d2});
+    return JointCompatibleAssociation(
+        pose, pose_cov, map, scan, measurement_cov, gated,
+        {options.gate_chi2, options.jcbb_max_nodes, options.jcbb_null_intensity});
+  }
   std::sort(pairs.begin(), pairs.end(), [](const Pair& a, const Pair& b) {
     if (a.d2 != b.d2) return a.d2 < b.d2;
     if (a.measurement != b.measurement) return a.measurement < b.measurement;

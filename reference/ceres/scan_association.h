@@ -16,7 +16,9 @@
 //   the measurement starts a landmark instead of re-localising the pose on one nearest neighbour.
 // * Assignment: gated nearest neighbour over the whole scan (greedy global nearest neighbour):
 //   candidate pairs in increasing Mahalanobis distance, ties broken by measurement then landmark
-//   index, each measurement and each landmark used at most once. The solver then applies a robust
+//   index, each measurement and each landmark used at most once; or (assignment =
+//   kJointCompatibility) the jointly compatible assignment with the most pairs
+//   (joint_compatibility.h). The solver then applies a robust
 //   loss to the associated measurements, which absorbs the occasional wrong pair.
 // * Confirmation: a landmark started from an unassociated measurement is tentative until it has
 //   been associated at least min_observations times and in at least min_detection_ratio of the
@@ -41,6 +43,12 @@ struct MapLandmark {
   double detection_probability = 1.0;
 };
 
+/// How the gated pairs of a scan become an assignment.
+enum class ScanAssignment {
+  kNearestNeighbour,    ///< greedy global nearest neighbour (below)
+  kJointCompatibility,  ///< joint compatibility branch and bound (joint_compatibility.h)
+};
+
 struct ScanAssociationOptions {
   double gate_chi2 = 13.8;  ///< squared Mahalanobis gate (2 dof; 13.8 = 0.999)
   /// Landmarks farther than this from the pose are skipped before gating (m); <= 0: none
@@ -49,6 +57,11 @@ struct ScanAssociationOptions {
   /// A gated pair is admissible only when pD N(nu; 0, S) reaches this intensity (per m per
   /// rad); 0: every pair inside the gate is.
   double new_landmark_intensity = 0.0;
+  ScanAssignment assignment = ScanAssignment::kNearestNeighbour;
+  int jcbb_max_nodes = 20000;  ///< kJointCompatibility: joint tests per scan (>= 1)
+  /// kJointCompatibility: 0 takes the most pairs; > 0 the least -log likelihood with this
+  /// intensity (per m per rad) for a measurement left out (joint_compatibility.h).
+  double jcbb_null_intensity = 0.0;
 };
 
 /// Per measurement of the scan: the map index (kUnassociated when no landmark passed the gate or
@@ -60,8 +73,8 @@ struct ScanAssociation {
   std::vector<int> gated;  ///< landmarks inside the measurement's gate
 };
 
-/// Associates one scan with the map. Throws std::invalid_argument when gate_chi2 <= 0 or
-/// new_landmark_intensity < 0.
+/// Associates one scan with the map. Throws std::invalid_argument when gate_chi2 <= 0,
+/// new_landmark_intensity < 0 or jcbb_max_nodes < 1.
 ScanAssociation AssociateScan(const Pose& pose, const Mat3& pose_cov,
                               const std::vector<MapLandmark>& map,
                               const std::vector<Measurement>& scan, const Mat2& measurement_cov,

@@ -71,6 +71,28 @@ const params::ParameterTable<SmootherOptions>& SmootherOptionsTable() {
           .Means("incremental, own association: when the marginal covariances fail, compute them "
                  "again without collapsed landmarks")
           .UsedOnlyWith("initialisation", {"incremental"}),
+      params::EnumField<O, ScanAssignment>(
+          "incremental_assignment", [](auto& o) -> auto& { return o.incremental_assignment; },
+          {{ScanAssignment::kNearestNeighbour, "nearest_neighbour"},
+           {ScanAssignment::kJointCompatibility, "jcbb"}})
+          .Means("incremental, own association: each scan's gated pairs by greedy nearest "
+                 "neighbour or by joint compatibility branch and bound (jcbb)")
+          .UsedOnlyWith("initialisation", {"incremental"}),
+      params::IntField<O>(
+          "incremental_jcbb_max_nodes",
+          [](auto& o) -> auto& { return o.incremental_jcbb_max_nodes; }, AtLeast(1))
+          .Means("incremental, jcbb: joint compatibility tests per scan before the search keeps "
+                 "its best")
+          .UsedOnlyWith("initialisation", {"incremental"})
+          .UsedOnlyWith("incremental_assignment", {"jcbb"}),
+      params::NumberField<O>(
+          "incremental_jcbb_null_intensity",
+          [](auto& o) -> auto& { return o.incremental_jcbb_null_intensity; }, AtLeast(0.0))
+          .Means("incremental, jcbb: 0 takes the most jointly compatible pairs; > 0 the most "
+                 "likely assignment, a measurement left out weighed by this intensity (per m per "
+                 "rad)")
+          .UsedOnlyWith("initialisation", {"incremental"})
+          .UsedOnlyWith("incremental_assignment", {"jcbb"}),
       params::BoolField<O>(
           "incremental_skip_ambiguous",
           [](auto& o) -> auto& { return o.incremental_skip_ambiguous; })
@@ -236,6 +258,16 @@ const params::ParameterTable<SmootherOptions>& SmootherOptionsTable() {
                                        {StartPath::kBestParticlePath, "best-particle-path"}})
           .Means("with start_from phd3: that run's per-step estimates or its best final particle's "
                  "path"),
+      params::EnumField<O, PosteriorMapPrior>(
+          "posterior_map_prior", [](auto& o) -> auto& { return o.posterior.map_prior; },
+          {{PosteriorMapPrior::kPoissonBirth, "poisson_birth"}, {PosteriorMapPrior::kFlat, "flat"}})
+          .Means("map prior of the reported neg_log_posterior: a Poisson birth term per landmark "
+                 "(poisson_birth) or none (flat, the score of earlier versions)"),
+      params::NumberField<O>(
+          "posterior_birth_log_weight",
+          [](auto& o) -> auto& { return o.posterior.birth_log_weight; })
+          .Means("poisson_birth: log of the birth intensity each landmark pays in "
+                 "neg_log_posterior (the RFS filters' birth log-weight, ln 1e-6)"),
   });
   return table;
 }

@@ -55,6 +55,8 @@ TEST(SmootherParamsJson, WritesEveryOptionWithItsType) {
             nlohmann::json::parse(R"({"association": "known", "compute_covariances": true,
       "filter_label_distance": 2.0, "function_tolerance": 1e-09, "gate_chi2": 13.8,
       "incremental_active_steps": 500, "incremental_chunk_steps": 25,
+      "incremental_assignment": "nearest_neighbour", "incremental_jcbb_max_nodes": 20000,
+      "incremental_jcbb_null_intensity": 0.0,
       "incremental_birth_outside_gates": false, "incremental_delete_collapsed": false,
       "incremental_held_prior": true, "incremental_marginals_without_collapsed": true,
       "incremental_new_landmark_intensity": 0.0, "incremental_pose_landmark_cross": false,
@@ -70,6 +72,7 @@ TEST(SmootherParamsJson, WritesEveryOptionWithItsType) {
       "linear_solver": "sparse_normal_cholesky", "max_iterations": 100,
       "merge_position_std": 1.0, "min_detection_ratio": 0.3, "min_observations": 3,
       "num_threads": 1, "odometry_floor": [0.0001, 1e-05], "odometry_residual": "control_space",
+      "posterior_birth_log_weight": -13.815510557964274, "posterior_map_prior": "poisson_birth",
       "reassociation_rounds": 5, "robust_loss": "cauchy", "robust_scale": 1.0,
       "start_from": "dead-reckoning", "start_particles": 5, "start_path": "estimate",
       "warm_start_floor": [0.05, 1e-05]})")
@@ -130,6 +133,12 @@ TEST(SmootherParamsJson, RejectsBadOverridesAndLeavesTheOptionsUnchanged) {
   ExpectRejected(R"({"known_outlier_chi2": -1})",
                  "parameter 'known_outlier_chi2': must be >= 0, got -1");
   ExpectRejected(R"({"robust_scale": 0})", "parameter 'robust_scale': must be > 0, got 0");
+  ExpectRejected(R"({"incremental_assignment": "hungarian"})",
+                 "parameter 'incremental_assignment': expected one of");
+  ExpectRejected(R"({"incremental_jcbb_max_nodes": 0})", "incremental_jcbb_max_nodes");
+  ExpectRejected(R"({"posterior_map_prior": "uniform"})",
+                 "parameter 'posterior_map_prior': expected one of");
+  ExpectRejected(R"({"posterior_birth_log_weight": "ln"})", "posterior_birth_log_weight");
   ExpectRejected(R"([1, 2])", "expected an object, got [1,2]");
 }
 

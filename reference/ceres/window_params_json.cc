@@ -47,6 +47,22 @@ const params::ParameterTable<WindowParams>& WindowParamsTable() {
           "gate_chi2", [](auto& p) -> auto& { return p.gate_chi2; }, Above(0.0))
           .Means("chi-square (2 dof) gate of the nearest-neighbour association on the marginal "
                  "innovation covariance"),
+      params::EnumField<P, ScanAssignment>(
+          "assignment", [](auto& p) -> auto& { return p.assignment; },
+          {{ScanAssignment::kNearestNeighbour, "nearest_neighbour"},
+           {ScanAssignment::kJointCompatibility, "jcbb"}})
+          .Means("own association: each scan's gated pairs by greedy nearest neighbour or by joint "
+                 "compatibility branch and bound (jcbb)"),
+      params::IntField<P>(
+          "jcbb_max_nodes", [](auto& p) -> auto& { return p.jcbb_max_nodes; }, AtLeast(1))
+          .Means("jcbb: joint compatibility tests per scan before the search keeps its best")
+          .UsedOnlyWith("assignment", {"jcbb"}),
+      params::NumberField<P>(
+          "jcbb_null_intensity", [](auto& p) -> auto& { return p.jcbb_null_intensity; },
+          AtLeast(0.0))
+          .Means("jcbb: 0 takes the most jointly compatible pairs; > 0 the most likely "
+                 "assignment, a measurement left out weighed by this intensity (per m per rad)")
+          .UsedOnlyWith("assignment", {"jcbb"}),
       params::IntField<P>(
           "confirm_detections", [](auto& p) -> auto& { return p.confirm_detections; }, AtLeast(1))
           .Means("scans that must associate with a tentative landmark (its first included) before "
