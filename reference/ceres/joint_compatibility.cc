@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "reference/ceres/landmark_association.h"
 #include "src/core/angles.h"
 #include "src/models/range_bearing_model.h"
 

@@ -23,7 +23,7 @@
 
 #include <vector>
 
-#include "reference/ceres/scan_association.h"
+#include "reference/ceres/scan_association_types.h"
 #include "src/core/types.h"
 
 namespace phdslam::reference {

@@ -29,19 +29,10 @@
 #include <vector>
 
 #include "reference/ceres/landmark_association.h"
+#include "reference/ceres/scan_association_types.h"
 #include "src/core/types.h"
 
 namespace phdslam::reference {
-
-/// A map landmark as the association sees it: its mean, marginal covariance and (when known)
-/// cross-covariance with the pose, Cov(m, x).
-struct MapLandmark {
-  Landmark mean = Landmark::Zero();
-  Mat2 cov = Mat2::Identity();
-  Eigen::Matrix<double, 2, 3> pose_cross = Eigen::Matrix<double, 2, 3>::Zero();
-  /// pD at the pose (the likelihood test against a new landmark; 1 when unknown).
-  double detection_probability = 1.0;
-};
 
 /// How the gated pairs of a scan become an assignment.
 enum class ScanAssignment {
@@ -62,15 +53,6 @@ struct ScanAssociationOptions {
   /// kJointCompatibility: 0 takes the most pairs; > 0 the least -log likelihood with this
   /// intensity (per m per rad) for a measurement left out (joint_compatibility.h).
   double jcbb_null_intensity = 0.0;
-};
-
-/// Per measurement of the scan: the map index (kUnassociated when no landmark passed the gate or
-/// the nearest one went to a closer measurement), the squared Mahalanobis distance (0 when
-/// unassociated) and how many landmarks passed its gate (and the likelihood test when on).
-struct ScanAssociation {
-  std::vector<int> landmark;
-  std::vector<double> mahalanobis2;
-  std::vector<int> gated;  ///< landmarks inside the measurement's gate
 };
 
 /// Associates one scan with the map. Throws std::invalid_argument when gate_chi2 <= 0,
