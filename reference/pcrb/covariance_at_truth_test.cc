@@ -17,7 +17,7 @@
 #include "reference/pcrb/linearise.h"
 #include "reference/pcrb/smoothing_bound.h"
 
-namespace phdslam::reference {
+namespace phdslam::reference::pcrb {
 namespace {
 
 Association KnownAssociation(const datasets::Scenario& s) {
@@ -73,4 +73,4 @@ TEST(CovarianceAtTruth, KnownAssociationGraphEqualsTheSmoothingBound) {
 }
 
 }  // namespace
-}  // namespace phdslam::reference
+}  // namespace phdslam::reference::pcrb
