@@ -25,7 +25,8 @@ const params::ParameterTable<OracleParams>& OracleParamsTable() {
       params::NumberField<P>(
           "ipl_kl_tolerance", [](auto& p) -> auto& { return p.ipl_kl_tolerance; }, AtLeast(0.0))
           .Means("the iterated posterior linearisation stops when the Kullback-Leibler change "
-                 "falls below this"),
+                 "falls below this")
+          .UsedOnlyWithout("ipl_iterations", 1),
       params::DiagonalField<P, 3>(
           "pose_regularisation", [](auto& p) -> auto& { return p.pose_regularisation; },
           AtLeast(0.0))

@@ -58,26 +58,30 @@ const params::ParameterTable<SmootherOptions>& SmootherOptionsTable() {
           [](auto& o) -> auto& { return o.incremental_squared_marginals; })
           .Means("incremental, own association: gate covariances from the squared-loss graph "
                  "instead of the robust one")
-          .UsedOnlyWith("initialisation", {"incremental"}),
+          .UsedOnlyWith("initialisation", {"incremental"})
+          .UsedOnlyWith("association", {"unknown"}),
       params::BoolField<O>(
           "incremental_delete_collapsed",
           [](auto& o) -> auto& { return o.incremental_delete_collapsed; })
           .Means("incremental, own association: delete landmarks collapsed onto a pose after every "
                  "chunk solve")
-          .UsedOnlyWith("initialisation", {"incremental"}),
+          .UsedOnlyWith("initialisation", {"incremental"})
+          .UsedOnlyWith("association", {"unknown"}),
       params::BoolField<O>(
           "incremental_marginals_without_collapsed",
           [](auto& o) -> auto& { return o.incremental_marginals_without_collapsed; })
           .Means("incremental, own association: when the marginal covariances fail, compute them "
                  "again without collapsed landmarks")
-          .UsedOnlyWith("initialisation", {"incremental"}),
+          .UsedOnlyWith("initialisation", {"incremental"})
+          .UsedOnlyWith("association", {"unknown"}),
       params::EnumField<O, ScanAssignment>(
           "incremental_assignment", [](auto& o) -> auto& { return o.incremental_assignment; },
           {{ScanAssignment::kNearestNeighbour, "nearest_neighbour"},
            {ScanAssignment::kJointCompatibility, "jcbb"}})
           .Means("incremental, own association: each scan's gated pairs by greedy nearest "
                  "neighbour or by joint compatibility branch and bound (jcbb)")
-          .UsedOnlyWith("initialisation", {"incremental"}),
+          .UsedOnlyWith("initialisation", {"incremental"})
+          .UsedOnlyWith("association", {"unknown"}),
       params::IntField<O>(
           "incremental_jcbb_max_nodes",
           [](auto& o) -> auto& { return o.incremental_jcbb_max_nodes; }, AtLeast(1))
@@ -98,7 +102,8 @@ const params::ParameterTable<SmootherOptions>& SmootherOptionsTable() {
           [](auto& o) -> auto& { return o.incremental_skip_ambiguous; })
           .Means("incremental, own association: a measurement inside two or more gates is left "
                  "unassociated and starts none")
-          .UsedOnlyWith("initialisation", {"incremental"}),
+          .UsedOnlyWith("initialisation", {"incremental"})
+          .UsedOnlyWith("association", {"unknown"}),
       params::BoolField<O>(
           "incremental_birth_outside_gates",
           [](auto& o) -> auto& { return o.incremental_birth_outside_gates; })
@@ -110,64 +115,75 @@ const params::ParameterTable<SmootherOptions>& SmootherOptionsTable() {
           [](auto& o) -> auto& { return o.incremental_pose_landmark_cross; })
           .Means("incremental, own association: the gate uses each landmark's cross-covariance "
                  "with the pose")
-          .UsedOnlyWith("initialisation", {"incremental"}),
+          .UsedOnlyWith("initialisation", {"incremental"})
+          .UsedOnlyWith("association", {"unknown"}),
       params::NumberField<O>(
           "incremental_new_landmark_intensity",
           [](auto& o) -> auto& { return o.incremental_new_landmark_intensity; }, AtLeast(0.0))
           .Means("incremental, own association: a gated pair is admissible only when pD N(nu; 0, "
                  "S) reaches this intensity (0: off)")
-          .UsedOnlyWith("initialisation", {"incremental"}),
+          .UsedOnlyWith("initialisation", {"incremental"})
+          .UsedOnlyWith("association", {"unknown"}),
       params::NumberField<O>(
           "incremental_static_point_chi2",
           [](auto& o) -> auto& { return o.incremental_static_point_chi2; }, AtLeast(0.0))
           .Means("incremental, own association: a landmark whose detection moved farther than this "
                  "chi-square from its first one is deleted (0: off)")
-          .UsedOnlyWith("initialisation", {"incremental"}),
+          .UsedOnlyWith("initialisation", {"incremental"})
+          .UsedOnlyWith("association", {"unknown"}),
       params::NumberField<O>(
           "incremental_static_point_heading_std",
           [](auto& o) -> auto& { return o.incremental_static_point_heading_std; }, Above(0.0))
           .Means("the static-point check compares with the first detection only while the odometry "
                  "heading std stays below this (rad)")
-          .UsedOnlyWith("initialisation", {"incremental"}),
+          .UsedOnlyWith("initialisation", {"incremental"})
+          .UsedOnlyWith("association", {"unknown"}),
       params::IntField<O>(
           "incremental_static_point_failures",
           [](auto& o) -> auto& { return o.incremental_static_point_failures; }, AtLeast(1))
           .Means("consecutive moving detections before the static-point check deletes the landmark")
-          .UsedOnlyWith("initialisation", {"incremental"}),
+          .UsedOnlyWith("initialisation", {"incremental"})
+          .UsedOnlyWith("association", {"unknown"}),
       params::NumberField<O>(
           "incremental_relocalisation_std",
           [](auto& o) -> auto& { return o.incremental_relocalisation_std; }, AtLeast(0.0))
           .Means("incremental, own association: above this marginal position std (m) scans are "
                  "matched with the map together (0: off)")
-          .UsedOnlyWith("initialisation", {"incremental"}),
+          .UsedOnlyWith("initialisation", {"incremental"})
+          .UsedOnlyWith("association", {"unknown"}),
       params::IntField<O>(
           "incremental_relocalisation_scans",
           [](auto& o) -> auto& { return o.incremental_relocalisation_scans; }, AtLeast(2))
           .Means("scans with detections matched together in a re-localisation")
-          .UsedOnlyWith("initialisation", {"incremental"}),
+          .UsedOnlyWith("initialisation", {"incremental"})
+          .UsedOnlyWith("association", {"unknown"}),
       params::NumberField<O>(
           "incremental_relocalisation_inlier_distance",
           [](auto& o) -> auto& { return o.incremental_relocalisation_inlier_distance; }, Above(0.0))
           .Means("a detection within this distance (m) of a landmark after the candidate "
                  "correction is an inlier")
-          .UsedOnlyWith("initialisation", {"incremental"}),
+          .UsedOnlyWith("initialisation", {"incremental"})
+          .UsedOnlyWith("association", {"unknown"}),
       params::IntField<O>(
           "incremental_relocalisation_margin",
           [](auto& o) -> auto& { return o.incremental_relocalisation_margin; }, AtLeast(1))
           .Means("inliers by which the best re-localisation correction must beat every rival")
-          .UsedOnlyWith("initialisation", {"incremental"}),
+          .UsedOnlyWith("initialisation", {"incremental"})
+          .UsedOnlyWith("association", {"unknown"}),
       params::NumberField<O>(
           "incremental_relocalisation_prior_weight",
           [](auto& o) -> auto& { return o.incremental_relocalisation_prior_weight; }, AtLeast(0.0))
           .Means("a correction scores its inliers less this times half its squared Mahalanobis "
                  "distance from dead reckoning")
-          .UsedOnlyWith("initialisation", {"incremental"}),
+          .UsedOnlyWith("initialisation", {"incremental"})
+          .UsedOnlyWith("association", {"unknown"}),
       params::BoolField<O>(
           "incremental_relocalisation_leave_ambiguous",
           [](auto& o) -> auto& { return o.incremental_relocalisation_leave_ambiguous; })
           .Means("an ambiguous re-localisation match ends it without a correction (false: keep "
                  "matching)")
-          .UsedOnlyWith("initialisation", {"incremental"}),
+          .UsedOnlyWith("initialisation", {"incremental"})
+          .UsedOnlyWith("association", {"unknown"}),
       params::NumberField<O>(
           "known_outlier_chi2", [](auto& o) -> auto& { return o.known_outlier_chi2; }, AtLeast(0.0))
           .Means("known association: labelled measurements above this squared whitened residual "

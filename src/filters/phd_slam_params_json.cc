@@ -24,7 +24,8 @@ const params::ParameterTable<PhdSlamParams>& PhdSlamParamsTable() {
               "murty_max_cost_gap", [](auto& p) -> auto& { return p.murty_max_cost_gap; },
               AtLeast(0.0))
               .Means("Murty early stop: hypotheses whose total cost exceeds the best one's by more "
-                     "than this are not enumerated"),
+                     "than this are not enumerated")
+              .UsedOnlyWithout("max_hypotheses", 0),
           params::BoolField<P>(
               "all_clutter_component", [](auto& p) -> auto& { return p.all_clutter_component; })
               .Means("as the reference code: add an all-clutter component (prior mean and "
@@ -36,7 +37,8 @@ const params::ParameterTable<PhdSlamParams>& PhdSlamParamsTable() {
           params::NumberField<P>(
               "ipl_kl_tolerance", [](auto& p) -> auto& { return p.ipl_kl_tolerance; }, AtLeast(0.0))
               .Means("the iterated posterior linearisation stops when the Kullback-Leibler change "
-                     "falls below this"),
+                     "falls below this")
+              .UsedOnlyWithout("ipl_iterations", 1),
           params::BoolField<P>(
               "resampling", [](auto& p) -> auto& { return p.resampling; })
               .Means("resample the particles when the effective sample size falls below "
