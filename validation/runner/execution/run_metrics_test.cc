@@ -456,6 +456,22 @@ TEST(StepsCsv, HasANeesColumnEmptyWhereThereIsNone) {
   EXPECT_EQ(table.rows[2][*nees], "");
 }
 
+TEST(StepsCsv, LeavesEssAndResampledEmptyForADeterministicEstimator) {
+  const datasets::Scenario s = TruthScenario();
+  RunRecord r = HandRecord();
+  const auto cells = [&](const RunRecord& record) {
+    const CsvTable table = ParseCsv(StepsCsv(record, s, EvaluateRun(record, s)), "steps.csv");
+    const std::size_t ess = *table.FindColumn("ess");
+    const std::size_t resampled = *table.FindColumn("resampled");
+    return std::pair{table.rows[1][ess], table.rows[1][resampled]};
+  };
+  EXPECT_NE(cells(r).first, "");
+  EXPECT_NE(cells(r).second, "");
+  r.particle_weights = false;
+  EXPECT_EQ(cells(r).first, "");
+  EXPECT_EQ(cells(r).second, "");
+}
+
 TEST(StepsCsv, HasRbNeesAndNisColumnsAndMetricsRoundTrip) {
   const datasets::Scenario s = TruthScenario();
   RunRecord r = HandRecord();

@@ -78,8 +78,9 @@ std::string StepsCsv(const RunRecord& record, const datasets::Scenario& scenario
                    : std::string();
     if (has_diag) {
       const filters::StepDiagnostics& d = record.diagnostics[k];
-      cells[10] = FormatNumber(d.ess);
-      cells[11] = FormatInteger(d.resampled ? 1 : 0);
+      // A deterministic estimator has no particle weights: no ESS, no resampling.
+      cells[10] = record.particle_weights ? FormatNumber(d.ess) : std::string();
+      cells[11] = record.particle_weights ? FormatInteger(d.resampled ? 1 : 0) : std::string();
       cells[12] = FormatInteger(d.hypotheses);
       cells[13] = FormatInteger(d.map_components);
     } else {
