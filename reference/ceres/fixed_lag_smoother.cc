@@ -68,6 +68,9 @@ void WindowParams::Validate(std::size_t run_steps) const {
           "robust_loss: expected \"cauchy\", \"huber\" or \"none\", got \"" + robust_loss + "\"");
   require(robust_scale > 0.0, "robust_scale: expected > 0");
   require(tentative_robust_scale > 0.0, "tentative_robust_scale: expected > 0");
+  require(static_point_chi2 >= 0.0, "static_point_chi2: expected >= 0 (0: off)");
+  require(static_point_heading_std > 0.0, "static_point_heading_std: expected > 0");
+  require(static_point_failures >= 1, "static_point_failures: expected >= 1");
 }
 
 FixedLagSmoother::FixedLagSmoother(filters::EstimatorContext context, WindowParams params,
@@ -93,6 +96,7 @@ FixedLagSmoother::FixedLagSmoother(filters::EstimatorContext context, WindowPara
 void FixedLagSmoother::AddPose(const StepData& step) {
   const OdometryIncrement inc = ComposeStepOdometry(
       *context_.motion, step, context_.control_noise_cov, params_.odometry_floor);
+  AdvanceStaticPointTracks(inc);
   WindowPose p;
   p.step = step_index_;
   if (step_index_ == 0 && !inc.propagated) {
@@ -126,6 +130,10 @@ void FixedLagSmoother::Observe(WindowPose& pose, int label, std::size_t j, const
     lm.first_step = pose.step;
     lm.support.expected = context_.sensor.DetectionProbability(pose.x, lm.mean);
     lm.status = params_.known_association ? LandmarkStatus::kConfirmed : LandmarkStatus::kTentative;
+    if (params_.static_point_chi2 > 0.0) {
+      lm.static_point.first = AnchorAt(z, context_.sensor.noise_cov);
+      lm.static_point.latest = lm.static_point.first;
+    }
     it = landmarks_.emplace(label, lm).first;
   } else if (!it->second.active) {
     // A marginalised landmark seen again: it re-enters with its marginal Gaussian as prior.
@@ -169,6 +177,7 @@ std::vector<int> FixedLagSmoother::OwnAssociation(const StepData& step) {
   std::vector<int> tentative_labels;
   std::size_t next = 0;
   for (const auto& [label, lm] : landmarks_) {
+    if (lm.moving) continue;
     MapLandmark m{lm.mean, lm.cov};
     if (params_.jcbb_null_intensity > 0.0) {
       m.detection_probability = context_.sensor.DetectionProbability(newest.x, lm.mean);
@@ -216,6 +225,87 @@ std::vector<int> FixedLagSmoother::OwnAssociation(const StepData& step) {
   return labels;
 }
 
+void FixedLagSmoother::AdvanceStaticPointTracks(const OdometryIncrement& increment) {
+  if (params_.known_association || params_.static_point_chi2 <= 0.0) return;
+  for (auto& [label, lm] : landmarks_) {
+    if (!lm.moving) AdvanceTrack(increment, &lm.static_point);
+  }
+  const auto unseen = [&](const MovingTrack& t) {
+    return step_index_ > t.last_step + static_cast<std::size_t>(params_.window_length);
+  };
+  std::erase_if(moving_tracks_, unseen);
+  for (MovingTrack& t : moving_tracks_) {
+    AdvanceAnchor(increment, &t.latest);
+    if (t.first) AdvanceAnchor(increment, &*t.first);
+  }
+}
+
+bool FixedLagSmoother::ContinuesMovingTrack(const Measurement& z) {
+  const Mat2& r = context_.sensor.noise_cov;
+  MovingTrack* best = nullptr;
+  double best_chi2 = params_.static_point_chi2;
+  for (MovingTrack& t : moving_tracks_) {
+    const double chi2 = StaticPointChi2(t.latest, z, r);
+    if (chi2 <= best_chi2) {
+      best = &t;
+      best_chi2 = chi2;
+    }
+  }
+  if (best == nullptr) return false;
+  best->latest = AnchorAt(z, r);
+  best->last_step = step_index_;
+  if (!best->first) {
+    best->first = best->latest;
+    best->taken = 1;
+    return true;
+  }
+  if (++best->taken < params_.confirm_detections) return true;
+  if (StaticPointChi2(*best->first, z, r) <= params_.static_point_chi2) {
+    // Still where it was confirm_detections detections ago: a static point, no longer the track.
+    moving_tracks_.erase(moving_tracks_.begin() + (best - moving_tracks_.data()));
+    return false;
+  }
+  best->first = best->latest;
+  best->taken = 1;
+  return true;
+}
+
+bool FixedLagSmoother::HeldByPrior(const WindowLandmark& lm) const {
+  return prior_ && std::find(prior_->blocks.begin(), prior_->blocks.end(), lm.mean.data()) !=
+                       prior_->blocks.end();
+}
+
+void FixedLagSmoother::DropMovingObjects(const StepData& step, std::vector<int>& labels) {
+  if (params_.static_point_chi2 <= 0.0) return;
+  const StaticPointOptions check{params_.static_point_chi2, params_.static_point_heading_std,
+                                 params_.static_point_failures};
+  for (std::size_t j = 0; j < labels.size(); ++j) {
+    if (labels[j] < 0) continue;
+    const Measurement& z = step.measurements[j];
+    const auto it = landmarks_.find(labels[j]);
+    if (it == landmarks_.end()) {  // a new landmark, unless a moving object's detection
+      if (ContinuesMovingTrack(z)) labels[j] = -1;
+      continue;
+    }
+    WindowLandmark& lm = it->second;
+    if (!MovingAfter(z, context_.sensor.noise_cov, check, &lm.static_point)) continue;
+    ++report_.moving_landmarks;
+    labels[j] = -1;
+    MovingTrack track;
+    track.latest = AnchorAt(z, context_.sensor.noise_cov);
+    track.last_step = step_index_;
+    moving_tracks_.push_back(track);
+    // The marginal prior holds the landmark's block: it stays in the graph, but no longer takes
+    // detections and leaves the map.
+    if (HeldByPrior(lm)) {
+      lm.moving = true;
+    } else {
+      DeleteLandmark(it->first);
+      --report_.deleted_landmarks;  // counted as moving, not as an unconfirmed deletion
+    }
+  }
+}
+
 void FixedLagSmoother::CountExpectedDetections(const Pose& x) {
   for (auto& [label, lm] : landmarks_) {
     if (lm.active && lm.status == LandmarkStatus::kTentative) {
@@ -254,6 +344,7 @@ void FixedLagSmoother::AddObservations(const StepData& step, filters::StepOutput
   } else {
     CountExpectedDetections(poses_.back().x);
     labels = OwnAssociation(step);
+    DropMovingObjects(step, labels);
   }
   WindowPose& newest = poses_.back();
   for (std::size_t j = 0; j < step.measurements.size(); ++j) {
@@ -476,7 +567,9 @@ filters::StepOutput FixedLagSmoother::Step(const StepData& step) {
 filters::MapEstimate FixedLagSmoother::Map() const {
   std::vector<const double*> wanted;
   for (const auto& [label, lm] : landmarks_) {
-    if (lm.active && lm.status == LandmarkStatus::kConfirmed) wanted.push_back(lm.mean.data());
+    if (lm.active && lm.status == LandmarkStatus::kConfirmed && !lm.moving) {
+      wanted.push_back(lm.mean.data());
+    }
   }
   std::vector<Eigen::MatrixXd> covs;
   if (!wanted.empty()) {
@@ -485,7 +578,7 @@ filters::MapEstimate FixedLagSmoother::Map() const {
   filters::MapEstimate map;
   std::size_t next = 0;
   for (const auto& [label, lm] : landmarks_) {
-    if (lm.status != LandmarkStatus::kConfirmed) continue;
+    if (lm.status != LandmarkStatus::kConfirmed || lm.moving) continue;
     map.means.push_back(lm.mean);
     if (lm.active) {
       map.covs.push_back(covs.size() == wanted.size() ? Mat2(covs[next]) : Mat2(Mat2::Identity()));

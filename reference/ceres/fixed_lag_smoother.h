@@ -24,6 +24,7 @@
 #include "reference/ceres/marginalization.h"
 #include "reference/ceres/odometry_increment.h"
 #include "reference/ceres/scan_association.h"
+#include "reference/ceres/static_point_check.h"
 #include "src/filters/estimator.h"
 #include "src/filters/solve_counter.h"
 
@@ -66,6 +67,22 @@ struct WindowParams {
   double tentative_robust_scale = 1.0;
   /// After each solve, drop the detections of confirmed landmarks outside the gate and solve again
   bool reject_outliers = true;
+  /// Moving-object test (static_point_check.h, README.md "Moving objects"): a detection
+  /// associated with a landmark is compared with the landmark's first detection, carried by the
+  /// odometry alone; beyond this chi-square (2 dof) while agreeing with the latest detection it
+  /// "moves", and the landmark is a moving object after static_point_failures such detections
+  /// in a row. Its detections then count as clutter: it is deleted, or, when the marginal prior
+  /// already holds it, left out of the association and the map; it becomes a moving track, and
+  /// a detection that would start a landmark within this chi-square of the track's latest
+  /// detection is the object's (clutter) until the track goes unseen for window_length steps,
+  /// or until confirm_detections such detections in a row stay within it of the first of them
+  /// (the object stands still, or a static landmark was taken for it): the next one starts a
+  /// landmark. 0: off.
+  double static_point_chi2 = 0.0;
+  /// The first detection gives way to the latest once the odometry's heading std since exceeds
+  /// this (rad).
+  double static_point_heading_std = 0.2;
+  int static_point_failures = 1;  ///< consecutive moving detections that make a moving object
 
   /// Throws std::invalid_argument naming the field when a value is out of range; `run_steps`
   /// (> 0 when known) bounds window_length.
@@ -80,6 +97,7 @@ struct WindowReport {
   int marginalised_poses = 0;
   int deleted_landmarks = 0;    ///< own association: tentative landmarks never confirmed
   int rejected_detections = 0;  ///< own association: detections dropped after a solve
+  int moving_landmarks = 0;     ///< own association: landmarks found moving (static_point_chi2)
 };
 
 class FixedLagSmoother final : public filters::OnlineEstimator, public filters::SolveCounter {
@@ -123,6 +141,15 @@ class FixedLagSmoother final : public filters::OnlineEstimator, public filters::
     LandmarkStatus status = LandmarkStatus::kTentative;
     std::size_t first_step = 0;
     std::optional<GraphFactor> reentry_prior;  ///< N(mean, cov) when it came back into the window
+    StaticPointTrack static_point;  ///< first and latest detection, odometry since (moving test)
+    bool moving = false;  ///< found moving while held by the prior: out of association and map
+  };
+  /// A moving object's latest detection, carried by the odometry (static_point_chi2).
+  struct MovingTrack {
+    StaticPointAnchor latest;
+    std::optional<StaticPointAnchor> first;  ///< first detection taken since the last check
+    int taken = 0;                           ///< detections taken since the last check
+    std::size_t last_step = 0;
   };
 
   void AddPose(const StepData& step);
@@ -130,6 +157,13 @@ class FixedLagSmoother final : public filters::OnlineEstimator, public filters::
   void Observe(WindowPose& pose, int label, std::size_t j, const Measurement& z);
   std::vector<int> OwnAssociation(const StepData& step);
   void CountExpectedDetections(const Pose& x);
+  /// Moving-object test on the scan's associations (static_point_chi2 > 0): a label whose
+  /// landmark is found moving becomes clutter (-1).
+  void DropMovingObjects(const StepData& step, std::vector<int>& labels);
+  /// Whether z, which would start a landmark, continues a moving track (and updates it).
+  bool ContinuesMovingTrack(const Measurement& z);
+  void AdvanceStaticPointTracks(const OdometryIncrement& increment);
+  [[nodiscard]] bool HeldByPrior(const WindowLandmark& lm) const;
   void ClassifyTentative();
   void Solve();
   /// Own association: drops the detections of confirmed landmarks whose whitened residual at the
@@ -154,6 +188,7 @@ class FixedLagSmoother final : public filters::OnlineEstimator, public filters::
   std::deque<WindowPose> poses_;
   std::map<int, WindowLandmark> landmarks_;
   int next_label_ = 0;  ///< own association: label of the next new landmark
+  std::vector<MovingTrack> moving_tracks_;
   std::optional<GraphFactor> prior_;
   FixedPoints fixed_points_;
   int steps_since_solve_ = 0;

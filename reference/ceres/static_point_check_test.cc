@@ -5,8 +5,10 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 #include "reference/ceres/batch_smoother.h"
+#include "reference/ceres/fixed_lag_smoother.h"
 #include "reference/ceres/test_scenario.h"
 #include "src/models/range_bearing_model.h"
 
@@ -202,6 +204,78 @@ TEST(StaticPointCheck, MapsEveryLandmarkOfAStaticWorld) {
   }
   EXPECT_EQ(near_truth, 20);
   EXPECT_LE(r.map.means.size(), 21u);
+}
+
+/// The fixed-lag smoother's own association on `s` with the moving-object test at `chi2`.
+struct WindowOutcome {
+  double largest_pose_error = 0.0;  ///< of the newest pose after each step (a filtered estimate)
+  double last_pose_error = 0.0;
+  filters::MapEstimate map;
+  WindowReport report;
+};
+
+WindowOutcome RunOwnWindow(const datasets::Scenario& s, double chi2) {
+  WindowParams p;
+  p.known_association = false;
+  p.static_point_chi2 = chi2;
+  FixedLagSmoother window(s.PublicContext(), p, {}, s.steps.size());
+  WindowOutcome out;
+  for (const datasets::ScenarioStep& step : s.steps) {
+    const Pose x = window.Step(step.data).pose;
+    out.last_pose_error = std::max(x.head<2>().norm(), std::abs(x(2)));
+    out.largest_pose_error = std::max(out.largest_pose_error, out.last_pose_error);
+  }
+  out.map = window.Map();
+  out.report = window.report();
+  return out;
+}
+
+TEST(StaticPointCheck, TheWindowCountsAPassingObjectAsClutter) {
+  const datasets::Scenario s = StandingVehicleWithAMovingPoint(50);
+  const WindowOutcome checked = RunOwnWindow(s, 13.8);
+  EXPECT_GT(checked.report.moving_landmarks, 0);
+  ASSERT_EQ(checked.map.means.size(), 1u);
+  EXPECT_LT((checked.map.means[0] - Landmark(4.0, 1.0)).norm(), 0.05);
+  // The object's first few detections, before they betray its motion, turn the newest pose by
+  // less than 0.1 rad; once it is found moving, the window returns to the truth.
+  EXPECT_LT(checked.largest_pose_error, 0.1);
+  EXPECT_LT(checked.last_pose_error, 0.01);
+  // Without the test the passing point is confirmed as a landmark and turns the vehicle for good.
+  const WindowOutcome unchecked = RunOwnWindow(s, 0.0);
+  EXPECT_EQ(unchecked.report.moving_landmarks, 0);
+  EXPECT_GT(unchecked.last_pose_error, 0.3);
+  EXPECT_GT(unchecked.map.means.size(), 1u);
+}
+
+TEST(StaticPointCheck, TheWindowKeepsEveryLandmarkOfAStaticWorld) {
+  testing::CircleScenarioOptions c;
+  c.clutter_rate = 5.0;
+  const datasets::Scenario s = testing::MakeCircleScenario(c);
+  const WindowOutcome checked = RunOwnWindow(s, 13.8);
+  const WindowOutcome unchecked = RunOwnWindow(s, 0.0);
+  const auto near_truth = [&](const filters::MapEstimate& map) {
+    int n = 0;
+    for (const Landmark& m : s.truth.landmarks) {
+      for (const Landmark& e : map.means) n += (e - m).norm() < 1.0;
+    }
+    return n;
+  };
+  EXPECT_EQ(near_truth(checked.map), near_truth(unchecked.map));
+  EXPECT_GE(near_truth(checked.map), 18);
+}
+
+TEST(StaticPointCheck, TheWindowRejectsNonsenseSettingsNamingThem) {
+  WindowParams p;
+  p.static_point_chi2 = -1.0;
+  EXPECT_THROW(p.Validate(), std::invalid_argument);
+  p.static_point_chi2 = 13.8;
+  p.static_point_failures = 0;
+  try {
+    p.Validate();
+    FAIL() << "static_point_failures = 0 accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("static_point_failures"), std::string::npos);
+  }
 }
 
 TEST(StaticPointCheck, RejectsANegativeThreshold) {

@@ -87,6 +87,25 @@ const params::ParameterTable<WindowParams>& WindowParamsTable() {
           "reject_outliers", [](auto& p) -> auto& { return p.reject_outliers; })
           .Means("after each solve, drop the detections of confirmed landmarks outside the gate "
                  "and solve again"),
+      params::NumberField<P>(
+          "static_point_chi2", [](auto& p) -> auto& { return p.static_point_chi2; }, AtLeast(0.0))
+          .Means("moving-object test: a detection beyond this chi-square (2 dof) of its landmark's "
+                 "first detection, carried by the odometry, and within it of the latest one "
+                 "moves; the landmark's detections then count as clutter (0: off)")
+          .UsedOnlyWith("association", {"unknown"}),
+      params::NumberField<P>(
+          "static_point_heading_std", [](auto& p) -> auto& { return p.static_point_heading_std; },
+          Above(0.0))
+          .Means("the moving-object test compares with the first detection only while the "
+                 "odometry heading std since stays below this (rad)")
+          .UsedOnlyWith("association", {"unknown"})
+          .UsedOnlyWithout("static_point_chi2", 0.0),
+      params::IntField<P>(
+          "static_point_failures", [](auto& p) -> auto& { return p.static_point_failures; },
+          AtLeast(1))
+          .Means("consecutive moving detections that make a landmark a moving object")
+          .UsedOnlyWith("association", {"unknown"})
+          .UsedOnlyWithout("static_point_chi2", 0.0),
   });
   return table;
 }

@@ -474,6 +474,28 @@ TEST(ReferenceEstimators, MrclamSolvesTheSmoothersIncrementallyByDefault) {
   EXPECT_EQ(initialisation("smoother-known", "paper-synthetic", none), "batch");
 }
 
+TEST(ReferenceEstimators, TheWindowTakesJointCompatibilityAndTheMovingObjectTestOnMrclamOnly) {
+  if (!Registered("window")) GTEST_SKIP() << "built without Ceres";
+  const auto resolved = [](const std::string& scenario, const nlohmann::json& overrides) {
+    EstimatorRequest request;
+    request.name = "window";
+    request.scenario_name = scenario;
+    request.overrides = overrides;
+    return FindEstimator("window").resolved_parameters(request);
+  };
+  const nlohmann::json none = nlohmann::json::object();
+  const nlohmann::json mrclam = resolved("mrclam", none);
+  EXPECT_EQ(mrclam.at("assignment"), "jcbb");
+  EXPECT_DOUBLE_EQ(mrclam.at("static_point_chi2").get<double>(), 9.21);
+  EXPECT_EQ(mrclam.at("static_point_failures"), 3);
+  const nlohmann::json synthetic = resolved("paper-synthetic", none);
+  EXPECT_EQ(synthetic.at("assignment"), "nearest_neighbour");
+  EXPECT_DOUBLE_EQ(synthetic.at("static_point_chi2").get<double>(), 0.0);
+  // A value given by the user wins over the scenario's default.
+  EXPECT_DOUBLE_EQ(
+      resolved("mrclam", {{"static_point_chi2", 0.0}}).at("static_point_chi2").get<double>(), 0.0);
+}
+
 TEST(ReferenceEstimators, FastSlamProposalIsFixedByTheName) {
   if (!Registered("fastslam1")) GTEST_SKIP() << "built without MRPT";
   EXPECT_EQ(ResolveError("fastslam1", {{"proposal", "motion-model"}}), "");

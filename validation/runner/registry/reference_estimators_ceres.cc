@@ -185,7 +185,10 @@ std::vector<EstimatorEntry> CeresEstimators() {
                       "nearest neighbour on marginal and pose-landmark cross-covariances, "
                       "confirmed landmarks first, tentative ones confirmed after "
                       "confirm_detections (5) scans, Huber loss (Cauchy while tentative), "
-                      "outliers dropped after each solve (reference/ceres/README.md)")};
+                      "outliers dropped after each solve; on mrclam by default joint "
+                      "compatibility (assignment=jcbb, jcbb_null_intensity=0.0035) and the "
+                      "moving-object test (static_point_chi2=9.21, static_point_failures=3) "
+                      "(reference/ceres/README.md)")};
 }
 
 }  // namespace phdslam::validation

@@ -77,6 +77,23 @@ const std::vector<ScenarioDefaultsRow>& ScenarioDefaultsTable() {
        {{"initialisation", "incremental"}},
        "validation/REPRODUCTION.md, MRCLAM: the incremental solve is the ceiling with the known "
        "association on every robot and the better own-association solve pooled"},
+      // On MRCLAM dataset 6 the window's gated nearest neighbour is worse than dead reckoning on
+      // robots 1 and 4 (5.23 and 3.20 m against 2.74 and 1.94 m). Joint compatibility with the
+      // likelihood objective at null intensity 0.0035 brings every robot but 4 below it (a
+      // passing robot is mapped as a landmark); the moving-object test at the chi-square 0.99
+      // quantile with 3 moving detections in a row brings robot 4 to 1.47 m, every robot below
+      // dead reckoning, pooled 1.30 m, and so with 1, 2 or 4 detections in a row
+      // (validation/REPRODUCTION.md, "The fixed-lag smoother on MRCLAM dataset 6"). On the
+      // synthetic scenario and on Victoria Park the test is off: there it deletes static
+      // landmarks (seeds 1-20: 1.37 against 1.26 m; Victoria Park seed 1: 46.6 against 7.4 m).
+      {"mrclam",
+       {"window"},
+       {{"assignment", "jcbb"},
+        {"jcbb_null_intensity", 0.0035},
+        {"static_point_chi2", 9.21},
+        {"static_point_failures", 3}},
+       "validation/REPRODUCTION.md, MRCLAM: joint compatibility and the moving-object test make "
+       "the window better than dead reckoning on every robot of dataset 6"},
   };
   return table;
 }
