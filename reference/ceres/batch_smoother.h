@@ -43,6 +43,15 @@ enum class SmootherInitialisation {
 enum class StartTrajectory {
   kDeadReckoning,  ///< initial_poses left empty: dead reckoning (or the incremental solve)
   kPhd3,           ///< a PHD-SLAM 3.0 run on the same data and stream fills initial_poses
+  /// the fixed-lag smoother's own-association run (`window`, its defaults on the scenario) on
+  /// the same data fills initial_poses: a graph-SLAM front end that starts from dead reckoning
+  kWindow,
+};
+
+/// The online estimator whose association smoother-filter solves (the registry builds it).
+enum class FilterFrontEnd {
+  kPhd3,    ///< a PHD-SLAM 3.0 run (N = 1), its associated means linked by filter_label_distance
+  kWindow,  ///< the fixed-lag smoother's own association (`window`), its labels as they are
 };
 
 /// Which trajectory of the start_from filter run fills initial_poses (README.md, "Start from
@@ -202,6 +211,7 @@ struct SmootherOptions {
   /// FilterThenSmooth (filter_association.h): associated landmark means of consecutive scans
   /// closer than this (m) are the same landmark.
   double filter_label_distance = 2.0;
+  FilterFrontEnd filter_front_end = FilterFrontEnd::kPhd3;
 
   /// How the final solution is scored (association_posterior.h): the Poisson birth term per
   /// landmark by default, the flat map prior of earlier versions as posterior_map_prior = flat.

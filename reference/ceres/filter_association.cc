@@ -7,6 +7,7 @@
 #include <string>
 #include <utility>
 
+#include "reference/ceres/association_labels.h"
 #include "src/models/range_bearing_model.h"
 
 namespace phdslam::reference {
@@ -122,7 +123,10 @@ datasets::BatchResult FilterThenSmooth::Solve(const datasets::Scenario& scenario
     poses.push_back(out.pose);
   }
   filter_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  labels_ = LabelsFromAssociatedMeans(means, options_.filter_label_distance, birth_points);
+  const auto* named = dynamic_cast<const LabelledAssociation*>(filter_.get());
+  labels_ = named != nullptr
+                ? named->FinalLabels()
+                : LabelsFromAssociatedMeans(means, options_.filter_label_distance, birth_points);
   SmootherOptions o = options_;
   o.filter_association = labels_;
   if (o.initial_poses.empty()) o.initial_poses = std::move(poses);

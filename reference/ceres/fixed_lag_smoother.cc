@@ -347,6 +347,7 @@ void FixedLagSmoother::AddObservations(const StepData& step, filters::StepOutput
     DropMovingObjects(step, labels);
   }
   WindowPose& newest = poses_.back();
+  label_log_.emplace_back(step.measurements.size(), -1);
   for (std::size_t j = 0; j < step.measurements.size(); ++j) {
     if (labels[j] < 0) continue;
     const bool existed = landmarks_.count(labels[j]) > 0;
@@ -355,6 +356,7 @@ void FixedLagSmoother::AddObservations(const StepData& step, filters::StepOutput
       continue;
     }
     Observe(newest, labels[j], j, step.measurements[j]);
+    label_log_.back()[j] = labels[j];
   }
   if (!params_.known_association) ClassifyTentative();
   out.association.assign(step.measurements.size(),
@@ -439,6 +441,7 @@ int FixedLagSmoother::RejectOutliers() {
       if (r.squaredNorm() < params_.gate_chi2) return false;
       --lm.support.detections;
       ++rejected;
+      label_log_[p.step][o.measurement] = -1;
       return true;
     });
   }
@@ -589,6 +592,19 @@ filters::MapEstimate FixedLagSmoother::Map() const {
     map.log_weights.push_back(0.0);
   }
   return map;
+}
+
+std::vector<std::vector<int>> FixedLagSmoother::FinalLabels() const {
+  std::vector<std::vector<int>> labels = label_log_;
+  for (std::vector<int>& step : labels) {
+    for (int& label : step) {
+      const auto it = landmarks_.find(label);
+      const bool kept = it != landmarks_.end() && it->second.status == LandmarkStatus::kConfirmed &&
+                        !it->second.moving;
+      if (!kept) label = -1;
+    }
+  }
+  return labels;
 }
 
 std::vector<Pose> FixedLagSmoother::WindowPoses() const {

@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "reference/ceres/association_labels.h"
 #include "reference/ceres/batch_smoother.h"
 #include "reference/ceres/marginalization.h"
 #include "reference/ceres/odometry_increment.h"
@@ -100,7 +101,9 @@ struct WindowReport {
   int moving_landmarks = 0;     ///< own association: landmarks found moving (static_point_chi2)
 };
 
-class FixedLagSmoother final : public filters::OnlineEstimator, public filters::SolveCounter {
+class FixedLagSmoother final : public filters::OnlineEstimator,
+                               public filters::SolveCounter,
+                               public LabelledAssociation {
  public:
   /// `origins`: per step, per measurement, the landmark label (>= 0) or a negative value
   /// (clutter, unknown); required (one entry per step) with known_association, ignored
@@ -116,6 +119,10 @@ class FixedLagSmoother final : public filters::OnlineEstimator, public filters::
   /// batch solution).
   [[nodiscard]] std::vector<Pose> WindowPoses() const;
   [[nodiscard]] const WindowReport& report() const { return report_; }
+  /// Own association: each detection's landmark label as the run ended (confirmed landmarks
+  /// only; -1 for clutter, deleted or moving landmarks and rejected detections). Known
+  /// association: the labels used.
+  [[nodiscard]] std::vector<std::vector<int>> FinalLabels() const override;
   [[nodiscard]] filters::SolveCounts Solves() const override {
     return {report_.solves, report_.unconverged_solves};
   }
@@ -189,6 +196,7 @@ class FixedLagSmoother final : public filters::OnlineEstimator, public filters::
   std::map<int, WindowLandmark> landmarks_;
   int next_label_ = 0;  ///< own association: label of the next new landmark
   std::vector<MovingTrack> moving_tracks_;
+  std::vector<std::vector<int>> label_log_;  ///< per step, per measurement: the label observed
   std::optional<GraphFactor> prior_;
   FixedPoints fixed_points_;
   int steps_since_solve_ = 0;

@@ -2,10 +2,14 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <map>
+#include <memory>
 #include <string>
 
+#include "reference/ceres/filter_association.h"
 #include "reference/ceres/test_scenario.h"
 #include "reference/ceres/window_params_json.h"
 #include "src/testing/jacobian_check.h"
@@ -138,6 +142,59 @@ TEST(FixedLagSmoother, OwnAssociationFindsTheLandmarksAmongClutter) {
   }
   EXPECT_EQ(matched, 20);
   EXPECT_LE(w.map.size(), 22u);
+}
+
+// The window's final labels name one landmark per true landmark and leave clutter out; the
+// batch smoother solving them (the graph-SLAM pipeline of smoother-filter with filter_front_end
+// window) receives them as they are and is at least as accurate as the window's filtered poses.
+TEST(FixedLagSmoother, FinalLabelsAreOneLandmarkPerTrueLandmarkAndFeedTheBatchSmoother) {
+  CircleScenarioOptions o;
+  o.steps = 200;
+  o.clutter_rate = 5.0;
+  const datasets::Scenario s = MakeCircleScenario(o);
+  WindowParams own;
+  own.known_association = false;
+  FixedLagSmoother window(s.PublicContext(), own, {}, s.steps.size());
+  std::vector<Pose> filtered;
+  for (const datasets::ScenarioStep& step : s.steps)
+    filtered.push_back(window.Step(step.data).pose);
+  const std::vector<std::vector<int>> labels = window.FinalLabels();
+  ASSERT_EQ(labels.size(), s.steps.size());
+  std::map<int, std::map<int, int>> labels_of_truth;  // true landmark -> label -> detections
+  int clutter_kept = 0;
+  int clutter = 0;
+  for (std::size_t k = 0; k < s.steps.size(); ++k) {
+    ASSERT_EQ(labels[k].size(), s.steps[k].origin.size());
+    for (std::size_t j = 0; j < labels[k].size(); ++j) {
+      const int truth = s.steps[k].origin[j];
+      if (truth < 0) {
+        ++clutter;
+        clutter_kept += labels[k][j] >= 0 ? 1 : 0;
+      } else if (labels[k][j] >= 0) {
+        ++labels_of_truth[truth][labels[k][j]];
+      }
+    }
+  }
+  EXPECT_LT(clutter_kept, clutter / 50);  // under 2 % of the clutter kept on a landmark
+  ASSERT_EQ(labels_of_truth.size(), 20u);
+  for (const auto& [truth, counts] : labels_of_truth) {
+    int most = 0;
+    int all = 0;
+    for (const auto& [label, n] : counts) {
+      most = std::max(most, n);
+      all += n;
+    }
+    EXPECT_GE(most, 0.9 * all) << "true landmark " << truth << " split over " << counts.size();
+  }
+  SmootherOptions smooth;
+  smooth.compute_covariances = false;
+  FilterThenSmooth pipeline(
+      std::make_unique<FixedLagSmoother>(s.PublicContext(), own, std::vector<std::vector<int>>{},
+                                         s.steps.size()),
+      smooth);
+  const datasets::BatchResult r = pipeline.Solve(s);
+  EXPECT_EQ(pipeline.labels(), labels);
+  EXPECT_LE(PositionRmse(s, r.poses), PositionRmse(s, filtered));
 }
 
 TEST(FixedLagSmoother, BadWindowLengthsAreRejectedNamingTheParameter) {

@@ -261,10 +261,21 @@ const params::ParameterTable<SmootherOptions>& SmootherOptionsTable() {
           Above(0.0))
           .Means("smoother-filter: associated landmark means of consecutive scans closer than this "
                  "(m) are one landmark"),
-      params::EnumField<O, StartTrajectory>(
-          "start_from", [](auto& o) -> auto& { return o.start_from; },
-          {{StartTrajectory::kDeadReckoning, "dead-reckoning"}, {StartTrajectory::kPhd3, "phd3"}})
-          .Means("start trajectory: dead reckoning or a PHD-SLAM 3.0 run on the same seed (phd3)"),
+      params::EnumField<O, FilterFrontEnd>(
+          "filter_front_end", [](auto& o) -> auto& { return o.filter_front_end; },
+          {{FilterFrontEnd::kPhd3, "phd3"}, {FilterFrontEnd::kWindow, "window"}})
+          .Means("smoother-filter: the association of a PHD-SLAM 3.0 run (phd3) or of the "
+                 "fixed-lag smoother's own association (window, with its defaults on the scenario, "
+                 "its labels as they are)")
+          .UsedOnlyWith("association", {"filter"}),
+      params::EnumField<O, StartTrajectory>("start_from",
+                                            [](auto& o) -> auto& { return o.start_from; },
+                                            {{StartTrajectory::kDeadReckoning, "dead-reckoning"},
+                                             {StartTrajectory::kPhd3, "phd3"},
+                                             {StartTrajectory::kWindow, "window"}})
+          .Means("start trajectory: dead reckoning, a PHD-SLAM 3.0 run on the same seed (phd3) or "
+                 "the fixed-lag smoother's own-association run (window, with its defaults on the "
+                 "scenario)"),
       params::IntField<O>(
           "start_particles", [](auto& o) -> auto& { return o.start_particles; }, AtLeast(1))
           .Means("particles of the PHD-SLAM 3.0 run of start_from phd3")

@@ -491,6 +491,10 @@ TEST(ReferenceEstimators, TheWindowTakesJointCompatibilityAndTheMovingObjectTest
   const nlohmann::json synthetic = resolved("paper-synthetic", none);
   EXPECT_EQ(synthetic.at("assignment"), "nearest_neighbour");
   EXPECT_DOUBLE_EQ(synthetic.at("static_point_chi2").get<double>(), 0.0);
+  EXPECT_EQ(FindEstimator("smoother-filter")
+                .resolved_parameters({.name = "smoother-filter", .scenario_name = "mrclam"})
+                .at("filter_front_end"),
+            "window");
   // A value given by the user wins over the scenario's default.
   EXPECT_DOUBLE_EQ(
       resolved("mrclam", {{"static_point_chi2", 0.0}}).at("static_point_chi2").get<double>(), 0.0);

@@ -59,40 +59,6 @@ reference::SmootherOptions ResolveSmoother(const EstimatorRequest& r,
   return o;
 }
 
-EstimatorEntry SmootherEntry(const std::string& name, reference::AssociationMode mode,
-                             const std::string& description) {
-  EstimatorEntry e;
-  e.name = name;
-  e.description = description;
-  e.batch = true;
-  e.bounded_by_run_length = true;  // incremental_chunk_steps
-  e.reads_truth = mode == reference::AssociationMode::kKnown;
-  e.parameters = reference::SmootherOptionsTable().Descriptions();
-  e.resolved_parameters = [mode](const EstimatorRequest& r) {
-    return reference::ToJson(ResolveSmoother(r, mode));
-  };
-  e.make_batch = [mode](const EstimatorRequest& r) -> std::unique_ptr<datasets::BatchEstimator> {
-    reference::SmootherOptions o = ResolveSmoother(r, mode);
-    const bool from_phd3 = o.start_from == reference::StartTrajectory::kPhd3;
-    if (mode != reference::AssociationMode::kFilter && !from_phd3) {
-      return std::make_unique<reference::BatchSmoother>(std::move(o));
-    }
-    // A PHD-SLAM 3.0 run with the paper's parameters, drawn from this run's own stream: its
-    // association (smoother-filter, N = 1) or only its trajectory (start_from: phd3).
-    EstimatorRequest phd3 = r;
-    phd3.name = "phd3";
-    phd3.overrides = nlohmann::json::object();
-    phd3.particles = from_phd3 ? o.start_particles : 1;
-    const filters::PhdSlamParams params = ResolveParameters(phd3, filters::PhdSlamParamsTable());
-    auto filter = filters::MakePhdSlam("phd3", RequireContext(r), params, r.stream_seed);
-    if (from_phd3) {
-      return std::make_unique<reference::SmoothFromEstimatorStart>(std::move(filter), std::move(o));
-    }
-    return std::make_unique<reference::FilterThenSmooth>(std::move(filter), std::move(o));
-  };
-  return e;
-}
-
 // `run_steps` (0 when not known yet) bounds window_length: a value given as an override longer
 // than the run is an error naming it, while the default is shortened to a shorter run.
 reference::WindowParams ResolveWindow(const EstimatorRequest& r, bool known,
@@ -112,6 +78,60 @@ reference::WindowParams ResolveWindow(const EstimatorRequest& r, bool known,
   }
   if (known) RequireKnownOrigins(r);
   return p;
+}
+
+// The fixed-lag smoother with its own association and its defaults on the run's scenario, as the
+// estimator `window` is built: a smoother's front end.
+std::unique_ptr<reference::FixedLagSmoother> OwnAssociationWindow(const EstimatorRequest& r) {
+  EstimatorRequest window = r;
+  window.name = "window";
+  window.overrides = nlohmann::json::object();
+  window.particles = 1;
+  return std::make_unique<reference::FixedLagSmoother>(RequireContext(r),
+                                                       ResolveWindow(window, false, r.steps),
+                                                       std::vector<std::vector<int>>{}, r.steps);
+}
+
+EstimatorEntry SmootherEntry(const std::string& name, reference::AssociationMode mode,
+                             const std::string& description) {
+  EstimatorEntry e;
+  e.name = name;
+  e.description = description;
+  e.batch = true;
+  e.bounded_by_run_length = true;  // incremental_chunk_steps
+  e.reads_truth = mode == reference::AssociationMode::kKnown;
+  e.parameters = reference::SmootherOptionsTable().Descriptions();
+  e.resolved_parameters = [mode](const EstimatorRequest& r) {
+    return reference::ToJson(ResolveSmoother(r, mode));
+  };
+  e.make_batch = [mode](const EstimatorRequest& r) -> std::unique_ptr<datasets::BatchEstimator> {
+    reference::SmootherOptions o = ResolveSmoother(r, mode);
+    const bool from_phd3 = o.start_from == reference::StartTrajectory::kPhd3;
+    if (o.start_from == reference::StartTrajectory::kWindow) {
+      return std::make_unique<reference::SmoothFromEstimatorStart>(OwnAssociationWindow(r),
+                                                                   std::move(o));
+    }
+    if (mode == reference::AssociationMode::kFilter &&
+        o.filter_front_end == reference::FilterFrontEnd::kWindow) {
+      return std::make_unique<reference::FilterThenSmooth>(OwnAssociationWindow(r), std::move(o));
+    }
+    if (mode != reference::AssociationMode::kFilter && !from_phd3) {
+      return std::make_unique<reference::BatchSmoother>(std::move(o));
+    }
+    // A PHD-SLAM 3.0 run with the paper's parameters, drawn from this run's own stream: its
+    // association (smoother-filter, N = 1) or only its trajectory (start_from: phd3).
+    EstimatorRequest phd3 = r;
+    phd3.name = "phd3";
+    phd3.overrides = nlohmann::json::object();
+    phd3.particles = from_phd3 ? o.start_particles : 1;
+    const filters::PhdSlamParams params = ResolveParameters(phd3, filters::PhdSlamParamsTable());
+    auto filter = filters::MakePhdSlam("phd3", RequireContext(r), params, r.stream_seed);
+    if (from_phd3) {
+      return std::make_unique<reference::SmoothFromEstimatorStart>(std::move(filter), std::move(o));
+    }
+    return std::make_unique<reference::FilterThenSmooth>(std::move(filter), std::move(o));
+  };
+  return e;
 }
 
 // The fixed-lag smoother: `window-known` reads the origin labels as the oracle does; `window`
@@ -163,7 +183,9 @@ std::vector<EstimatorEntry> CeresEstimators() {
                         "run on the same seed (start_from=phd3)"),
           SmootherEntry("smoother-filter", reference::AssociationMode::kFilter,
                         "Ceres batch smoother on the data association of a PHD-SLAM 3.0 run "
-                        "(N = 1, same seed); initialisation=batch|incremental as smoother-known"),
+                        "(N = 1, same seed; filter_front_end=phd3, default) or on the labels of "
+                        "the fixed-lag smoother's own association (filter_front_end=window); "
+                        "initialisation=batch|incremental as smoother-known"),
           SmootherEntry("smoother-unknown", reference::AssociationMode::kUnknown,
                         "Ceres batch smoother with its own association: each scan associated "
                         "in a sequential EKF pass from dead reckoning (initialisation=batch, "
