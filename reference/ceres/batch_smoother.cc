@@ -71,6 +71,24 @@ void CompactLabels(const std::vector<std::vector<int>>& labels, Association* ass
   }
 }
 
+// The labels with at least `min_count` detections; the others become clutter (-1).
+std::vector<std::vector<int>> LabelsSeenAtLeast(const std::vector<std::vector<int>>& labels,
+                                                int min_count) {
+  std::map<int, int> counts;
+  for (const auto& step : labels) {
+    for (int l : step) {
+      if (l >= 0) ++counts[l];
+    }
+  }
+  std::vector<std::vector<int>> kept = labels;
+  for (auto& step : kept) {
+    for (int& l : step) {
+      if (l >= 0 && counts[l] < min_count) l = -1;
+    }
+  }
+  return kept;
+}
+
 void CheckLabelShape(const datasets::Scenario& scenario,
                      const std::vector<std::vector<int>>& labels, const std::string& what) {
   if (labels.size() != scenario.steps.size()) {
@@ -207,6 +225,8 @@ void SmootherOptions::Validate() const {
   require(start_particles >= 1, "start_particles: expected >= 1");
   require(start_from == StartTrajectory::kDeadReckoning || association != AssociationMode::kFilter,
           "start_from: the filter association starts from its own filter's trajectory");
+  require(front_end == OwnFrontEnd::kPass || start_from == StartTrajectory::kDeadReckoning,
+          "start_from: front_end window starts from the window's own trajectory");
   require(start_path == StartPath::kEstimate || start_from == StartTrajectory::kPhd3,
           "start_path: best-particle-path is a trajectory of the start_from filter run, "
           "which needs start_from: phd3");
@@ -339,19 +359,8 @@ datasets::BatchResult BatchSmoother::Solve(const datasets::Scenario& scenario) {
       CheckLabelShape(scenario, options_.filter_association, "SmootherOptions.filter_association");
       // Labels with fewer than min_observations detections are taken as clutter, as a filter's
       // map estimate leaves out its weak (clutter-born) components.
-      std::map<int, int> counts;
-      for (const auto& step : options_.filter_association) {
-        for (int l : step) {
-          if (l >= 0) ++counts[l];
-        }
-      }
-      std::vector<std::vector<int>> kept = options_.filter_association;
-      for (auto& step : kept) {
-        for (int& l : step) {
-          if (l >= 0 && counts[l] < options_.min_observations) l = -1;
-        }
-      }
-      CompactLabels(kept, &association_, &labels_);
+      CompactLabels(LabelsSeenAtLeast(options_.filter_association, options_.min_observations),
+                    &association_, &labels_);
       if (incremental) {
         IncrementalSolve(scenario, loose_odometry, association_, labels_.size(), robust.get(),
                          incremental_settings, record, &poses, &landmarks);
@@ -371,7 +380,19 @@ datasets::BatchResult BatchSmoother::Solve(const datasets::Scenario& scenario) {
       ao.sensor = scenario.sensor;
       ao.measurement_cov = scenario.sensor.noise_cov;
       Clock::time_point t = Clock::now();
-      if (incremental) {
+      if (options_.front_end == OwnFrontEnd::kWindow) {
+        // Stage 1: the window's labels at its trajectory (initial_poses), the labels below
+        // min_observations as clutter.
+        if (options_.filter_association.empty() && !scenario.steps.empty()) {
+          throw std::invalid_argument(
+              "SmootherOptions.front_end: window needs the window's labels (filter_association)");
+        }
+        CheckLabelShape(scenario, options_.filter_association,
+                        "SmootherOptions.filter_association");
+        CompactLabels(LabelsSeenAtLeast(options_.filter_association, options_.min_observations),
+                      &association_, &labels_);
+        landmarks = InitialLandmarks(scenario, poses, association_, labels_.size());
+      } else if (incremental) {
         // Stage 1: scan-to-map association along the incremental solve.
         IncrementalAssociationOptions io;
         io.gate.gate_chi2 = options_.gate_chi2;

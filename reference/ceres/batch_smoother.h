@@ -54,6 +54,16 @@ enum class FilterFrontEnd {
   kWindow,  ///< the fixed-lag smoother's own association (`window`), its labels as they are
 };
 
+/// Stage 1 of the own association (smoother-unknown): where its first association comes from.
+enum class OwnFrontEnd {
+  /// the sequential pass (batch) or the scan-to-map association of the incremental solve
+  kPass,
+  /// the fixed-lag smoother's own association (`window`, its defaults on the scenario): its
+  /// labels and trajectory, given as filter_association and initial_poses (the registry runs it
+  /// through FilterThenSmooth), then the re-association rounds and the final squared-loss solve
+  kWindow,
+};
+
 /// Which trajectory of the start_from filter run fills initial_poses (README.md, "Start from
 /// another estimator's trajectory").
 enum class StartPath {
@@ -212,6 +222,9 @@ struct SmootherOptions {
   /// closer than this (m) are the same landmark.
   double filter_label_distance = 2.0;
   FilterFrontEnd filter_front_end = FilterFrontEnd::kPhd3;
+  /// Own association: stage 1 from its own pass or from the window's labels (filter_association,
+  /// which the unknown mode then requires).
+  OwnFrontEnd front_end = OwnFrontEnd::kPass;
 
   /// How the final solution is scored (association_posterior.h): the Poisson birth term per
   /// landmark by default, the flat map prior of earlier versions as posterior_map_prior = flat.

@@ -83,7 +83,12 @@ FilterThenSmooth::FilterThenSmooth(std::unique_ptr<filters::OnlineEstimator> fil
                                    SmootherOptions options)
     : filter_(std::move(filter)), options_(std::move(options)) {
   if (!filter_) throw std::invalid_argument("FilterThenSmooth: no filter given");
-  options_.association = AssociationMode::kFilter;
+  // The own association takes the labels as its first association (front_end window) and
+  // re-associates; every other mode solves them as given.
+  if (options_.association != AssociationMode::kUnknown ||
+      options_.front_end != OwnFrontEnd::kWindow) {
+    options_.association = AssociationMode::kFilter;
+  }
   options_.Validate();
 }
 

@@ -30,7 +30,8 @@ std::vector<std::vector<int>> LabelsFromAssociatedMeans(
 class FilterThenSmooth final : public datasets::BatchEstimator {
  public:
   /// `filter` must be built for the scenario Solve will receive; options.association is set to
-  /// kFilter and options.filter_association is filled by Solve.
+  /// kFilter, unless it is kUnknown with front_end kWindow (the labels are then the own
+  /// association's first association), and options.filter_association is filled by Solve.
   FilterThenSmooth(std::unique_ptr<filters::OnlineEstimator> filter, SmootherOptions options);
 
   /// Runs the filter over every scan (once: a second call throws std::logic_error), converts its

@@ -197,6 +197,63 @@ TEST(FixedLagSmoother, FinalLabelsAreOneLandmarkPerTrueLandmarkAndFeedTheBatchSm
   EXPECT_LE(PositionRmse(s, r.poses), PositionRmse(s, filtered));
 }
 
+// smoother-unknown with front_end window: the window's labels are the own association's first
+// association, which the re-association rounds then revise; the result keeps one landmark per
+// true landmark and is at least as accurate as the window's filtered poses.
+TEST(FixedLagSmoother, TheOwnAssociationStartsFromTheWindowsLabelsAndReassociatesThem) {
+  CircleScenarioOptions o;
+  o.steps = 200;
+  o.clutter_rate = 5.0;
+  const datasets::Scenario s = MakeCircleScenario(o);
+  WindowParams own;
+  own.known_association = false;
+  FixedLagSmoother window(s.PublicContext(), own, {}, s.steps.size());
+  std::vector<Pose> filtered;
+  for (const datasets::ScenarioStep& step : s.steps)
+    filtered.push_back(window.Step(step.data).pose);
+  SmootherOptions smooth;
+  smooth.association = AssociationMode::kUnknown;
+  smooth.front_end = OwnFrontEnd::kWindow;
+  smooth.compute_covariances = false;
+  FilterThenSmooth pipeline(
+      std::make_unique<FixedLagSmoother>(s.PublicContext(), own, std::vector<std::vector<int>>{},
+                                         s.steps.size()),
+      smooth);
+  const datasets::BatchResult r = pipeline.Solve(s);
+  EXPECT_EQ(pipeline.labels(), window.FinalLabels());
+  EXPECT_GE(pipeline.smoother().report().reassociation_rounds, 1);
+  EXPECT_LE(PositionRmse(s, r.poses), PositionRmse(s, filtered));
+  int matched = 0;
+  for (const Landmark& t : s.truth.landmarks) {
+    for (const Landmark& m : r.map.means) matched += (m - t).norm() < 1.0 ? 1 : 0;
+  }
+  EXPECT_EQ(matched, 20);
+  EXPECT_LE(r.map.size(), 22u);
+}
+
+// The window front end needs the window's labels and its trajectory: without labels, or with
+// another start, the error names the option.
+TEST(FixedLagSmoother, TheWindowFrontEndRejectsAMissingLabellingOrAnotherStart) {
+  const datasets::Scenario s = MakeCircleScenario(CircleScenarioOptions{});
+  SmootherOptions o;
+  o.association = AssociationMode::kUnknown;
+  o.front_end = OwnFrontEnd::kWindow;
+  BatchSmoother without_labels(o);
+  try {
+    (void)without_labels.Solve(s);
+    ADD_FAILURE() << "front_end window solved without labels";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("front_end"), std::string::npos) << e.what();
+  }
+  o.start_from = StartTrajectory::kPhd3;
+  try {
+    o.Validate();
+    ADD_FAILURE() << "front_end window accepted start_from phd3";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("start_from"), std::string::npos) << e.what();
+  }
+}
+
 TEST(FixedLagSmoother, BadWindowLengthsAreRejectedNamingTheParameter) {
   const datasets::Scenario s = MakeCircleScenario(CircleScenarioOptions{});
   for (const int length : {0, -3, 101}) {

@@ -268,6 +268,13 @@ const params::ParameterTable<SmootherOptions>& SmootherOptionsTable() {
                  "fixed-lag smoother's own association (window, with its defaults on the scenario, "
                  "its labels as they are)")
           .UsedOnlyWith("association", {"filter"}),
+      params::EnumField<O, OwnFrontEnd>(
+          "front_end", [](auto& o) -> auto& { return o.front_end; },
+          {{OwnFrontEnd::kPass, "pass"}, {OwnFrontEnd::kWindow, "window"}})
+          .Means("smoother-unknown's first association: its own pass (pass) or the fixed-lag "
+                 "smoother's own association (window, with its defaults on the scenario), then "
+                 "the re-association rounds")
+          .UsedOnlyWith("association", {"unknown"}),
       params::EnumField<O, StartTrajectory>("start_from",
                                             [](auto& o) -> auto& { return o.start_from; },
                                             {{StartTrajectory::kDeadReckoning, "dead-reckoning"},

@@ -53,7 +53,8 @@ TEST(SmootherParamsJson, AcceptsTheCurrentAssociationModeAsANoOp) {
 TEST(SmootherParamsJson, WritesEveryOptionWithItsType) {
   EXPECT_EQ(ToJson(SmootherOptions{}).dump(),
             nlohmann::json::parse(R"({"association": "known", "compute_covariances": true,
-      "filter_front_end": "phd3", "filter_label_distance": 2.0, "function_tolerance": 1e-09,
+      "filter_front_end": "phd3", "filter_label_distance": 2.0, "front_end": "pass",
+      "function_tolerance": 1e-09,
       "gate_chi2": 13.8,
       "incremental_active_steps": 500, "incremental_chunk_steps": 25,
       "incremental_assignment": "nearest_neighbour", "incremental_jcbb_max_nodes": 20000,

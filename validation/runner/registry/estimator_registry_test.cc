@@ -474,7 +474,7 @@ TEST(ReferenceEstimators, MrclamSolvesTheSmoothersIncrementallyByDefault) {
   EXPECT_EQ(initialisation("smoother-known", "paper-synthetic", none), "batch");
 }
 
-TEST(ReferenceEstimators, TheWindowTakesJointCompatibilityAndTheMovingObjectTestOnMrclamOnly) {
+TEST(ReferenceEstimators, TheWindowAndItsLabelsAreTheFrontEndsOnMrclamOnly) {
   if (!Registered("window")) GTEST_SKIP() << "built without Ceres";
   const auto resolved = [](const std::string& scenario, const nlohmann::json& overrides) {
     EstimatorRequest request;
@@ -495,6 +495,16 @@ TEST(ReferenceEstimators, TheWindowTakesJointCompatibilityAndTheMovingObjectTest
                 .resolved_parameters({.name = "smoother-filter", .scenario_name = "mrclam"})
                 .at("filter_front_end"),
             "window");
+  const nlohmann::json unknown =
+      FindEstimator("smoother-unknown")
+          .resolved_parameters({.name = "smoother-unknown", .scenario_name = "mrclam"});
+  EXPECT_EQ(unknown.at("front_end"), "window");
+  EXPECT_DOUBLE_EQ(unknown.at("merge_position_std").get<double>(), 0.0);
+  EXPECT_EQ(
+      FindEstimator("smoother-unknown")
+          .resolved_parameters({.name = "smoother-unknown", .scenario_name = "paper-synthetic"})
+          .at("front_end"),
+      "pass");
   // A value given by the user wins over the scenario's default.
   EXPECT_DOUBLE_EQ(
       resolved("mrclam", {{"static_point_chi2", 0.0}}).at("static_point_chi2").get<double>(), 0.0);

@@ -111,8 +111,10 @@ EstimatorEntry SmootherEntry(const std::string& name, reference::AssociationMode
       return std::make_unique<reference::SmoothFromEstimatorStart>(OwnAssociationWindow(r),
                                                                    std::move(o));
     }
-    if (mode == reference::AssociationMode::kFilter &&
-        o.filter_front_end == reference::FilterFrontEnd::kWindow) {
+    if ((mode == reference::AssociationMode::kFilter &&
+         o.filter_front_end == reference::FilterFrontEnd::kWindow) ||
+        (mode == reference::AssociationMode::kUnknown &&
+         o.front_end == reference::OwnFrontEnd::kWindow)) {
       return std::make_unique<reference::FilterThenSmooth>(OwnAssociationWindow(r), std::move(o));
     }
     if (mode != reference::AssociationMode::kFilter && !from_phd3) {
@@ -190,8 +192,9 @@ std::vector<EstimatorEntry> CeresEstimators() {
                         "Ceres batch smoother with its own association: each scan associated "
                         "in a sequential EKF pass from dead reckoning (initialisation=batch, "
                         "default) or with the optimised map on marginal covariances as the "
-                        "graph grows (initialisation=incremental, the default on mrclam), or with "
-                        "the pass started "
+                        "graph grows (initialisation=incremental), or the fixed-lag smoother's "
+                        "own labels and trajectory instead of the pass (front_end=window, with "
+                        "merge_position_std=0 the default on mrclam), or with the pass started "
                         "from the trajectory of a PHD-SLAM 3.0 run on the same seed "
                         "(start_from=phd3, start_particles=5; its association is not used; "
                         "start_path=best-particle-path for its best final particle's path, "
