@@ -144,20 +144,38 @@ TEST(FixedLagSmoother, OwnAssociationFindsTheLandmarksAmongClutter) {
   EXPECT_LE(w.map.size(), 22u);
 }
 
+// The circle with 5 clutter detections per scan and the window's own association run over it.
+struct OwnWindowRun {
+  datasets::Scenario scenario;
+  WindowParams params;
+  std::unique_ptr<FixedLagSmoother> window;
+  std::vector<Pose> filtered;  // the window's pose of every step
+};
+
+OwnWindowRun RunOwnWindowOnAClutteredCircle() {
+  OwnWindowRun run;
+  CircleScenarioOptions o;
+  o.steps = 200;
+  o.clutter_rate = 5.0;
+  run.scenario = MakeCircleScenario(o);
+  run.params.known_association = false;
+  run.window = std::make_unique<FixedLagSmoother>(run.scenario.PublicContext(), run.params,
+                                                  std::vector<std::vector<int>>{},
+                                                  run.scenario.steps.size());
+  for (const datasets::ScenarioStep& step : run.scenario.steps)
+    run.filtered.push_back(run.window->Step(step.data).pose);
+  return run;
+}
+
 // The window's final labels name one landmark per true landmark and leave clutter out; the
 // batch smoother solving them (the graph-SLAM pipeline of smoother-filter with filter_front_end
 // window) receives them as they are and is at least as accurate as the window's filtered poses.
 TEST(FixedLagSmoother, FinalLabelsAreOneLandmarkPerTrueLandmarkAndFeedTheBatchSmoother) {
-  CircleScenarioOptions o;
-  o.steps = 200;
-  o.clutter_rate = 5.0;
-  const datasets::Scenario s = MakeCircleScenario(o);
-  WindowParams own;
-  own.known_association = false;
-  FixedLagSmoother window(s.PublicContext(), own, {}, s.steps.size());
-  std::vector<Pose> filtered;
-  for (const datasets::ScenarioStep& step : s.steps)
-    filtered.push_back(window.Step(step.data).pose);
+  const OwnWindowRun run = RunOwnWindowOnAClutteredCircle();
+  const datasets::Scenario& s = run.scenario;
+  const WindowParams& own = run.params;
+  const FixedLagSmoother& window = *run.window;
+  const std::vector<Pose>& filtered = run.filtered;
   const std::vector<std::vector<int>> labels = window.FinalLabels();
   ASSERT_EQ(labels.size(), s.steps.size());
   std::map<int, std::map<int, int>> labels_of_truth;  // true landmark -> label -> detections
@@ -201,16 +219,11 @@ TEST(FixedLagSmoother, FinalLabelsAreOneLandmarkPerTrueLandmarkAndFeedTheBatchSm
 // association, which the re-association rounds then revise; the result keeps one landmark per
 // true landmark and is at least as accurate as the window's filtered poses.
 TEST(FixedLagSmoother, TheOwnAssociationStartsFromTheWindowsLabelsAndReassociatesThem) {
-  CircleScenarioOptions o;
-  o.steps = 200;
-  o.clutter_rate = 5.0;
-  const datasets::Scenario s = MakeCircleScenario(o);
-  WindowParams own;
-  own.known_association = false;
-  FixedLagSmoother window(s.PublicContext(), own, {}, s.steps.size());
-  std::vector<Pose> filtered;
-  for (const datasets::ScenarioStep& step : s.steps)
-    filtered.push_back(window.Step(step.data).pose);
+  const OwnWindowRun run = RunOwnWindowOnAClutteredCircle();
+  const datasets::Scenario& s = run.scenario;
+  const WindowParams& own = run.params;
+  const FixedLagSmoother& window = *run.window;
+  const std::vector<Pose>& filtered = run.filtered;
   SmootherOptions smooth;
   smooth.association = AssociationMode::kUnknown;
   smooth.front_end = OwnFrontEnd::kWindow;
