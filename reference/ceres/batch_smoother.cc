@@ -106,6 +106,15 @@ void CheckLabelShape(const datasets::Scenario& scenario,
 }
 
 /// Landmark initial values: the inverse model at each landmark's first observation.
+// The labels of options.filter_association (a filter's or the window's), checked against the
+// scenario's shape, those with fewer than min_observations detections as clutter, compacted.
+void CompactGivenLabels(const datasets::Scenario& scenario, const SmootherOptions& options,
+                        Association* association, std::vector<int>* labels) {
+  CheckLabelShape(scenario, options.filter_association, "SmootherOptions.filter_association");
+  CompactLabels(LabelsSeenAtLeast(options.filter_association, options.min_observations),
+                association, labels);
+}
+
 std::vector<Landmark> InitialLandmarks(const datasets::Scenario& scenario,
                                        const std::vector<Pose>& poses,
                                        const Association& association, std::size_t count) {
@@ -356,11 +365,9 @@ datasets::BatchResult BatchSmoother::Solve(const datasets::Scenario& scenario) {
       break;
     }
     case AssociationMode::kFilter: {
-      CheckLabelShape(scenario, options_.filter_association, "SmootherOptions.filter_association");
       // Labels with fewer than min_observations detections are taken as clutter, as a filter's
       // map estimate leaves out its weak (clutter-born) components.
-      CompactLabels(LabelsSeenAtLeast(options_.filter_association, options_.min_observations),
-                    &association_, &labels_);
+      CompactGivenLabels(scenario, options_, &association_, &labels_);
       if (incremental) {
         IncrementalSolve(scenario, loose_odometry, association_, labels_.size(), robust.get(),
                          incremental_settings, record, &poses, &landmarks);
@@ -383,14 +390,11 @@ datasets::BatchResult BatchSmoother::Solve(const datasets::Scenario& scenario) {
       if (options_.front_end == OwnFrontEnd::kWindow) {
         // Stage 1: the window's labels at its trajectory (initial_poses), the labels below
         // min_observations as clutter.
-        if (options_.filter_association.empty() && !scenario.steps.empty()) {
+        if (options_.filter_association.empty()) {
           throw std::invalid_argument(
               "SmootherOptions.front_end: window needs the window's labels (filter_association)");
         }
-        CheckLabelShape(scenario, options_.filter_association,
-                        "SmootherOptions.filter_association");
-        CompactLabels(LabelsSeenAtLeast(options_.filter_association, options_.min_observations),
-                      &association_, &labels_);
+        CompactGivenLabels(scenario, options_, &association_, &labels_);
         landmarks = InitialLandmarks(scenario, poses, association_, labels_.size());
       } else if (incremental) {
         // Stage 1: scan-to-map association along the incremental solve.

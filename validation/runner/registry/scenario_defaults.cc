@@ -94,10 +94,6 @@ const std::vector<ScenarioDefaultsRow>& ScenarioDefaultsTable() {
         {"static_point_failures", 3}},
        "validation/REPRODUCTION.md, MRCLAM: joint compatibility and the moving-object test make "
        "the window better than dead reckoning on every robot of dataset 6"},
-      // smoother-filter on MRCLAM dataset 6, seed 1: on a PHD-SLAM 3.0 run's association 3.90,
-      // 2.01, 3.67, 3.43, 0.71 m on robots 1-5 (robots 1 and 4 above dead reckoning); on the
-      // window's own labels 1.64, 0.27, 2.09, 1.04, 0.35 m, every robot below it, pooled 1.28 m
-      // (reference/ceres/README.md, "Association modes").
       // smoother-unknown on MRCLAM dataset 6, seed 1: from its own incremental pass 4.48, 0.72,
       // 2.12, 2.30, 1.60 m on robots 1-5 (robots 1 and 4 above dead reckoning); from the
       // window's labels with the re-association rounds 1.87, 0.37, 2.05, 0.79, 0.34 m, every
@@ -109,6 +105,10 @@ const std::vector<ScenarioDefaultsRow>& ScenarioDefaultsTable() {
        {{"front_end", "window"}, {"merge_position_std", 0.0}},
        "reference/ceres/README.md: from the window's labels the own association is better than "
        "dead reckoning on every robot of dataset 6, from its own pass on three"},
+      // smoother-filter on MRCLAM dataset 6, seed 1: on a PHD-SLAM 3.0 run's association 3.90,
+      // 2.01, 3.67, 3.43, 0.71 m on robots 1-5 (robots 1 and 4 above dead reckoning); on the
+      // window's own labels 1.64, 0.27, 2.09, 1.04, 0.35 m, every robot below it, pooled 1.28 m
+      // (reference/ceres/README.md, "Association modes").
       {"mrclam",
        {"smoother-filter"},
        {{"filter_front_end", "window"}},
