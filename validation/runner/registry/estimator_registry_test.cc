@@ -415,10 +415,11 @@ TEST(ReferenceEstimators, StartFromPhd3) {
   EXPECT_NE(ResolveError("smoother-unknown", {{"start_particles", 0}}), "");
 }
 
-// On Victoria Park the own association starts by default from the best final particle's path of
-// a PHD-SLAM 3.0 run (scenario_defaults.cc); an explicit value wins, and setting the start back
-// to dead reckoning drops the path that belongs to the start.
-TEST(ReferenceEstimators, VictoriaParkStartsTheOwnAssociationFromTheBestParticlePath) {
+// On Victoria Park the own association takes the window's labels and trajectory by default, from
+// dead reckoning, and the window joint compatibility (scenario_defaults.cc); a start trajectory
+// given without front_end takes the pass, an explicit front_end with it is refused, and a path
+// asked for with the dead-reckoning start is refused, naming start_path.
+TEST(ReferenceEstimators, VictoriaParkTakesTheWindowAsTheOwnFrontEnd) {
   if (!Registered("smoother-unknown")) GTEST_SKIP() << "built without Ceres";
   EstimatorRequest request;
   request.name = "smoother-unknown";
@@ -426,30 +427,40 @@ TEST(ReferenceEstimators, VictoriaParkStartsTheOwnAssociationFromTheBestParticle
   const auto start = [&](const nlohmann::json& overrides) {
     request.overrides = overrides;
     const nlohmann::json p = FindEstimator("smoother-unknown").resolved_parameters(request);
-    return p.at("start_from").get<std::string>() + " " + p.at("start_path").get<std::string>();
+    return p.at("front_end").get<std::string>() + " " + p.at("start_from").get<std::string>() +
+           " " + p.at("start_path").get<std::string>();
   };
-  EXPECT_EQ(start(nlohmann::json::object()), "phd3 best-particle-path");
-  EXPECT_EQ(start({{"start_from", "dead-reckoning"}}), "dead-reckoning estimate");
-  EXPECT_EQ(start({{"start_path", "estimate"}}), "phd3 estimate");
-  EXPECT_EQ(start({{"start_particles", 1}}), "phd3 best-particle-path");
-  // A path asked for with the dead-reckoning start is still refused, naming start_path.
-  request.overrides = {{"start_from", "dead-reckoning"}, {"start_path", "best-particle-path"}};
-  try {
-    FindEstimator("smoother-unknown").resolved_parameters(request);
-    ADD_FAILURE() << "start_path without a start accepted";
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("start_path"), std::string::npos) << e.what();
-  }
-  // Elsewhere the start stays dead reckoning; the other smoothers keep theirs on Victoria Park.
+  EXPECT_EQ(start(nlohmann::json::object()), "window dead-reckoning estimate");
+  EXPECT_EQ(start({{"start_from", "phd3"}}), "pass phd3 estimate");
+  EXPECT_EQ(start({{"start_from", "phd3"}, {"start_path", "best-particle-path"}}),
+            "pass phd3 best-particle-path");
+  EXPECT_EQ(start({{"front_end", "pass"}}), "pass dead-reckoning estimate");
+  const auto refused = [&](const nlohmann::json& overrides, const std::string& field) {
+    request.overrides = overrides;
+    try {
+      FindEstimator("smoother-unknown").resolved_parameters(request);
+      ADD_FAILURE() << overrides.dump() << " accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(field), std::string::npos) << e.what();
+    }
+  };
+  refused({{"start_from", "phd3"}, {"front_end", "window"}}, "start_from");
+  refused({{"start_path", "best-particle-path"}}, "start_path");
+  const auto window = [&](const std::string& scenario) {
+    return FindEstimator("window").resolved_parameters(
+        {.name = "window", .scenario_name = scenario});
+  };
+  EXPECT_EQ(window("victoria-park").at("assignment"), "jcbb");
+  EXPECT_DOUBLE_EQ(window("victoria-park").at("jcbb_null_intensity").get<double>(), 0.035);
+  // Elsewhere the own association keeps its pass; smoother-filter keeps PHD-SLAM 3.0's
+  // association on Victoria Park.
   request.scenario_name = "paper-synthetic";
-  EXPECT_EQ(start(nlohmann::json::object()), "dead-reckoning estimate");
-  request.scenario_name = "victoria-park";
-  request.name = "smoother-filter";
+  EXPECT_EQ(start(nlohmann::json::object()), "pass dead-reckoning estimate");
   EXPECT_EQ(FindEstimator("smoother-filter")
-                .resolved_parameters(request)
-                .at("start_from")
+                .resolved_parameters({.name = "smoother-filter", .scenario_name = "victoria-park"})
+                .at("filter_front_end")
                 .get<std::string>(),
-            "dead-reckoning");
+            "phd3");
   EXPECT_EQ(ScenarioParameterDefaults("victoria-park", "smoother-known"), nlohmann::json::object());
 }
 
@@ -474,7 +485,9 @@ TEST(ReferenceEstimators, MrclamSolvesTheSmoothersIncrementallyByDefault) {
   EXPECT_EQ(initialisation("smoother-known", "paper-synthetic", none), "batch");
 }
 
-TEST(ReferenceEstimators, TheWindowAndItsLabelsAreTheFrontEndsOnMrclamOnly) {
+// On MRCLAM the window has joint compatibility and the moving-object test, and its labels are
+// both batch smoothers' front end; on the synthetic scenario neither.
+TEST(ReferenceEstimators, TheWindowAndItsLabelsAreTheFrontEndsOnMrclam) {
   if (!Registered("window")) GTEST_SKIP() << "built without Ceres";
   const auto resolved = [](const std::string& scenario, const nlohmann::json& overrides) {
     EstimatorRequest request;

@@ -49,6 +49,12 @@ reference::SmootherOptions ResolveSmoother(const EstimatorRequest& r,
       !r.overrides.contains("start_path")) {
     o.start_path = reference::StartPath::kEstimate;
   }
+  // Likewise a scenario's default front_end=window belongs to the dead-reckoning start: a start
+  // trajectory given without front_end takes the pass.
+  if (o.start_from != reference::StartTrajectory::kDeadReckoning &&
+      !r.overrides.contains("front_end")) {
+    o.front_end = reference::OwnFrontEnd::kPass;
+  }
   try {
     o.Validate();
   } catch (const std::invalid_argument& e) {
@@ -193,13 +199,13 @@ std::vector<EstimatorEntry> CeresEstimators() {
                         "in a sequential EKF pass from dead reckoning (initialisation=batch, "
                         "default) or with the optimised map on marginal covariances as the "
                         "graph grows (initialisation=incremental), or the fixed-lag smoother's "
-                        "own labels and trajectory instead of the pass (front_end=window, with "
-                        "merge_position_std=0 the default on mrclam), or with the pass started "
-                        "from the trajectory of a PHD-SLAM 3.0 run on the same seed "
-                        "(start_from=phd3, start_particles=5; its association is not used; "
-                        "start_path=best-particle-path for its best final particle's path, "
-                        "both the default on victoria-park), robust loss, re-association in a "
-                        "final full solve (reference/ceres/README.md)"),
+                        "own labels and trajectory instead of the pass (front_end=window, the "
+                        "default on victoria-park, and on mrclam with merge_position_std=0), or "
+                        "with the pass started from the trajectory of a PHD-SLAM 3.0 run on the "
+                        "same seed (start_from=phd3, start_particles=5; its association is not "
+                        "used; start_path=best-particle-path for its best final particle's "
+                        "path), robust loss, re-association in a final full solve "
+                        "(reference/ceres/README.md)"),
           WindowEntry("window-known", true,
                       "Ceres fixed-lag (sliding-window) smoother with the known association "
                       "(reads the hidden origin labels): old states marginalised into a Gaussian "
@@ -212,7 +218,8 @@ std::vector<EstimatorEntry> CeresEstimators() {
                       "confirm_detections (5) scans, Huber loss (Cauchy while tentative), "
                       "outliers dropped after each solve; on mrclam by default joint "
                       "compatibility (assignment=jcbb, jcbb_null_intensity=0.0035) and the "
-                      "moving-object test (static_point_chi2=9.21, static_point_failures=3) "
+                      "moving-object test (static_point_chi2=9.21, static_point_failures=3), "
+                      "on victoria-park joint compatibility with jcbb_null_intensity=0.035 "
                       "(reference/ceres/README.md)")};
 }
 
