@@ -55,6 +55,7 @@ void WindowParams::Validate(std::size_t run_steps) const {
             "solve_every: " + std::to_string(solve_every) + " is longer than the run (" +
                 std::to_string(run_steps) + " steps): nothing would be solved");
   }
+  require(landmark_keep_steps >= 0, "landmark_keep_steps: expected >= 0");
   require(max_iterations >= 1, "max_iterations: expected >= 1");
   require(function_tolerance > 0.0, "function_tolerance: expected > 0");
   require(odometry_floor.position_std > 0.0 && odometry_floor.heading_std > 0.0,
@@ -148,6 +149,7 @@ void FixedLagSmoother::Observe(WindowPose& pose, int label, std::size_t j, const
   }
   WindowLandmark& lm = it->second;
   ++lm.support.detections;
+  lm.last_step = pose.step;
   pose.observations.push_back(
       {label, j,
        GraphFactor{std::shared_ptr<ceres::CostFunction>(
@@ -449,6 +451,10 @@ int FixedLagSmoother::RejectOutliers() {
   return rejected;
 }
 
+bool FixedLagSmoother::KeepTimeOver(const WindowLandmark& lm) const {
+  return poses_.back().step >= lm.last_step + static_cast<std::size_t>(params_.landmark_keep_steps);
+}
+
 bool FixedLagSmoother::ObservedAfterOldest(int label) const {
   for (std::size_t i = 1; i < poses_.size(); ++i) {
     for (const Observation& o : poses_[i].observations) {
@@ -481,7 +487,7 @@ void FixedLagSmoother::MarginaliseOldest() {
   WindowPose& old = poses_.front();
   std::vector<int> leaving;
   for (const auto& [label, lm] : landmarks_) {
-    if (lm.active && !ObservedAfterOldest(label)) leaving.push_back(label);
+    if (lm.active && !ObservedAfterOldest(label) && KeepTimeOver(lm)) leaving.push_back(label);
   }
   const std::set<const double*> constant = ConstantBlocks();
   std::vector<double*> leaving_blocks;

@@ -37,8 +37,12 @@ struct WindowParams {
   bool known_association = true;
   /// Poses kept in the window after each solve (>= 1, at most the run's length).
   int window_length = 20;
-  int solve_every = 1;               ///< steps between solves (>= 1); the window holds up to
-                                     ///< window_length + solve_every - 1 poses before a solve
+  int solve_every = 1;  ///< steps between solves (>= 1); the window holds up to
+                        ///< window_length + solve_every - 1 poses before a solve
+  /// A landmark no window pose observes stays in the window, held by the marginal prior with its
+  /// correlations, until it has gone unobserved for this many steps; it is then marginalised.
+  /// 0: marginalised as soon as no window pose observes it.
+  int landmark_keep_steps = 0;
   int max_iterations = 10;           ///< Levenberg-Marquardt iterations per solve
   double function_tolerance = 1e-6;  ///< relative cost decrease that ends a solve
   OdometryResidual odometry_residual = OdometryResidual::kControlSpace;
@@ -147,6 +151,7 @@ class FixedLagSmoother final : public filters::OnlineEstimator,
     LandmarkSupport support;      ///< detections and sum of pD over the scans since the first one
     LandmarkStatus status = LandmarkStatus::kTentative;
     std::size_t first_step = 0;
+    std::size_t last_step = 0;                 ///< step of its latest detection
     std::optional<GraphFactor> reentry_prior;  ///< N(mean, cov) when it came back into the window
     StaticPointTrack static_point;  ///< first and latest detection, odometry since (moving test)
     bool moving = false;  ///< found moving while held by the prior: out of association and map
@@ -180,6 +185,8 @@ class FixedLagSmoother final : public filters::OnlineEstimator,
   void DeleteLandmark(int label);
   [[nodiscard]] std::vector<const GraphFactor*> WindowFactors() const;
   [[nodiscard]] std::set<const double*> ConstantBlocks() const;
+  /// Whether the landmark has gone unobserved for landmark_keep_steps (true when it is 0).
+  [[nodiscard]] bool KeepTimeOver(const WindowLandmark& lm) const;
   [[nodiscard]] bool ObservedAfterOldest(int label) const;
 
   filters::EstimatorContext context_;

@@ -120,6 +120,42 @@ TEST(FixedLagSmoother, MarginalisationKeepsTheNoisyEstimateCloseToTheBatchOne) {
   EXPECT_EQ(w.map.size(), 20u);
 }
 
+// Position RMSE of the window's map against the batch smoother's (the same labels, in order).
+double MapDistance(const filters::MapEstimate& a, const filters::MapEstimate& b) {
+  double sum = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) sum += (a.means[i] - b.means[i]).squaredNorm();
+  return std::sqrt(sum / static_cast<double>(a.size()));
+}
+
+// On one turn of the circle every landmark leaves the field of view behind the robot and comes
+// back at the loop's end. Kept in the window for the whole run (landmark_keep_steps), the
+// landmarks are held by the prior with their correlations, and only poses are marginalised: the
+// map and the last pose are then the batch smoother's up to the prior's fixed linearisation,
+// closer than when a landmark leaves with its marginal Gaussian and re-enters with it.
+TEST(FixedLagSmoother, LandmarksKeptInTheWindowGiveTheBatchSmoothersMap) {
+  for (const std::uint64_t seed : {1, 2, 3}) {
+    CircleScenarioOptions o;
+    o.steps = 200;
+    o.seed = seed;
+    const datasets::Scenario s = MakeCircleScenario(o);
+    SmootherOptions batch_options;
+    batch_options.association = AssociationMode::kKnown;
+    const datasets::BatchResult b = BatchSmoother(batch_options).Solve(s);
+    WindowParams p = Tight(5);
+    const WindowRun leaving = RunWindow(s, p);
+    p.landmark_keep_steps = o.steps;
+    const WindowRun kept = RunWindow(s, p);
+    ASSERT_EQ(kept.map.size(), b.map.size());
+    ASSERT_EQ(leaving.map.size(), b.map.size());
+    const double kept_map = MapDistance(kept.map, b.map);
+    const double leaving_map = MapDistance(leaving.map, b.map);
+    EXPECT_LT(kept_map, 0.02) << "seed " << seed;
+    EXPECT_LT(kept_map, leaving_map) << "seed " << seed;
+    EXPECT_LT((kept.filtered.back() - b.poses.back()).head<2>().norm(), 0.02) << "seed " << seed;
+    EXPECT_EQ(kept.report.marginalised_poses, leaving.report.marginalised_poses);
+  }
+}
+
 TEST(FixedLagSmoother, OwnAssociationFindsTheLandmarksAmongClutter) {
   CircleScenarioOptions o;
   o.steps = 200;

@@ -64,6 +64,11 @@ const params::ParameterTable<WindowParams>& WindowParamsTable() {
                  "assignment, a measurement left out weighed by this intensity (per m per rad)")
           .UsedOnlyWith("assignment", {"jcbb"}),
       params::IntField<P>(
+          "landmark_keep_steps", [](auto& p) -> auto& { return p.landmark_keep_steps; }, AtLeast(0))
+          .Means("a landmark no window pose observes stays in the window, held by the marginal "
+                 "prior with its correlations, until unobserved for this many steps (0: "
+                 "marginalised at once)"),
+      params::IntField<P>(
           "confirm_detections", [](auto& p) -> auto& { return p.confirm_detections; }, AtLeast(1))
           .Means("scans that must associate with a tentative landmark (its first included) before "
                  "it is confirmed"),

@@ -452,6 +452,8 @@ TEST(ReferenceEstimators, VictoriaParkTakesTheWindowAsTheOwnFrontEnd) {
   };
   EXPECT_EQ(window("victoria-park").at("assignment"), "jcbb");
   EXPECT_DOUBLE_EQ(window("victoria-park").at("jcbb_null_intensity").get<double>(), 0.035);
+  EXPECT_EQ(window("victoria-park").at("landmark_keep_steps"), 200);
+  EXPECT_EQ(window("paper-synthetic").at("landmark_keep_steps"), 0);
   // Elsewhere the own association keeps its pass; smoother-filter keeps PHD-SLAM 3.0's
   // association on Victoria Park.
   request.scenario_name = "paper-synthetic";

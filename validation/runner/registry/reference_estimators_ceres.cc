@@ -219,7 +219,8 @@ std::vector<EstimatorEntry> CeresEstimators() {
                       "outliers dropped after each solve; on mrclam by default joint "
                       "compatibility (assignment=jcbb, jcbb_null_intensity=0.0035) and the "
                       "moving-object test (static_point_chi2=9.21, static_point_failures=3), "
-                      "on victoria-park joint compatibility with jcbb_null_intensity=0.035 "
+                      "on victoria-park joint compatibility with jcbb_null_intensity=0.035 and "
+                      "landmark_keep_steps=200 "
                       "(reference/ceres/README.md)")};
 }
 
